@@ -1,0 +1,579 @@
+"""The event-driven integrator: rest, uplift, rocking, impacts, phase changes, overturning (numba).
+
+One kernel, :func:`integrate`, runs any planar system described by the parameter array ``sp`` of
+:mod:`rockdesign.dynamics.eom` under any excitation ``(kind, xp, samples)``.  Modes:
+
+* **rest** — θ = θ̇ = 0.  Rigid systems wait for the ground acceleration to cross the uplift threshold
+  (found exactly); a podium with an elastic superstructure integrates the fixed-base SDOF (Eq 4.3)
+  and watches the Eq 4.7 criterion on the dense output.  Uplift needs the criterion to exceed a tiny
+  hysteresis (SPEC §3.6), so round-off cannot chatter uplift → impact → rest at one instant.
+* **rocking** — DP5(4) steps that end exactly on every kink of ü_g (record samples, pulse ends);
+  each step's dense output is scanned for impact (θ = 0), phase change (|θ| = β), overturning
+  (|θ| = π/2) and the exceedance of θc; the peak |θ| is located where θ̇ = 0.  Terminal events are
+  refined by re-stepping to the event and a Newton correction, so impact times are accurate to the
+  integration tolerance, not to the interpolant.
+* **impact** (SPEC §3.4) — θ̇⁺ = √c_r θ̇⁻, u̇_T unchanged, side flips; below the rest velocity the
+  body comes to rest (ending Zeno sequences).
+
+Counters make every run diagnosable; the kernel always returns (never hangs): the step count, the
+event count and the step size are bounded, with a status code saying which bound stopped it.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from ..motions.excitation import excitation_end, ground_acceleration, ground_acceleration_right, next_breakpoint
+from .eom import (rhs_given_acceleration, P_BETA, P_CR, P_HYST, P_OVERTURN, P_RADIUS, P_REST_V, P_R, P_THETA_C, P_TWO_DOF,
+                  normalised_kinematics, potential_energy, rhs, total_energy, uplift_condition)
+from .events import next_threshold_crossing, root_on_dense
+from .rk import (ERROR_EXPONENT, MAX_FACTOR, MIN_FACTOR, SAFETY, dense_coefficients, dense_value,
+                 dp5_step, error_norm, initial_step)
+
+# event kinds
+EV_UPLIFT = 1
+EV_IMPACT = 2
+EV_PHASE_ROCKING = 3   # |θ| rises through β: rolling → rocking about the extension edge
+EV_PHASE_ROLLING = 4   # |θ| falls through β
+EV_REST = 5
+EV_OVERTURN = 6        # dynamic: |θ| reaches π/2
+EV_EXCEEDED = 7        # static: |θ| reaches θc for the first time
+EVENT_NAMES = {EV_UPLIFT: "uplift", EV_IMPACT: "impact", EV_PHASE_ROCKING: "phase-rocking",
+               EV_PHASE_ROLLING: "phase-rolling", EV_REST: "rest", EV_OVERTURN: "overturn",
+               EV_EXCEEDED: "capacity-exceeded"}
+
+# status codes
+ST_OK = 0
+ST_OVERTURNED = 1
+ST_STEP_COLLAPSE = 2
+ST_TOO_MANY_STEPS = 3
+ST_ENERGY_BOUND = 4    # stopped early: the remaining energy cannot change θ_max or the verdict
+ST_STOPPED_EXCEEDED = 5
+ST_TOO_MANY_EVENTS = 6
+STATUS_NAMES = {ST_OK: "completed", ST_OVERTURNED: "overturned (|θ| = π/2)",
+                ST_STEP_COLLAPSE: "step size collapsed", ST_TOO_MANY_STEPS: "step limit reached",
+                ST_ENERGY_BOUND: "stopped: energy bound reached", ST_STOPPED_EXCEEDED: "stopped at θc",
+                ST_TOO_MANY_EVENTS: "event limit reached"}
+
+# options array
+O_T_END = 0
+O_RTOL = 1
+O_ATOL = 2
+O_H_MAX = 3
+O_MAX_STEPS = 4
+O_ENERGY_STOP = 5
+O_STOP_EXCEEDED = 6
+O_SCAN = 7
+O_MAX_EVENTS = 8
+N_OPTIONS = 9
+
+# summary array
+S_THETA_MAX = 0
+S_T_THETA_MAX = 1
+S_UB_MAX = 2
+S_IMPACTS = 3
+S_T_UPLIFT = 4
+S_EXCEEDED = 5
+S_T_EXCEEDED = 6
+S_DYNAMIC = 7
+S_T_OVERTURN = 8
+S_IMPACTS_BEFORE_OVERTURN = 9
+S_DRIFT_MAX = 10
+S_T_END = 11
+S_UPLIFTS = 12
+S_IMPACTS_BEFORE_EXCEEDED = 13
+S_UPLIFT_TIME = 14     # total time spent uplifted [s]
+N_SUMMARY = 15
+
+# diagnostics array
+D_STEPS = 0
+D_REJECTED = 1
+D_NFEV = 2
+D_EVENTS = 3
+D_REST = 4
+D_STATUS = 5
+D_REFINE = 6
+D_EVENTS_STORED = 7
+N_DIAG = 8
+
+
+@njit(cache=True)
+def _phase_of(abs_theta, sp):
+    return 1 if (sp[P_RADIUS] != 0.0 and abs_theta <= sp[P_BETA]) else 2
+
+
+@njit(cache=True)
+def _store_event(ev_t, ev_kind, ev_y, diag, kind, t, y):
+    diag[D_EVENTS] += 1
+    k = diag[D_EVENTS_STORED]
+    if k < ev_t.shape[0]:
+        ev_t[k] = t
+        ev_kind[k] = kind
+        for i in range(4):
+            ev_y[k, i] = y[i]
+        diag[D_EVENTS_STORED] = k + 1
+
+
+@njit(cache=True)
+def _top_displacement(abs_theta, sp):
+    U0, _, _, _, _, _ = normalised_kinematics(abs_theta, 1.0, _phase_of(abs_theta, sp), sp)
+    return 2.0 * sp[P_R] * U0
+
+
+@njit(cache=True)
+def _fill_outputs(t_out, out_y, i_out, t_hi, t0, y, Q, h, y_end, use_dense, rest):
+    """Write output rows for t_out ≤ t_hi; returns the next output index."""
+    n_out = t_out.shape[0]
+    while i_out < n_out and t_out[i_out] <= t_hi:
+        if rest:
+            out_y[i_out, 0] = 0.0
+            out_y[i_out, 1] = 0.0
+            out_y[i_out, 2] = y[2]
+            out_y[i_out, 3] = y[3]
+        elif t_out[i_out] == t_hi or not use_dense or h == 0.0:
+            for i in range(4):
+                out_y[i_out, i] = y_end[i]
+        else:
+            x = (t_out[i_out] - t0) / h
+            for i in range(4):
+                out_y[i_out, i] = dense_value(y, Q, h, x, i)
+        i_out += 1
+    return i_out
+
+
+@njit(cache=True)
+def _refine_event(t, y, f0, x_e, h, level, sgn, K, y_e, ytmp, side, phase, kind, xp, samples, sp, n, diag):
+    """Re-step from t to the event and Newton-correct so that sgn·θ − level = 0 to round-off.
+
+    Returns the refined event time; ``y_e`` holds the state there.
+    """
+    he = x_e * h
+    for _ in range(4):
+        if he <= 0.0:
+            for i in range(4):
+                y_e[i] = y[i]
+            return t
+        diag[D_NFEV] += dp5_step(t, y, f0, he, K, y_e, ytmp, True, side, phase, kind, xp, samples, sp, n)
+        diag[D_REFINE] += 1
+        g = sgn * y_e[0] - level
+        gd = sgn * y_e[1]
+        if gd == 0.0:
+            break
+        dh = -g / gd
+        if abs(dh) <= 1e-14 * max(1.0, abs(t + he)) or abs(g) <= 1e-15:
+            break
+        he_new = min(max(he + dh, 0.0), h)
+        if he_new == he:
+            break
+        he = he_new
+    return t + he
+
+
+@njit(cache=True)
+def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, ev_t, ev_kind, ev_y):
+    """Run one time-history analysis.
+
+    Args:
+        sp: system parameters (``eom.P_*`` layout).
+        kind, xp, samples: the excitation (see :mod:`rockdesign.motions.excitation`).
+        y_init: initial (θ, θ̇, u_T, u̇_T); θ = θ̇ = 0 starts at rest.
+        side_init: side of an initial tilt (±1), ignored at rest.
+        t0: start time [s]; opts: ``O_*`` options (t_end, rtol, atol, ...).
+        t_out: sorted output times; ``out_y`` receives the state there (len(t_out) × 4).
+        ev_t, ev_kind, ev_y: event buffers (capacity = their length; extra events are counted only).
+
+    Returns:
+        (summary ``S_*`` array, diagnostics ``D_*`` int array, number of output rows written).
+    """
+    summary = np.zeros(N_SUMMARY)
+    summary[S_T_UPLIFT] = math.nan
+    summary[S_T_EXCEEDED] = math.nan
+    summary[S_T_OVERTURN] = math.nan
+    summary[S_IMPACTS_BEFORE_OVERTURN] = -1.0
+    summary[S_IMPACTS_BEFORE_EXCEEDED] = -1.0
+    diag = np.zeros(N_DIAG, dtype=np.int64)
+    t_end = opts[O_T_END]
+    rtol = opts[O_RTOL]
+    atol = opts[O_ATOL]
+    h_max = opts[O_H_MAX]
+    max_steps = opts[O_MAX_STEPS]
+    energy_stop = opts[O_ENERGY_STOP] != 0.0
+    stop_exceeded = opts[O_STOP_EXCEEDED] != 0.0
+    m_scan = int(opts[O_SCAN])
+    max_events = opts[O_MAX_EVENTS]
+    two_dof = sp[P_TWO_DOF] != 0.0
+    n = 4 if two_dof else 2
+    theta_c = sp[P_THETA_C]
+    theta_ot = sp[P_OVERTURN]
+    beta = sp[P_BETA]
+    curved = sp[P_RADIUS] != 0.0
+    c_r = sp[P_CR]
+    v_rest = sp[P_REST_V]
+    hyst = sp[P_HYST]
+    t_exc = excitation_end(kind, xp, samples)
+
+    y = np.zeros(4)
+    for i in range(4):
+        y[i] = y_init[i]
+    f0 = np.zeros(4)
+    y_new = np.zeros(4)
+    y_e = np.zeros(4)
+    ytmp = np.zeros(4)
+    ftmp = np.zeros(4)
+    K = np.zeros((7, 4))
+    Q = np.zeros((4, 4))
+
+    # rigid-rest thresholds: uplift_condition is affine in ü_g when u_T = u̇_T = 0
+    c0p = uplift_condition(1.0, 0.0, 0.0, 0.0, sp)
+    c1p = uplift_condition(1.0, 1.0, 0.0, 0.0, sp) - c0p
+    c0m = uplift_condition(-1.0, 0.0, 0.0, 0.0, sp)
+    c1m = uplift_condition(-1.0, 1.0, 0.0, 0.0, sp) - c0m
+    thr_lo = (hyst - c0p) / c1p      # ü_g ≤ thr_lo → uplift to θ > 0
+    thr_hi = (hyst - c0m) / c1m      # ü_g ≥ thr_hi → uplift to θ < 0
+
+    t = t0
+    rocking = y[0] != 0.0 or y[1] != 0.0
+    side = side_init
+    if rocking:
+        if y[0] != 0.0:
+            side = 1.0 if y[0] > 0.0 else -1.0
+        else:
+            side = 1.0 if y[1] > 0.0 else -1.0
+    phase = _phase_of(abs(y[0]), sp)
+    impacts = 0
+    i_out = 0
+    n_out = t_out.shape[0]
+    while i_out < n_out and t_out[i_out] < t:
+        i_out += 1
+    status = ST_OK
+    need_start = True
+    h = 0.0
+    t_rock_start = t
+    if rocking:
+        summary[S_UPLIFTS] = 1.0
+        summary[S_T_UPLIFT] = t
+        summary[S_THETA_MAX] = abs(y[0])
+        summary[S_T_THETA_MAX] = t
+
+    while t < t_end:
+        if diag[D_STEPS] >= max_steps:
+            status = ST_TOO_MANY_STEPS
+            break
+        if diag[D_EVENTS] >= max_events:
+            status = ST_TOO_MANY_EVENTS
+            break
+        # ---------------------------------------------------------------- rigid rest
+        if not rocking and not two_dof:
+            if t >= t_exc:
+                i_out = _fill_outputs(t_out, out_y, i_out, t_end, t, y, Q, 0.0, y, False, True)
+                t = t_end
+                break
+            tu, s_up = next_threshold_crossing(t, t_end, thr_lo, thr_hi, kind, xp, samples)
+            if tu > t_end:
+                i_out = _fill_outputs(t_out, out_y, i_out, t_end, t, y, Q, 0.0, y, False, True)
+                t = t_end
+                break
+            i_out = _fill_outputs(t_out, out_y, i_out, tu, t, y, Q, 0.0, y, False, True)
+            t = tu
+            rocking = True
+            side = s_up
+            phase = 1
+            y[0] = 0.0
+            y[1] = 0.0
+            _store_event(ev_t, ev_kind, ev_y, diag, EV_UPLIFT, t, y)
+            summary[S_UPLIFTS] += 1.0
+            if math.isnan(summary[S_T_UPLIFT]):
+                summary[S_T_UPLIFT] = t
+            t_rock_start = t
+            need_start = True
+            continue
+        # ---------------------------------------------------------------- a step
+        if need_start:
+            rhs_given_acceleration(ground_acceleration_right(t, kind, xp, samples), y, f0, rocking, side, phase, sp)
+            diag[D_NFEV] += 1
+            tb0 = min(next_breakpoint(t, kind, xp, samples), t_end)
+            h0 = initial_step(t, y, f0, tb0, rtol, atol, ytmp, ftmp, rocking, side, phase, kind, xp,
+                              samples, sp, n)
+            diag[D_NFEV] += 1
+            h = h0 if h == 0.0 else min(h, h0) if h0 > 0.0 else h
+            need_start = False
+        tb = min(next_breakpoint(t, kind, xp, samples), t_end)
+        span = tb - t
+        if span <= 0.0:
+            span = t_end - t
+        h = min(h, span, h_max)
+        if h <= 1e-15 * max(1.0, abs(t)):
+            if span <= 1e-15 * max(1.0, abs(t)):
+                # sliver before a breakpoint: jump onto it
+                h = span
+            else:
+                status = ST_STEP_COLLAPSE
+                break
+        diag[D_NFEV] += dp5_step(t, y, f0, h, K, y_new, ytmp, rocking, side, phase, kind, xp, samples, sp, n)
+        diag[D_STEPS] += 1
+        err = error_norm(y, y_new, K, h, rtol, atol, n)
+        if not err <= 1.0:  # also catches NaN
+            diag[D_REJECTED] += 1
+            fac = MIN_FACTOR if not err == err else max(MIN_FACTOR, SAFETY * err ** ERROR_EXPONENT)
+            h *= fac
+            continue
+        fac = MAX_FACTOR if err == 0.0 else min(MAX_FACTOR, SAFETY * err ** ERROR_EXPONENT)
+        h_next = h * fac
+        t_new = t + h
+        if t_new > tb - 1e-13 * max(1.0, abs(tb)) and tb < math.inf:
+            t_new = tb
+        dense_coefficients(K, Q)
+
+        # ------------------------------------------------------------ rest of a 2DOF podium
+        if not rocking:
+            ev_x = -1.0
+            ev_side = 0.0
+            x_prev = 0.0
+            cp_prev = uplift_condition(1.0, ground_acceleration(t, kind, xp, samples), y[2], y[3], sp) - hyst
+            cm_prev = uplift_condition(-1.0, ground_acceleration(t, kind, xp, samples), y[2], y[3], sp) - hyst
+            for k in range(1, m_scan + 1):
+                x = k / m_scan
+                tx = t + x * h
+                ag = ground_acceleration(tx, kind, xp, samples)
+                ut = y_new[2] if k == m_scan else dense_value(y, Q, h, x, 2)
+                utd = y_new[3] if k == m_scan else dense_value(y, Q, h, x, 3)
+                cp = uplift_condition(1.0, ag, ut, utd, sp) - hyst
+                cm = uplift_condition(-1.0, ag, ut, utd, sp) - hyst
+                if cp >= 0.0 or cm >= 0.0:
+                    s_up = 1.0 if cp >= 0.0 else -1.0
+                    fa = cp_prev if s_up > 0 else cm_prev
+                    xa = x_prev
+                    xb = x
+                    for _ in range(100):  # bisection on the dense output
+                        xm = 0.5 * (xa + xb)
+                        agm = ground_acceleration(t + xm * h, kind, xp, samples)
+                        cm_ = uplift_condition(s_up, agm, dense_value(y, Q, h, xm, 2),
+                                               dense_value(y, Q, h, xm, 3), sp) - hyst
+                        if cm_ >= 0.0:
+                            xb = xm
+                        else:
+                            xa = xm
+                        if xb - xa < 1e-15:
+                            break
+                    ev_x = xb
+                    ev_side = s_up
+                    break
+                x_prev = x
+                cp_prev = cp
+                cm_prev = cm
+            if ev_x >= 0.0:
+                he = ev_x * h
+                if he > 0.0:
+                    diag[D_NFEV] += dp5_step(t, y, f0, he, K, y_e, ytmp, False, side, phase, kind, xp, samples,
+                                             sp, n)
+                    diag[D_REFINE] += 1
+                else:
+                    for i in range(4):
+                        y_e[i] = y[i]
+                t_e = t + he
+                i_out = _fill_outputs(t_out, out_y, i_out, t_e, t, y, Q, h, y_e, True, False)
+                t = t_e
+                for i in range(4):
+                    y[i] = y_e[i]
+                y[0] = 0.0
+                y[1] = 0.0
+                rocking = True
+                side = ev_side
+                phase = 1
+                _store_event(ev_t, ev_kind, ev_y, diag, EV_UPLIFT, t, y)
+                summary[S_UPLIFTS] += 1.0
+                if math.isnan(summary[S_T_UPLIFT]):
+                    summary[S_T_UPLIFT] = t
+                t_rock_start = t
+                need_start = True
+                continue
+            i_out = _fill_outputs(t_out, out_y, i_out, t_new, t, y, Q, h, y_new, True, False)
+            t = t_new
+            for i in range(4):
+                y[i] = y_new[i]
+                f0[i] = K[6, i]
+            if t == tb:
+                # on a kink or jump of ü_g: the next step starts from the right limit
+                rhs_given_acceleration(ground_acceleration_right(t, kind, xp, samples), y, f0, rocking, side,
+                                       phase, sp)
+                diag[D_NFEV] += 1
+            h = h_next
+            if energy_stop and t >= t_exc and summary[S_THETA_MAX] < theta_c:
+                e = total_energy(y, False, side, phase, sp)
+                if e < potential_energy(summary[S_THETA_MAX], 1.0, _phase_of(summary[S_THETA_MAX], sp), sp):
+                    status = ST_ENERGY_BOUND
+                    break
+            continue
+
+        # ------------------------------------------------------------ rocking: scan for events
+        ev_type = 0
+        ev_x = 2.0
+        ev_level = 0.0
+        x_a = 0.0
+        sa = side * y[0]
+        va = side * y[1]
+        for k in range(1, m_scan + 1):
+            x_b = k / m_scan
+            if k == m_scan:
+                sb = side * y_new[0]
+                vb = side * y_new[1]
+            else:
+                sb = side * dense_value(y, Q, h, x_b, 0)
+                vb = side * dense_value(y, Q, h, x_b, 1)
+            # split at an extremum of sθ (θ̇ changes sign)
+            n_piece = 1
+            x_mid = x_b
+            s_mid = sb
+            if (va > 0.0 and vb < 0.0) or (va < 0.0 and vb > 0.0):
+                x_mid = root_on_dense(y, Q, h, 1, side, 0.0, x_a, x_b)
+                s_mid = side * dense_value(y, Q, h, x_mid, 0)
+                n_piece = 2
+            px0 = x_a
+            ps0 = sa
+            for piece in range(n_piece):
+                if piece == 0:
+                    px1 = x_mid
+                    ps1 = s_mid
+                else:
+                    px0 = x_mid
+                    ps0 = s_mid
+                    px1 = x_b
+                    ps1 = sb
+                if ps1 > ps0:
+                    # rising: phase I→II at β, exceedance of θc (non-terminal), overturning
+                    if curved and phase == 1 and ps0 < beta <= ps1:
+                        ev_type = EV_PHASE_ROCKING
+                        ev_level = beta
+                    elif ps1 >= theta_ot:
+                        ev_type = EV_OVERTURN
+                        ev_level = theta_ot
+                    if summary[S_EXCEEDED] == 0.0 and ps0 < theta_c <= ps1:
+                        xc = root_on_dense(y, Q, h, 0, side, theta_c, px0, px1)
+                        if ev_type == 0 or xc <= root_on_dense(y, Q, h, 0, side, ev_level, px0, px1):
+                            summary[S_EXCEEDED] = 1.0
+                            summary[S_T_EXCEEDED] = t + xc * h
+                            summary[S_IMPACTS_BEFORE_EXCEEDED] = impacts
+                            for i in range(4):
+                                ytmp[i] = dense_value(y, Q, h, xc, i)
+                            _store_event(ev_t, ev_kind, ev_y, diag, EV_EXCEEDED, t + xc * h, ytmp)
+                            if stop_exceeded:
+                                ev_type = -1
+                                ev_x = xc
+                                break
+                elif ps1 < ps0:
+                    # falling: phase II→I at β, impact at 0
+                    if curved and phase == 2 and ps1 <= beta < ps0:
+                        ev_type = EV_PHASE_ROLLING
+                        ev_level = beta
+                    elif ps1 <= 0.0:
+                        ev_type = EV_IMPACT
+                        ev_level = 0.0
+                if ev_type > 0:
+                    if ps0 == ev_level:
+                        ev_x = px0
+                    else:
+                        ev_x = root_on_dense(y, Q, h, 0, side, ev_level, px0, px1)
+                    break
+                # peak candidate at the end of a piece
+                if ps1 > summary[S_THETA_MAX]:
+                    summary[S_THETA_MAX] = ps1
+                    summary[S_T_THETA_MAX] = t + px1 * h
+            if ev_type != 0:
+                break
+            if two_dof:
+                rel = abs((y_new[2] if k == m_scan else dense_value(y, Q, h, x_b, 2))
+                          - side * _top_displacement(sb, sp))
+                if rel > summary[S_DRIFT_MAX]:
+                    summary[S_DRIFT_MAX] = rel
+            x_a = x_b
+            sa = sb
+            va = vb
+
+        if ev_type == 0:
+            i_out = _fill_outputs(t_out, out_y, i_out, t_new, t, y, Q, h, y_new, True, False)
+            t = t_new
+            for i in range(4):
+                y[i] = y_new[i]
+                f0[i] = K[6, i]
+            if t == tb:
+                # on a kink or jump of ü_g: the next step starts from the right limit
+                rhs_given_acceleration(ground_acceleration_right(t, kind, xp, samples), y, f0, rocking, side,
+                                       phase, sp)
+                diag[D_NFEV] += 1
+            h = h_next
+            if energy_stop and t >= t_exc and summary[S_THETA_MAX] < theta_c:
+                e = total_energy(y, True, side, phase, sp)
+                if e < potential_energy(summary[S_THETA_MAX], 1.0, _phase_of(summary[S_THETA_MAX], sp), sp):
+                    status = ST_ENERGY_BOUND
+                    summary[S_UPLIFT_TIME] += t - t_rock_start
+                    break
+            continue
+
+        # a terminal event inside the step -----------------------------------------------
+        if ev_type == -1:
+            for i in range(4):
+                y_e[i] = dense_value(y, Q, h, ev_x, i)
+            t_e = t + ev_x * h
+        else:
+            t_e = _refine_event(t, y, f0, ev_x, h, ev_level, side, K, y_e, ytmp, side, phase, kind, xp,
+                                samples, sp, n, diag)
+        i_out = _fill_outputs(t_out, out_y, i_out, t_e, t, y, Q, h, y_e, True, False)
+        t = t_e
+        for i in range(4):
+            y[i] = y_e[i]
+        if ev_type == -1:
+            status = ST_STOPPED_EXCEEDED
+            if theta_c > summary[S_THETA_MAX]:
+                summary[S_THETA_MAX] = theta_c
+                summary[S_T_THETA_MAX] = t
+            summary[S_UPLIFT_TIME] += t - t_rock_start
+            break
+        if ev_type == EV_OVERTURN:
+            y[0] = side * theta_ot
+            summary[S_DYNAMIC] = 1.0
+            summary[S_T_OVERTURN] = t
+            summary[S_IMPACTS_BEFORE_OVERTURN] = impacts
+            if theta_ot > summary[S_THETA_MAX]:
+                summary[S_THETA_MAX] = theta_ot
+                summary[S_T_THETA_MAX] = t
+            _store_event(ev_t, ev_kind, ev_y, diag, EV_OVERTURN, t, y)
+            status = ST_OVERTURNED
+            summary[S_UPLIFT_TIME] += t - t_rock_start
+            break
+        if ev_type == EV_PHASE_ROCKING or ev_type == EV_PHASE_ROLLING:
+            y[0] = side * beta
+            phase = 2 if ev_type == EV_PHASE_ROCKING else 1
+            _store_event(ev_t, ev_kind, ev_y, diag, ev_type, t, y)
+            need_start = True
+            continue
+        # impact
+        y[0] = 0.0
+        _store_event(ev_t, ev_kind, ev_y, diag, EV_IMPACT, t, y)
+        impacts += 1
+        summary[S_IMPACTS] = impacts
+        y[1] = math.sqrt(c_r) * y[1]
+        if abs(y[1]) < v_rest:
+            y[1] = 0.0
+            rocking = False
+            phase = 1
+            diag[D_REST] += 1
+            _store_event(ev_t, ev_kind, ev_y, diag, EV_REST, t, y)
+            summary[S_UPLIFT_TIME] += t - t_rock_start
+        else:
+            side = -side
+            phase = 1
+        need_start = True
+
+    if rocking and status == ST_OK:
+        summary[S_UPLIFT_TIME] += t - t_rock_start
+    # remaining output rows (after overturning or an early stop) repeat the last state
+    while i_out < n_out and t_out[i_out] <= t + 1e-12:
+        for i in range(4):
+            out_y[i_out, i] = y[i]
+        i_out += 1
+    summary[S_T_END] = t
+    summary[S_UB_MAX] = _top_displacement(min(summary[S_THETA_MAX], theta_ot), sp)
+    diag[D_STATUS] = status
+    return summary, diag, i_out

@@ -1,0 +1,101 @@
+"""The result of one time-history analysis (SI units), as returned by :func:`simulate`."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Event:
+    """A discrete event: kind (uplift, impact, phase-rocking, phase-rolling, rest, overturn,
+    capacity-exceeded), time [s] and state (θ [rad], θ̇ [rad/s], u_T [m], u̇_T [m/s]) at the event
+    (for impacts, just before the impact map)."""
+
+    kind: str
+    time: float
+    state: tuple
+
+
+@dataclass(frozen=True)
+class Response:
+    """Response of one rocking system to one ground motion.
+
+    Arrays (output at the record samples, or a uniform grid for pulses, plus every event):
+    ``t`` [s], ``theta`` [rad], ``thetadot`` [rad/s], ``u_B`` column-top displacement [m],
+    ``u_T`` superstructure displacement relative to the ground [m], ``u_rel`` = u_T − u_B [m],
+    ``ground_acceleration`` [m/s²].
+    """
+
+    t: np.ndarray
+    theta: np.ndarray
+    thetadot: np.ndarray
+    u_B: np.ndarray
+    u_T: np.ndarray
+    u_rel: np.ndarray
+    ground_acceleration: np.ndarray
+    events: list[Event]
+    theta_max: float
+    t_theta_max: float
+    alpha: float
+    theta_c: float
+    u_B_max: float
+    u_capacity: float
+    impacts: int
+    uplift_time: float | None
+    time_uplifted: float
+    overturn_mode: str
+    overturned: bool
+    overturn_criterion: str
+    impacts_before_overturn: int | None
+    drift_max: float
+    t_end: float
+    model: str
+    status: str
+    diagnostics: dict = field(default_factory=dict)
+
+    @property
+    def theta_max_over_alpha(self) -> float:
+        return self.theta_max / self.alpha
+
+    @property
+    def theta_max_over_theta_c(self) -> float:
+        return self.theta_max / self.theta_c
+
+    @property
+    def u_B_max_over_capacity(self) -> float:
+        return self.u_B_max / self.u_capacity
+
+    def events_of(self, kind: str) -> list[Event]:
+        return [e for e in self.events if e.kind == kind]
+
+    @property
+    def impact_times(self) -> np.ndarray:
+        return np.array([e.time for e in self.events if e.kind == "impact"])
+
+    def as_json(self) -> dict:
+        """The ``simulate --json`` object of CONTRACT §3 (SI units)."""
+        def num(x):
+            return None if x is None or (isinstance(x, float) and math.isnan(x)) else x
+        return {
+            "theta_max": self.theta_max,
+            "theta_max_over_alpha": self.theta_max_over_alpha,
+            "theta_max_over_theta_c": self.theta_max_over_theta_c,
+            "u_B_max": self.u_B_max,
+            "uplift_time": num(self.uplift_time),
+            "impacts": self.impacts,
+            "overturned": self.overturned,
+            "overturn_mode": self.overturn_mode,
+            "t_end": self.t_end,
+            "model": self.model,
+            "solver": dict(self.diagnostics),
+            "time_uplifted": self.time_uplifted,
+            "impacts_before_overturn": self.impacts_before_overturn,
+            "u_B_max_over_capacity": self.u_B_max_over_capacity,
+            "overturn_criterion": self.overturn_criterion,
+            "t_theta_max": self.t_theta_max,
+            "drift_max": self.drift_max,
+            "events": [{"kind": e.kind, "time": e.time, "theta": e.state[0], "thetadot": e.state[1]}
+                       for e in self.events],
+        }

@@ -1,0 +1,165 @@
+"""``simulate(system, motion, ...)``: one nonlinear time-history analysis (the engine's public API)."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..design.geometry import displacement_capacity, rocking_geometry, slenderness_angle
+from ..errors import ModelError
+from ..motions.motion import GroundMotion, no_motion
+from ..systems import RockingSystem
+from .engine import (D_EVENTS, D_EVENTS_STORED, D_NFEV, D_REFINE, D_REJECTED, D_REST, D_STATUS, D_STEPS,
+                     EVENT_NAMES, N_OPTIONS, O_ATOL, O_ENERGY_STOP, O_H_MAX, O_MAX_EVENTS, O_MAX_STEPS,
+                     O_RTOL, O_SCAN, O_STOP_EXCEEDED, O_T_END, S_DRIFT_MAX, S_DYNAMIC, S_EXCEEDED,
+                     S_IMPACTS, S_IMPACTS_BEFORE_EXCEEDED, S_IMPACTS_BEFORE_OVERTURN, S_T_END,
+                     S_T_THETA_MAX, S_T_UPLIFT, S_THETA_MAX, S_UB_MAX, S_UPLIFT_TIME, STATUS_NAMES,
+                     integrate)
+from .model import REST_VELOCITY, ModelChoice, default_structure, resolve_structure, system_parameters
+from .response import Event, Response
+
+DEFAULT_RTOL = 1e-9
+"""Default relative tolerance of the DP5(4) integrator (CONTRACT §1 ``[analysis] rtol``)."""
+DEFAULT_ATOL = 1e-12
+"""Default absolute tolerance [rad, rad/s, m, m/s]."""
+FREE_VIBRATION = 10.0
+"""Free-vibration time [s] simulated after the excitation ends (unless at rest earlier)."""
+MODELS = ("auto", "exact", "linear", "linear-exact")
+
+
+def simulate(system: RockingSystem, motion: GroundMotion | None = None, *, model: str = "auto",
+             structure: str = "auto", rtol: float = DEFAULT_RTOL, atol: float = DEFAULT_ATOL,
+             t_end: float | None = None, theta0: float = 0.0, thetadot0: float = 0.0,
+             overturn: str = "static", rest_velocity: float = REST_VELOCITY, output_dt: float | None = None,
+             energy_stop: bool = False, stop_at_capacity: bool = False, max_steps: int = 20_000_000,
+             scan_points: int = 8, max_events: int = 1_000_000, event_capacity: int = 100_000,
+             record_history: bool = True, rigid_ratio: float = 10.0) -> Response:
+    """Time-history response of ``system`` to ``motion`` (SPEC §3).
+
+    Args:
+        system: the rocking system (SI).
+        motion: ground acceleration; None for free vibration (give ``theta0``/``thetadot0``).
+        model: ``exact`` (nonlinear EOM), ``linear`` (linearized EOM, same integrator),
+            ``linear-exact`` (closed-form solution of the linearized SDOF equations, SPEC §3.8) or
+            ``auto`` (exact equations; the check's model selection decides more).
+        structure: ``auto`` | ``block`` | ``frame`` | ``rigid-superstructure`` | ``podium-2dof``.
+        rtol, atol: integrator tolerances (defaults 1e-9 and 1e-12).
+        t_end: end time [s]; default: excitation end + 10 s of free vibration.
+        theta0, thetadot0: initial tilt [rad] and rate [rad/s].
+        overturn: ``static`` (θ_max ≥ θc counts as overturning) or ``dynamic`` (|θ| = π/2).
+        rest_velocity: |θ̇⁺| [rad/s] below which an impact ends in rest (SPEC §3.6).
+        output_dt: output interval [s] for pulses (records output at their samples).
+        energy_stop: stop once the remaining energy cannot raise θ_max (docs/early_termination.md).
+        stop_at_capacity: stop when |θ| first reaches θc.
+    """
+    if model not in MODELS:
+        raise ModelError("unknown model", key="--model", expected=" | ".join(MODELS), found=f"'{model}'")
+    if overturn not in ("static", "dynamic"):
+        raise ModelError("unknown overturning criterion", key="overturn", expected="static | dynamic",
+                         found=f"'{overturn}'")
+    motion = motion if motion is not None else no_motion()
+    structure = resolve_structure(system, structure, rigid_ratio)
+    equations = "linear" if model in ("linear", "linear-exact") else "exact"
+    choice = ModelChoice(structure, equations)
+    sp = system_parameters(system, choice, rest_velocity=rest_velocity)
+    if t_end is None:
+        t_end = motion.duration + FREE_VIBRATION
+    t_out = _output_times(motion, t_end, output_dt) if record_history else np.zeros(0)
+    y0 = np.array([theta0, thetadot0, 0.0, 0.0])
+    if theta0 != 0.0 and structure == "podium-2dof":
+        # a tilted podium released from rest: the superstructure starts undeformed on the tilted frame
+        from .kinematics import top_displacement
+        geo = rocking_geometry(system.column)
+        y0[2] = math.copysign(top_displacement(abs(theta0), 1.0, 2 if geo.radius > 0 and abs(theta0) > geo.beta
+                                               else 1, geo.R, geo.alpha, geo.radius, geo.beta), theta0)
+    side0 = 1.0 if (theta0 > 0 or (theta0 == 0 and thetadot0 >= 0)) else -1.0
+    if model == "linear-exact":
+        from .linear_exact import integrate_linear_exact, sampled_pulse
+        if system.has_elastic_superstructure and structure == "podium-2dof":
+            raise ModelError("the closed-form model solves SDOF systems only", key="--model",
+                             expected="exact or linear for the 2DOF podium (or the rigid-superstructure model)",
+                             found="'linear-exact'")
+        motion = sampled_pulse(motion)
+        out_y = np.zeros((t_out.size, 4))
+        ev_t, ev_kind, ev_y = _event_buffers(event_capacity)
+        summary, diag, n_written = integrate_linear_exact(sp, motion.kind, motion.params, motion.samples, y0,
+                                                          side0, 0.0, t_end, t_out, out_y, ev_t, ev_kind, ev_y,
+                                                          max_events, stop_at_capacity, energy_stop)
+    else:
+        opts = np.zeros(N_OPTIONS)
+        opts[O_T_END] = t_end
+        opts[O_RTOL] = rtol
+        opts[O_ATOL] = atol
+        opts[O_H_MAX] = math.inf
+        opts[O_MAX_STEPS] = max_steps
+        opts[O_ENERGY_STOP] = 1.0 if energy_stop else 0.0
+        opts[O_STOP_EXCEEDED] = 1.0 if stop_at_capacity else 0.0
+        opts[O_SCAN] = scan_points
+        opts[O_MAX_EVENTS] = max_events
+        out_y = np.zeros((t_out.size, 4))
+        ev_t, ev_kind, ev_y = _event_buffers(event_capacity)
+        summary, diag, n_written = integrate(sp, motion.kind, motion.params, motion.samples, y0, side0, 0.0,
+                                             opts, t_out, out_y, ev_t, ev_kind, ev_y)
+    label = f"{structure}/{model if model != 'auto' else 'exact'}"
+    return _build_response(system, motion, sp, model, label, summary, diag, t_out[:n_written], out_y[:n_written],
+                           ev_t, ev_kind, ev_y, overturn)
+
+
+def _event_buffers(capacity: int):
+    return np.zeros(capacity), np.zeros(capacity, dtype=np.int64), np.zeros((capacity, 4))
+
+
+def _output_times(motion: GroundMotion, t_end: float, output_dt: float | None) -> np.ndarray:
+    if motion.is_record and output_dt is None:
+        dt = motion.dt
+    else:
+        dt = output_dt if output_dt is not None else (min(0.01, motion.params[1] / 200.0)
+                                                     if motion.kind not in (0, 7) else 0.01)
+    n = int(math.floor(t_end / dt + 1e-9)) + 1
+    t = np.arange(n) * dt
+    if t[-1] < t_end - 1e-12:
+        t = np.append(t, t_end)
+    return t
+
+
+def _build_response(system, motion, sp, model, label, summary, diag, t_out, out_y, ev_t, ev_kind, ev_y,
+                    overturn) -> Response:
+    from .engine import _top_displacement
+    n_ev = int(diag[D_EVENTS_STORED])
+    events = [Event(EVENT_NAMES[int(ev_kind[i])], float(ev_t[i]), tuple(float(v) for v in ev_y[i]))
+              for i in range(n_ev)]
+    # merge event rows into the output series
+    t = np.concatenate([t_out, ev_t[:n_ev]])
+    y = np.concatenate([out_y, ev_y[:n_ev]])
+    order = np.argsort(t, kind="stable")
+    t, y = t[order], y[order]
+    theta = y[:, 0]
+    u_b = np.array([math.copysign(_top_displacement(abs(th), sp), th) for th in theta])
+    u_t = y[:, 2] if sp[15] != 0.0 else u_b.copy()
+    ag = motion.acceleration(t) if t.size else np.zeros(0)
+    alpha = slenderness_angle(system.column.half_width, system.column.half_height)
+    theta_c = float(sp[12])
+    dynamic = summary[S_DYNAMIC] != 0.0
+    exceeded = summary[S_THETA_MAX] >= theta_c or dynamic
+    mode = "dynamic" if dynamic else ("exceeded" if exceeded else "none")
+    overturned = mode != "none" if overturn == "static" else dynamic
+    if dynamic:
+        before = int(summary[S_IMPACTS_BEFORE_OVERTURN])
+    elif exceeded:
+        before = int(summary[S_IMPACTS_BEFORE_EXCEEDED]) if summary[S_IMPACTS_BEFORE_EXCEEDED] >= 0 else None
+    else:
+        before = None
+    t_up = float(summary[S_T_UPLIFT])
+    diagnostics = {"steps": int(diag[D_STEPS]), "rejected_steps": int(diag[D_REJECTED]),
+                   "function_evaluations": int(diag[D_NFEV]), "events": int(diag[D_EVENTS]),
+                   "rest_entries": int(diag[D_REST]), "event_refinements": int(diag[D_REFINE]),
+                   "status": STATUS_NAMES[int(diag[D_STATUS])]}
+    return Response(t=t, theta=theta, thetadot=y[:, 1], u_B=u_b, u_T=u_t, u_rel=u_t - u_b, ground_acceleration=ag,
+                    events=events, theta_max=float(summary[S_THETA_MAX]), t_theta_max=float(summary[S_T_THETA_MAX]),
+                    alpha=alpha, theta_c=theta_c, u_B_max=float(summary[S_UB_MAX]),
+                    u_capacity=displacement_capacity(system.column), impacts=int(summary[S_IMPACTS]),
+                    uplift_time=None if math.isnan(t_up) else t_up, time_uplifted=float(summary[S_UPLIFT_TIME]),
+                    overturn_mode=mode, overturned=bool(overturned), overturn_criterion=overturn,
+                    impacts_before_overturn=before, drift_max=float(summary[S_DRIFT_MAX]),
+                    t_end=float(summary[S_T_END]), model=label, status=STATUS_NAMES[int(diag[D_STATUS])],
+                    diagnostics=diagnostics)
