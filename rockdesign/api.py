@@ -23,3 +23,65 @@ def quantities_table(project: Project, console, units: str | None = None) -> Non
     from .display import quantities_table as _table
     _table(design_quantities(project.system), console, units, project.system.g,
            f"{project.name} — design quantities ({project.system.kind})", project.warnings)
+
+
+# --- time-history analysis -------------------------------------------------------------------
+from dataclasses import dataclass  # noqa: E402
+
+from .dynamics.response import Response  # noqa: E402
+from .dynamics.simulate import simulate  # noqa: E402
+
+
+@dataclass(frozen=True)
+class SimulationResult:
+    """A project's response to one motion string, with what was analysed."""
+
+    project: Project
+    motion_text: str
+    response: Response
+
+    def as_json(self) -> dict:
+        out = self.response.as_json()
+        out["motion"] = self.motion_text
+        out["project"] = self.project.name
+        out["warnings"] = list(self.project.warnings)
+        return out
+
+
+def model_for_project(project: Project, model: str = "auto") -> tuple[str, str]:
+    """(model, structure) for ``simulate`` from the CLI ``--model`` and the project's [analysis].
+
+    ``auto`` follows ``[analysis] equations`` (auto → exact) and ``[analysis] model`` (auto → the
+    simplest adequate structure of SPEC §6).
+    """
+    a = project.analysis
+    structure = a.model
+    if model == "auto":
+        model = "linear" if a.equations == "linear" else "exact"
+    return model, structure
+
+
+def simulate_project(project: Project, motion: str, *, model: str = "auto", t_end: float | None = None,
+                     rtol: float | None = None, records_dir: str | None = None) -> SimulationResult:
+    """Run ``simulate`` for a project and a CONTRACT §2 motion string."""
+    from .motions.parse import parse_motion, system_scales
+    system = project.system
+    if records_dir is None and project.excitation_raw and "records_dir" in project.excitation_raw:
+        records_dir = str(project.excitation_raw["records_dir"])
+    spec = parse_motion(motion, system_scales(system), records_dir=records_dir)
+    eq, structure = model_for_project(project, model)
+    a = project.analysis
+    response = simulate(system, spec.motion, model=eq, structure=structure, rtol=rtol or a.rtol, atol=a.atol,
+                        t_end=t_end if t_end is not None else spec.motion.duration + a.free_vibration,
+                        theta0=spec.theta0, thetadot0=spec.thetadot0, overturn=a.overturn,
+                        rest_velocity=a.rest_velocity, rigid_ratio=a.rigid_superstructure_ratio)
+    return SimulationResult(project, motion, response)
+
+
+def write_history_csv(response: Response, path) -> None:
+    """Time history as CSV: t [s], ag [m/s²], theta [rad], thetadot [rad/s], u_B, u_T, u_T−u_B [m]."""
+    import numpy as np
+    data = np.column_stack([response.t, response.ground_acceleration, response.theta, response.thetadot,
+                            response.u_B, response.u_T, response.u_rel])
+    header = "t_s,ground_acceleration_m_s2,theta_rad,thetadot_rad_s,u_B_m,u_T_m,u_T_minus_u_B_m"
+    np.savetxt(path, data, delimiter=",", header=header, comments="", fmt="%.10g")

@@ -13,6 +13,7 @@ from typing import Optional
 
 import typer
 from rich.console import Console
+from rich.markup import escape
 
 from . import __version__
 from .errors import RockdesignError
@@ -31,7 +32,7 @@ def handle_errors(func):
         try:
             return func(*args, **kwargs)
         except RockdesignError as exc:
-            err_console.print(f"[bold red]error:[/] {exc}", highlight=False, markup=True, soft_wrap=True)
+            err_console.print(f"[bold red]error:[/] {escape(str(exc))}", highlight=False, markup=True, soft_wrap=True)
             raise typer.Exit(2) from None
 
     return wrapper
@@ -74,6 +75,38 @@ def quantities(project: Path = typer.Argument(..., help="Project file (TOML)"),
         sys.stdout.write(json.dumps(quantities_json(proj), indent=2) + "\n")
         return
     quantities_table(proj, console, units)
+
+
+@app.command()
+@handle_errors
+def simulate(project: Path = typer.Argument(..., help="Project file (TOML)"),
+             motion: str = typer.Option(..., "--motion", "-m", help="e.g. 'ricker-anti:ap=0.38g,Tp=0.95s', "
+                                        "'free:theta0=0.8alpha', 'record:p695-ff/11a,scale=1.5', 'file:X.AT2'"),
+             model: str = typer.Option("auto", "--model", help="exact | linear | linear-exact | auto"),
+             as_json: bool = typer.Option(False, "--json", help="Print CONTRACT §3 JSON (SI units)."),
+             plot: Optional[Path] = typer.Option(None, "--plot", help="Write a time-history figure (png/svg/pdf)."),
+             csv: Optional[Path] = typer.Option(None, "--csv", help="Write the time history as CSV."),
+             t_end: Optional[float] = typer.Option(None, "--t-end", help="End time [s] (default: motion + "
+                                                   "free vibration)."),
+             rtol: Optional[float] = typer.Option(None, "--rtol", help="Relative tolerance (default: project)."),
+             records_dir: Optional[Path] = typer.Option(None, "--records-dir", help="Folder of PEER AT2 files.")):
+    """One nonlinear time-history analysis (SPEC §3)."""
+    from .api import simulate_project
+    from .project import load_project
+    proj = load_project(project)
+    result = simulate_project(proj, motion, model=model, t_end=t_end, rtol=rtol,
+                              records_dir=str(records_dir) if records_dir else None)
+    if csv:
+        from .api import write_history_csv
+        write_history_csv(result.response, csv)
+    if plot:
+        from .report.plots import save, time_history_figure
+        save(time_history_figure(result.response, proj.system.g, f"{proj.name} — {motion}"), plot)
+    if as_json:
+        sys.stdout.write(json.dumps(result.as_json(), indent=2) + "\n")
+        return
+    from .display import response_table
+    response_table(result, console)
 
 
 def _mount_optional_apps():

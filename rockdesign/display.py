@@ -4,6 +4,7 @@ from __future__ import annotations
 import math
 
 from rich.console import Console
+from rich.markup import escape
 from rich.table import Table
 
 from .errors import RockdesignError
@@ -68,4 +69,37 @@ def quantities_table(quantities: dict, console: Console, units: str | None, grav
                       q.equation)
     console.print(table)
     for w in warnings:
-        console.print(f"[yellow]warning:[/] {w}", highlight=False)
+        console.print(f"[yellow]warning:[/] {escape(w)}", highlight=False)
+
+
+def response_table(result, console: Console) -> None:
+    """Print the summary of one time-history analysis."""
+    r = result.response
+    table = Table(title=f"{result.project.name} — {result.motion_text}", title_justify="left")
+    table.add_column("quantity")
+    table.add_column("value", justify="right")
+    table.add_column("unit")
+    rows = [
+        ("model", r.model, ""),
+        ("θ_max", format_value(r.theta_max), "rad"),
+        ("θ_max/α", format_value(r.theta_max_over_alpha), "-"),
+        ("θ_max/θc", format_value(r.theta_max_over_theta_c), "-"),
+        ("u_B,max (column top)", format_value(r.u_B_max), "m"),
+        ("u_B,max / capacity", format_value(r.u_B_max_over_capacity), "-"),
+        ("first uplift", "none" if r.uplift_time is None else format_value(r.uplift_time), "s"),
+        ("time uplifted", format_value(r.time_uplifted), "s"),
+        ("impacts", str(r.impacts), ""),
+        ("overturn mode", r.overturn_mode, ""),
+        (f"overturned ({r.overturn_criterion} criterion)", "YES" if r.overturned else "no", ""),
+        ("analysed until", format_value(r.t_end), "s"),
+        ("solver", f"{r.diagnostics['steps']} steps, {r.diagnostics['rejected_steps']} rejected, "
+                   f"{r.diagnostics['function_evaluations']} evaluations, {r.diagnostics['events']} events — "
+                   f"{r.status}", ""),
+    ]
+    if r.drift_max:
+        rows.insert(5, ("max |u_T − u_B| (sampled)", format_value(r.drift_max), "m"))
+    for row in rows:
+        table.add_row(*row)
+    console.print(table)
+    for w in result.project.warnings:
+        console.print(f"[yellow]warning:[/] {escape(w)}", highlight=False)

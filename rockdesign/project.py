@@ -43,7 +43,7 @@ class AnalysisSettings:
 
     model: str = "auto"
     equations: str = "auto"
-    rtol: float = 1e-9
+    rtol: float = 1e-10
     atol: float = 1e-12
     overturn: str = "static"
     g: float = G_DEFAULT
@@ -380,7 +380,7 @@ def _parse_analysis(data: dict, file: str) -> AnalysisSettings:
     return AnalysisSettings(
         model=t.choice("model", MODELS, "auto"),
         equations=t.choice("equations", EQUATIONS, "auto"),
-        rtol=t.number("rtol", default=1e-9, low=0.0, high=1e-3),
+        rtol=t.number("rtol", default=1e-10, low=0.0, high=1e-3),
         atol=t.number("atol", default=1e-12, low=0.0, high=1e-3),
         overturn=t.choice("overturn", OVERTURN, "static"),
         g=g,

@@ -123,6 +123,17 @@ def _top_displacement(abs_theta, sp):
 
 
 @njit(cache=True)
+def top_displacements(theta, sp):
+    """Column-top displacement u_B(θ) [m] for an array of tilts (sign of θ = side), model kinematics."""
+    out = np.empty(theta.shape[0])
+    for i in range(theta.shape[0]):
+        a = abs(theta[i])
+        u = _top_displacement(min(a, sp[P_OVERTURN]), sp)
+        out[i] = u if theta[i] >= 0.0 else -u
+    return out
+
+
+@njit(cache=True)
 def _fill_outputs(t_out, out_y, i_out, t_hi, t0, y, Q, h, y_end, use_dense, rest):
     """Write output rows for t_out ≤ t_hi; returns the next output index."""
     n_out = t_out.shape[0]

@@ -36,9 +36,13 @@ PULSE_SAMPLES_PER_PERIOD = 2000
 
 @njit(cache=True)
 def _coefficients(theta0, v0, a0, a1, side, phase, sp):
-    """(mode, ω, A, B, p0, p1) of θ(τ) on one segment; mode 1: cosh/sinh, −1: cos/sin, 0: cubic.
+    """(mode, ω, θ0, v0, p0, p1) of θ(τ) on one segment; mode 1: cosh/sinh, −1: cos/sin, 0: cubic.
 
-    For mode 0, (A, B, p0, p1) hold the cubic θ = A + Bτ + p0 τ² + p1 τ³.
+    θ(τ) = θ0 C + v0 S − p0 (C − 1) − p1 (S − τ) with C = cosh ωτ, S = sinh(ωτ)/ω (or cos, sin), i.e.
+    the particular solution p0 + p1 τ plus the homogeneous part matching θ0, v0.  Written this way,
+    with C − 1 and S − τ evaluated without cancellation, the start of a rocking interval (θ0 = v0 = 0
+    at uplift) keeps its sign to round-off.  For mode 0, (θ0, v0, p0, p1) hold the cubic
+    θ = θ0 + v0 τ + p0 τ² + p1 τ³.
     """
     gam = sp[P_GAMMA]
     P = sp[P_G] / sp[P_R] * (1.0 + 2.0 * gam) / (sp[P_LAM] + 1.0 + 4.0 * gam)
@@ -60,32 +64,47 @@ def _coefficients(theta0, v0, a0, a1, side, phase, sp):
     p0 = P / k * (c + a0 / g)
     p1 = P / k * a1 / g
     if k > 0.0:
-        om = math.sqrt(k)
-        return 1, om, theta0 - p0, (v0 - p1) / om, p0, p1
-    om = math.sqrt(-k)
-    return -1, om, theta0 - p0, (v0 - p1) / om, p0, p1
+        return 1, math.sqrt(k), theta0, v0, p0, p1
+    return -1, math.sqrt(-k), theta0, v0, p0, p1
 
 
 @njit(cache=True)
-def _theta(tau, mode, om, A, B, p0, p1):
-    if mode == 1:
-        x = om * tau
-        return p0 + p1 * tau + A * math.cosh(x) + B * math.sinh(x)
-    if mode == -1:
-        x = om * tau
-        return p0 + p1 * tau + A * math.cos(x) + B * math.sin(x)
-    return A + tau * (B + tau * (p0 + tau * p1))
+def _c_minus_1(x, mode):
+    """cosh x − 1 (mode 1) or cos x − 1 (mode −1) without cancellation."""
+    h = math.sinh(0.5 * x) if mode == 1 else math.sin(0.5 * x)
+    return 2.0 * h * h if mode == 1 else -2.0 * h * h
 
 
 @njit(cache=True)
-def _thetadot(tau, mode, om, A, B, p0, p1):
-    if mode == 1:
-        x = om * tau
-        return p1 + om * (A * math.sinh(x) + B * math.cosh(x))
-    if mode == -1:
-        x = om * tau
-        return p1 + om * (-A * math.sin(x) + B * math.cos(x))
-    return B + tau * (2.0 * p0 + 3.0 * tau * p1)
+def _s_minus_x(x, mode):
+    """sinh x − x (mode 1) or sin x − x (mode −1) without cancellation."""
+    if abs(x) < 0.5:
+        x2 = x * x if mode == 1 else -x * x
+        return x * x2 / 6.0 * (1.0 + x2 / 20.0 * (1.0 + x2 / 42.0 * (1.0 + x2 / 72.0 * (1.0 + x2 / 110.0 * (
+            1.0 + x2 / 156.0)))))
+    return (math.sinh(x) if mode == 1 else math.sin(x)) - x
+
+
+@njit(cache=True)
+def _theta(tau, mode, om, th0, v0, p0, p1):
+    if mode == 0:
+        return th0 + tau * (v0 + tau * (p0 + tau * p1))
+    x = om * tau
+    cm1 = _c_minus_1(x, mode)
+    smx = _s_minus_x(x, mode)
+    # θ0 C + v0 S − p0 (C − 1) − p1 (S − τ), S = sinh(x)/ω = τ + (sinh x − x)/ω
+    return th0 + (th0 - p0) * cm1 + v0 * tau + (v0 - p1) * smx / om
+
+
+@njit(cache=True)
+def _thetadot(tau, mode, om, th0, v0, p0, p1):
+    if mode == 0:
+        return v0 + tau * (2.0 * p0 + 3.0 * tau * p1)
+    x = om * tau
+    sn = math.sinh(x) if mode == 1 else -math.sin(x)
+    cm1 = _c_minus_1(x, mode)
+    # ω(θ0 − p0) sinh + v0 cosh − p1 (cosh − 1)   [cos/sin: −ω(θ0 − p0) sin + v0 cos − p1 (cos − 1)]
+    return om * (th0 - p0) * sn + v0 + (v0 - p1) * cm1
 
 
 @njit(cache=True)
@@ -110,9 +129,16 @@ def _quadratic_roots(qa, qb, qc, out):
 
 
 @njit(cache=True)
-def _extrema(T, mode, om, A, B, p0, p1, out, tmp):
+def _extrema(T, mode, om, th0, v0, p0, p1, out, tmp):
     """Times τ ∈ (0, T) where θ̇ = 0, sorted, into ``out``; returns their number."""
     n = 0
+    if mode != 0:
+        # θ = p0 + p1 τ + A cosh + B sinh (or cos/sin): the homogeneous coefficients
+        A = th0 - p0
+        B = (v0 - p1) / om
+    else:
+        A = th0
+        B = v0
     if mode == 1:
         m = _quadratic_roots(0.5 * om * (A + B), p1, -0.5 * om * (A - B), tmp)
         for i in range(m):

@@ -1,0 +1,49 @@
+"""Matplotlib figures shared by the CLI and the report (Agg backend, no screen needed)."""
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+STYLE = {"figure.dpi": 110, "font.size": 9, "axes.grid": True, "grid.alpha": 0.3, "axes.spines.top": False,
+         "axes.spines.right": False, "savefig.bbox": "tight"}
+
+
+def time_history_figure(response, g: float, title: str = ""):
+    """Three panels: ground acceleration [g], θ/α with ±θc/α, column-top and superstructure drift [m]."""
+    with plt.rc_context(STYLE):
+        fig, axes = plt.subplots(3, 1, figsize=(7.0, 6.2), sharex=True)
+        t = response.t
+        axes[0].plot(t, response.ground_acceleration / g, lw=0.8, color="0.3")
+        axes[0].set_ylabel("ü_g [g]")
+        a = response.alpha
+        axes[1].plot(t, response.theta / a, lw=1.0, color="C0", label="θ/α")
+        for s in (1, -1):
+            axes[1].axhline(s * response.theta_c / a, color="C3", lw=0.8, ls="--",
+                            label="±θc/α" if s == 1 else None)
+        imp = [e.time for e in response.events if e.kind == "impact"]
+        if imp:
+            axes[1].plot(imp, np.zeros(len(imp)), "k|", ms=6, label=f"impacts ({len(imp)})")
+        ups = [e.time for e in response.events if e.kind == "uplift"]
+        if ups:
+            axes[1].plot(ups, np.zeros(len(ups)), "g^", ms=4, label="uplift")
+        axes[1].set_ylabel("θ/α [-]")
+        axes[1].legend(loc="upper right", fontsize=7, ncol=4)
+        axes[2].plot(t, response.u_B, lw=1.0, color="C1", label="u_B (column top)")
+        if np.any(response.u_rel != 0):
+            axes[2].plot(t, response.u_rel, lw=0.8, color="C2", label="u_T − u_B (superstructure)")
+        axes[2].set_ylabel("displacement [m]")
+        axes[2].set_xlabel("t [s]")
+        axes[2].legend(loc="upper right", fontsize=7)
+        if title:
+            axes[0].set_title(title, fontsize=9, loc="left")
+        fig.align_ylabels(axes)
+        return fig
+
+
+def save(fig, path) -> None:
+    """Save a figure (format from the extension) and close it."""
+    fig.savefig(path)
+    plt.close(fig)
