@@ -110,11 +110,21 @@ def simulate(project: Path = typer.Argument(..., help="Project file (TOML)"),
 
 
 def _mount_optional_apps():
+    """Mount the command groups that live in their own modules (records, spectrum, bench)."""
+    import importlib
     try:
         from .cli_records import app as records_app
-    except ImportError:  # the ground-motion tools are an optional part during development
-        return
-    app.add_typer(records_app, name="records", help="Ground-motion tools: list, show, spectrum, synth.")
+        app.add_typer(records_app, name="records", help="Ground-motion tools: list, show, spectrum, synth.")
+    except ImportError:
+        pass
+    for name in ("cli_check", "cli_spectrum", "cli_bench"):
+        try:
+            module = importlib.import_module(f".{name}", __package__)
+        except ImportError as exc:
+            if exc.name and exc.name.endswith(name):
+                continue
+            raise
+        module.register(app, handle_errors)
 
 
 _mount_optional_apps()
