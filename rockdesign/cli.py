@@ -114,6 +114,8 @@ def _mount_optional_apps():
     import importlib
     try:
         from .cli_records import app as records_app
+        for command in records_app.registered_commands:
+            command.callback = handle_errors(command.callback)
         app.add_typer(records_app, name="records", help="Ground-motion tools: list, show, spectrum, synth.")
     except ImportError:
         pass

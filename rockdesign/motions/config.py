@@ -1,0 +1,299 @@
+"""The ``[excitation]`` table of a project file (CONTRACT §1) and the records it resolves to.
+
+Keys (quantities as strings with units; ``g`` is the project's gravity)::
+
+    [excitation]
+    design_pga = "0.35 g"                  # design peak ground acceleration
+    suites = ["p695-farfield"]             # built-in suite names or paths to suite manifests
+    records = ["p695-ff/11a", "rsn:6:180"] # extension: extra record ids (built-in, rsn:, file:, paths)
+    scale = { method = "pga", target = "0.35 g" }   # rockdesign.motions.scaling (factor | pga |
+                                           #   sdmax | uplift | spectrum)
+    records_dir = "~/peer"                 # folder of the user's PEER *.AT2 files
+    time_scale = 0.5                       # extension: Δt × 0.5, or { model_size = "0.25 m",
+                                           #   prototype_size = "1 m" } for Δt_m = Δt_p √(R_m/R_p) (Eq 6.5)
+
+Defaults: no suites and no records → suite ``p695-farfield``; no ``scale`` → PGA scaled to
+``design_pga`` if given, else each suite's own default rule (the built-in ones: as recorded).
+Relative paths are taken from the project file's folder.
+"""
+from __future__ import annotations
+
+import difflib
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..errors import MotionError, ProjectError, RecordError
+from ..units import QuantityParseError, parse_quantity
+from .library import load_record
+from .motion import GroundMotion
+from .scaling import ScaleRule, parse_scale_rule, scale_factors, similitude_time_factor, time_scaled
+from .suites import load_suite, suite_path
+
+EXCITATION_KEYS = ("design_pga", "suites", "records", "scale", "records_dir", "time_scale")
+DEFAULT_SUITE = "p695-farfield"
+
+
+@dataclass(frozen=True)
+class ExcitationSpec:
+    """The parsed ``[excitation]`` table (SI).
+
+    Attributes:
+        design_pga: design PGA [m/s²] or None.
+        suites: suite names or manifest paths, in order.
+        records: extra record ids, in order.
+        scale: the explicit scaling rule, or None (see module docstring for the default).
+        records_dir: folder of the user's PEER AT2 files, or None.
+        time_scale: time factor Δt_analysis/Δt_record (Eq 6.5), 1 = as recorded.
+        default_used: True when the project had no ``[excitation]`` table.
+        file: the project file (for messages).
+    """
+
+    design_pga: float | None = None
+    suites: tuple[str, ...] = (DEFAULT_SUITE,)
+    records: tuple[str, ...] = ()
+    scale: ScaleRule | None = None
+    records_dir: Path | None = None
+    time_scale: float = 1.0
+    default_used: bool = False
+    file: str | None = None
+
+    def effective_scale(self) -> ScaleRule | None:
+        """The rule applied to all records: explicit ``scale``, else PGA = design_pga, else None
+        (each suite's default rule)."""
+        if self.scale is not None:
+            return self.scale
+        if self.design_pga is not None:
+            return ScaleRule("pga", value=self.design_pga)
+        return None
+
+
+@dataclass
+class ResolvedRecord:
+    """One record ready for analysis: id, scaled motion [m/s²], amplitude factor, metadata."""
+
+    id: str
+    motion: GroundMotion
+    scale: float
+    meta: dict
+    suite: str | None = None
+
+
+@dataclass
+class ResolvedSuite:
+    """The records of an ExcitationSpec in stable order (suites in order, then extra records).
+
+    Attributes:
+        records: the records found, scaled.
+        missing: (id, reason, suite) of records not found.
+        scale_description: how the records were scaled (for reports).
+        default_used: the default excitation was used (no ``[excitation]`` table).
+    """
+
+    records: list[ResolvedRecord]
+    missing: list[tuple[str, str, str | None]]
+    scale_description: str
+    default_used: bool = False
+    suites: list[str] = field(default_factory=list)
+
+
+def default_excitation(design_pga: float | None, *, file: str | None = None) -> ExcitationSpec:
+    """The excitation of a project without ``[excitation]``: suite p695-farfield scaled to
+    ``design_pga`` [m/s²] (CONTRACT §1), flagged ``default_used``."""
+    return ExcitationSpec(design_pga=design_pga, suites=(DEFAULT_SUITE,), default_used=True, file=file)
+
+
+def _unknown_key(name, file):
+    close = difflib.get_close_matches(name, EXCITATION_KEYS, n=1, cutoff=0.5)
+    return ProjectError("unknown key in [excitation]", file=file, key=f"excitation.{name}",
+                        expected=", ".join(EXCITATION_KEYS), found=repr(name),
+                        hint=f"did you mean '{close[0]}'?" if close else None)
+
+
+def _string_list(raw, name, file) -> list[str]:
+    if isinstance(raw, str):
+        raw = [raw]
+    if not isinstance(raw, list) or not all(isinstance(v, str) and v.strip() for v in raw):
+        raise ProjectError("invalid list", file=file, key=f"excitation.{name}",
+                           expected="a list of non-empty strings", found=repr(raw))
+    return [v.strip() for v in raw]
+
+
+def _base_dir(file: str | None) -> Path:
+    return Path(file).expanduser().resolve().parent if file else Path.cwd()
+
+
+def _relative(text: str, base: Path) -> str:
+    path = Path(text).expanduser()
+    return str(path if path.is_absolute() else base / path)
+
+
+def _looks_like_path(text: str) -> bool:
+    return text.endswith(".toml") or "/" in text or "\\" in text
+
+
+def parse_excitation(raw: dict | None, *, file: str, gravity: float = 9.81) -> ExcitationSpec:
+    """Validate the ``[excitation]`` table of ``file`` into an :class:`ExcitationSpec` (SI).
+
+    ``raw`` None (no table) gives the default excitation without a design PGA; callers that know
+    ``design_pga`` use :func:`default_excitation`.
+
+    Raises:
+        ProjectError: unknown key (with the nearest valid one), wrong type or dimension, unknown
+            suite, missing records folder.
+    """
+    if raw is None:
+        return default_excitation(None, file=file)
+    if not isinstance(raw, dict):
+        raise ProjectError("[excitation] must be a table", file=file, key="excitation",
+                           expected="a TOML table", found=repr(raw))
+    for name in raw:
+        if name not in EXCITATION_KEYS:
+            raise _unknown_key(name, file)
+    base = _base_dir(file)
+    design_pga = None
+    if "design_pga" in raw:
+        try:
+            design_pga = parse_quantity(raw["design_pga"], "acceleration", gravity=gravity)
+        except QuantityParseError as exc:
+            raise ProjectError("invalid design PGA", file=file, key="excitation.design_pga",
+                               expected="an acceleration like '0.35 g'", found=repr(raw["design_pga"]),
+                               hint=str(exc)) from None
+        if not design_pga > 0:
+            raise ProjectError("invalid design PGA", file=file, key="excitation.design_pga",
+                               expected="a positive acceleration", found=repr(raw["design_pga"]))
+    suites = _string_list(raw.get("suites", []), "suites", file)
+    for i, name in enumerate(suites):
+        if _looks_like_path(name):
+            suites[i] = _relative(name, base)
+        try:
+            suite_path(suites[i])
+        except MotionError as exc:
+            raise ProjectError(exc.detail, file=file, key=f"excitation.suites[{i}]", expected=exc.expected,
+                               found=exc.found, hint=exc.hint) from None
+    records = _string_list(raw.get("records", []), "records", file)
+    for i, rid in enumerate(records):
+        if rid.lower().startswith("file:"):
+            records[i] = "file:" + _relative(rid[5:].strip(), base)
+        elif not rid.lower().startswith(("rsn:", "p695-")) and _looks_like_path(rid):
+            records[i] = _relative(rid, base)
+    if not suites and not records:
+        suites = [DEFAULT_SUITE]
+    scale = None
+    if "scale" in raw:
+        scale = parse_scale_rule(raw["scale"], file=file, key="excitation.scale", gravity=gravity)
+    records_dir = None
+    if "records_dir" in raw:
+        if not isinstance(raw["records_dir"], str) or not raw["records_dir"].strip():
+            raise ProjectError("invalid records folder", file=file, key="excitation.records_dir",
+                               expected="a folder path string", found=repr(raw["records_dir"]))
+        records_dir = Path(_relative(raw["records_dir"].strip(), base))
+        if not records_dir.is_dir():
+            raise ProjectError("records folder not found", file=file, key="excitation.records_dir",
+                               expected="an existing folder of PEER *.AT2 files", found=str(records_dir))
+    time_scale = _parse_time_scale(raw.get("time_scale", 1.0), file, gravity)
+    return ExcitationSpec(design_pga=design_pga, suites=tuple(suites), records=tuple(records), scale=scale,
+                          records_dir=records_dir, time_scale=time_scale, file=file)
+
+
+def _parse_time_scale(raw, file, gravity) -> float:
+    key = "excitation.time_scale"
+    if isinstance(raw, dict):
+        allowed = ("model_size", "prototype_size")
+        for name in raw:
+            if name not in allowed:
+                close = difflib.get_close_matches(name, allowed, n=1)
+                raise ProjectError("unknown key", file=file, key=f"{key}.{name}", expected=", ".join(allowed),
+                                   found=repr(name), hint=f"did you mean '{close[0]}'?" if close else None)
+        sizes = []
+        for name in allowed:
+            if name not in raw:
+                raise ProjectError("time scaling by similitude needs both sizes", file=file, key=f"{key}.{name}",
+                                   expected='model_size = "0.25 m" and prototype_size = "2.5 m"', found="nothing")
+            try:
+                sizes.append(parse_quantity(raw[name], "length", gravity=gravity))
+            except QuantityParseError:
+                raise ProjectError("invalid size", file=file, key=f"{key}.{name}", expected="a length like '2.5 m'",
+                                   found=repr(raw[name])) from None
+        if not all(s > 0 for s in sizes):
+            raise ProjectError("invalid size", file=file, key=key, expected="positive lengths", found=repr(raw))
+        return similitude_time_factor(sizes[0], sizes[1])
+    if isinstance(raw, bool) or not isinstance(raw, (int, float)) or not (math.isfinite(raw) and raw > 0):
+        raise ProjectError("invalid time scale", file=file, key=key,
+                           expected="a positive number or { model_size, prototype_size }", found=repr(raw))
+    return float(raw)
+
+
+def resolve_motions(spec: ExcitationSpec, *, gravity: float = 9.81, uplift_acceleration: float | None = None,
+                    records_dir=None) -> ResolvedSuite:
+    """Load, time-scale and amplitude-scale the records of ``spec`` in a stable order.
+
+    Order: each suite's records in manifest order, then ``records``; a record id seen before is
+    not repeated. Records that cannot be found are returned in ``missing`` with the reason.
+
+    Args:
+        spec: the parsed excitation.
+        gravity: g [m/s²].
+        uplift_acceleration: the system's g tan α [m/s²] (scale method ``uplift``).
+        records_dir: overrides ``spec.records_dir`` (e.g. ``--records-dir``).
+
+    Raises:
+        ProjectError / MotionError / RecordError: unreadable suites or record files, impossible scaling.
+    """
+    folder = records_dir if records_dir is not None else spec.records_dir
+    groups: list[tuple[str | None, ScaleRule | None, list[tuple[str, GroundMotion, dict]]]] = []
+    missing: list[tuple[str, str, str | None]] = []
+    seen: set[str] = set()
+    for name in spec.suites:
+        suite = load_suite(name, gravity=gravity, records_dir=folder)
+        found = []
+        for entry in suite.entries:
+            if entry.id in seen:
+                continue
+            seen.add(entry.id)
+            if entry.motion is None:
+                missing.append((entry.id, entry.reason, suite.name))
+            else:
+                found.append((entry.id, entry.motion, dict(entry.meta, suite=suite.name)))
+        groups.append((suite.name, suite.default_scale, found))
+    extra = []
+    for rid in spec.records:
+        if rid in seen:
+            continue
+        seen.add(rid)
+        try:
+            motion = load_record(rid, gravity=gravity, records_dir=folder)
+        except RecordError as exc:
+            if rid.lower().startswith("rsn:"):
+                missing.append((rid, exc.detail, None))
+                continue
+            raise
+        extra.append((rid, motion, dict(motion.meta)))
+    groups.append((None, None, extra))
+    if spec.time_scale != 1.0:
+        groups = [(s, r, [(i, time_scaled(m, spec.time_scale), meta) for i, m, meta in items])
+                  for s, r, items in groups]
+    rule = spec.effective_scale()
+    resolved: list[ResolvedRecord] = []
+    descriptions = []
+    if rule is not None:
+        items = [(suite, item) for suite, _, group in groups for item in group]
+        factors = scale_factors(rule, [m for _, (_, m, _) in items], uplift_acceleration=uplift_acceleration,
+                                gravity=gravity) if items else []
+        for (suite, (rid, motion, meta)), factor in zip(items, factors):
+            resolved.append(ResolvedRecord(rid, motion.scaled(factor), factor, meta, suite))
+        descriptions.append(rule.describe(gravity))
+    else:
+        for suite, suite_rule, group in groups:
+            if not group:
+                continue
+            group_rule = suite_rule or ScaleRule("factor", value=1.0)
+            factors = scale_factors(group_rule, [m for _, m, _ in group], uplift_acceleration=uplift_acceleration,
+                                    gravity=gravity)
+            for (rid, motion, meta), factor in zip(group, factors):
+                resolved.append(ResolvedRecord(rid, motion.scaled(factor), factor, meta, suite))
+            descriptions.append(f"{suite or 'extra records'}: {group_rule.describe(gravity)}")
+    text = "; ".join(descriptions) or "no records"
+    if spec.time_scale != 1.0:
+        text += f"; time scaled by {spec.time_scale:.4g} (Δt × {spec.time_scale:.4g}, Eq 6.5)"
+    return ResolvedSuite(resolved, missing, text, spec.default_used, [g[0] for g in groups if g[0]])
