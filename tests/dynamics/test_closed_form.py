@@ -12,7 +12,7 @@ import math
 import numpy as np
 import pytest
 
-from conftest import G, block_from_p, table34_column
+from support import G, block_from_p, table34_column
 from rockdesign.dynamics.linear_exact import sampled_pulse
 from rockdesign.dynamics.simulate import simulate
 from rockdesign.motions.motion import pulse_motion, record_motion

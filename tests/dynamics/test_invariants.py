@@ -8,7 +8,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from conftest import G, block_from_p
+from support import G, block_from_p
 from rockdesign.dynamics.eom import total_energy
 from rockdesign.dynamics.model import ModelChoice, system_parameters
 from rockdesign.dynamics.simulate import simulate

@@ -10,7 +10,7 @@ import math
 
 import pytest
 
-from conftest import G, block_from_p, reference_podium, table34_column
+from support import G, block_from_p, reference_podium, table34_column
 from rockdesign.dynamics.simulate import simulate
 from rockdesign.motions.motion import pulse_motion
 from rockdesign.systems import Column, RockingSystem

@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from conftest import G, block_from_p, reference_podium
+from support import G, block_from_p, reference_podium
 from rockdesign.dynamics.simulate import simulate
 from rockdesign.motions.motion import pulse_motion, record_motion
 from rockdesign.systems import Column, RockingSystem
@@ -96,7 +96,7 @@ def _ricker_record(dt):
 
 @pytest.mark.parametrize("dt", [0.02, 0.001])
 def test_coarse_and_fine_records(dt):
-    from conftest import table34_column
+    from support import table34_column
     s = table34_column("B1")
     r = simulate(s, _ricker_record(dt), t_end=10.0)
     assert r.status == "completed"

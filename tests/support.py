@@ -1,0 +1,39 @@
+"""Systems and constants shared by the tests (import as ``from support import ...``)."""
+from __future__ import annotations
+
+import math
+
+from rockdesign.systems import Column, RockingSystem, Superstructure
+
+G = 9.81
+
+
+def block_from_p(p: float, tan_alpha: float, lam: float = 1 / 3, g: float = G, name="block") -> RockingSystem:
+    """A block with frequency parameter p [1/s] (Eq 3.13) and slenderness tan α."""
+    R = g / (p * p * (1 + lam))
+    a = math.atan(tan_alpha)
+    return RockingSystem(name, "column", Column(R * math.cos(a), R * math.sin(a), 1000.0, lam), g=g)
+
+
+def table34_column(kind: str) -> RockingSystem:
+    """The five oscillators of thesis Table 3.4 (2H = 3 m, tan α = 0.1, tan α' = 0.2, λ = 1/3)."""
+    H, B, Be = 1.5, 0.15, 0.3
+    cols = {
+        "B1": Column(H, B, 1000.0, 1 / 3),
+        "B2ec": Column(H, B, 1000.0, 1 / 3, "curved", Be, 0.25 * 2 * H),
+        "B3ec": Column(H, B, 1000.0, 1 / 3, "curved", Be, 0.5 * 2 * H),
+        "B4ec": Column(H, B, 1000.0, 1 / 3, "curved", Be, 1.0 * 2 * H),
+        "B5ef": Column(H, B, 1000.0, 1 / 3, "flat", Be),
+    }
+    rule = "thesis-eq-3.39" if kind == "B5ef" else "theory"
+    return RockingSystem(kind, "column", cols[kind], restitution_rule=rule, g=G)
+
+
+def reference_podium(omega_s_over_p: float = 6.0, zeta: float = 0.01, correction: bool = True,
+                     gamma: float = 10.0, eta: float = 5.0) -> RockingSystem:
+    """Thesis Sec 4.2 reference podium: 2H = 3 m, tan α = 0.15, λ = 1/3, γ = 10, η = 5."""
+    H, B, lam = 1.5, 0.225, 1 / 3
+    p = math.sqrt(G / (math.hypot(H, B) * (1 + lam)))
+    m_c = 1000.0
+    sup = Superstructure(eta * gamma * m_c, omega_s_over_p * p, zeta, correction)
+    return RockingSystem("podium", "podium", Column(H, B, m_c, lam), 1, gamma * m_c, sup, g=G)
