@@ -103,3 +103,21 @@ def response_table(result, console: Console) -> None:
     console.print(table)
     for w in result.project.warnings:
         console.print(f"[yellow]warning:[/] {escape(w)}", highlight=False)
+
+
+def check_summary(data: dict, out_dir, console: Console) -> None:
+    """Print the verdict, the checks and where the report went."""
+    s = data["summary"]
+    table = Table(title=f"{data['project']['name']} — design check", title_justify="left")
+    for col in ("check", "utilisation", "result"):
+        table.add_column(col, justify="right" if col == "utilisation" else "left")
+    for c in data["checks"]:
+        res = ("PASS" if c["passed"] else "FAIL") + ("" if c["governs_verdict"] else " (info)")
+        table.add_row(escape(c["name"]), f"{c['utilisation']:.3f}", res)
+    console.print(table)
+    console.print(f"model: {escape(data['model']['chosen'])} — records: {s['n_records']}, overturned: "
+                  f"{s['n_overturned']} ({s['overturn_criterion']} criterion), false negatives (class b): "
+                  f"{s['n_false_negative']}, P(overturn) = {s['p_overturn']:.3f} "
+                  f"[{s['p_overturn_ci90'][0]:.3f}, {s['p_overturn_ci90'][1]:.3f}] (90 %)", highlight=False)
+    colour = "green" if data["verdict"] == "PASS" else "red"
+    console.print(f"verdict: [bold {colour}]{data['verdict']}[/]   output: {escape(str(out_dir))}", highlight=False)

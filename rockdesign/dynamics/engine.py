@@ -260,6 +260,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
         i_out += 1
     status = ST_OK
     need_start = True
+    fresh_start = True
     h = 0.0
     t_rock_start = t
     if rocking:
@@ -299,17 +300,21 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
                 summary[S_T_UPLIFT] = t
             t_rock_start = t
             need_start = True
+            fresh_start = True
             continue
         # ---------------------------------------------------------------- a step
         if need_start:
             rhs_given_acceleration(ground_acceleration_right(t, kind, xp, samples), y, f0, rocking, side, phase, sp)
             diag[D_NFEV] += 1
-            tb0 = min(next_breakpoint(t, kind, xp, samples), t_end)
-            h0 = initial_step(t, y, f0, tb0, rtol, atol, ytmp, ftmp, rocking, side, phase, kind, xp,
-                              samples, sp, n)
-            diag[D_NFEV] += 1
-            h = h0 if h == 0.0 else min(h, h0) if h0 > 0.0 else h
+            if fresh_start or h == 0.0:
+                # after uplift or at the start: no step-size history to continue from
+                tb0 = min(next_breakpoint(t, kind, xp, samples), t_end)
+                h0 = initial_step(t, y, f0, tb0, rtol, atol, ytmp, ftmp, rocking, side, phase, kind, xp,
+                                  samples, sp, n)
+                diag[D_NFEV] += 1
+                h = h0 if h == 0.0 else min(h, h0) if h0 > 0.0 else h
             need_start = False
+            fresh_start = False
         tb = min(next_breakpoint(t, kind, xp, samples), t_end)
         span = tb - t
         if span <= 0.0:
@@ -399,6 +404,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
                     summary[S_T_UPLIFT] = t
                 t_rock_start = t
                 need_start = True
+                fresh_start = True
                 continue
             i_out = _fill_outputs(t_out, out_y, i_out, t_new, t, y, Q, h, y_new, True, False)
             t = t_new
@@ -572,6 +578,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
             diag[D_REST] += 1
             _store_event(ev_t, ev_kind, ev_y, diag, EV_REST, t, y)
             summary[S_UPLIFT_TIME] += t - t_rock_start
+            fresh_start = True
         else:
             side = -side
             phase = 1

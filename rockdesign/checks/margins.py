@@ -1,0 +1,126 @@
+"""Overturning margins: the smallest amplitude factor that overturns the structure in RHA.
+
+Responses are not monotonic in amplitude (thesis §2.2, Zhang & Makris: safe, overturn, safe again,
+overturn), so each record is first scanned on a geometric grid of factors, every overturning band
+found is then bracketed and its edges bisected to the requested precision.  Factors multiply the
+record *as scaled for the design* (1 = design level), like Polyakov's predicted factor u_B(θc)/SD_max.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from ..dynamics.model import ModelChoice
+from .runner import run_jobs
+
+SCAN_RATIO = 1.2
+"""Ratio between consecutive factors of the scan; bands narrower than this can be missed."""
+SCAN_BLOCK = 4
+"""Factors analysed per record and round of the scan."""
+SCAN_AFTER_FIRST = 6
+"""Factors scanned above the first overturning one: 1.2⁶ ≈ 3, enough to find a safe-again band like
+Zhang & Makris' (an overturning band spanning a factor ≈ 2, SPEC §7)."""
+
+
+@dataclass
+class Margin:
+    """Overturning factors of one record (multipliers of the design-level record)."""
+
+    overturn_scale: float | None            # smallest overturning factor found (None: none up to max)
+    intervals: list[tuple[float, float | None]] = field(default_factory=list)  # [lower, upper) bands
+    # the first lower edge is bisected to the precision; the other edges are known to the scan ratio
+    scanned_up_to: float = 0.0
+    runs: int = 0
+
+
+def _scan_grid(start: float, stop: float, ratio: float) -> list[float]:
+    n = max(1, int(math.ceil(math.log(stop / start) / math.log(ratio))))
+    return [start * (stop / start) ** (k / n) for k in range(n + 1)]
+
+
+def overturning_margins(system, choice: ModelChoice, motions, *, uplift_factors, max_scale: float, precision: float,
+                        rtol: float, atol: float, free_vibration: float, criterion: str, rest_velocity: float,
+                        progress=None) -> list[Margin]:
+    """Scan, bracket and bisect the overturning factor of every motion (see module docstring).
+
+    Args:
+        uplift_factors: per motion, the factor at which its PGA reaches the uplift acceleration; the
+            scan starts at half of it (nothing can overturn before uplift) but not above 1/4 of max.
+        max_scale: largest factor analysed.
+        precision: relative width to which band edges are bisected (e.g. 0.01).
+    """
+    kw = dict(rtol=rtol, atol=atol, free_vibration=free_vibration, criterion=criterion, rest_velocity=rest_velocity,
+              energy_stop=True, stop_at_capacity=(criterion == "static"))
+    grids = [_scan_grid(min(max(0.5 * f_up, 1e-3), max_scale / 4), max_scale, SCAN_RATIO) for f_up in uplift_factors]
+    # scan in rounds of a few factors per record; a record stops scanning a few points after its first
+    # overturning factor (enough to see a safe-again band right above it) or at the largest factor
+    flags_of = [[] for _ in grids]
+    active = list(range(len(grids)))
+    done = [0]
+    while active:
+        jobs = []
+        for i in active:
+            k0 = len(flags_of[i])
+            jobs.extend((i, grids[i][k]) for k in range(k0, min(k0 + SCAN_BLOCK, len(grids[i]))))
+        base = done[0]
+
+        def tick(n_done, base=base):
+            done[0] = base + n_done
+            if progress:
+                progress(done[0])
+
+        results = run_jobs(system, choice, [motions[i] for i, _ in jobs], [f for _, f in jobs], progress=tick, **kw)
+        for (i, _), r in zip(jobs, results):
+            flags_of[i].append(r.overturned)
+        still = []
+        for i in active:
+            flags = flags_of[i]
+            first = next((k for k, f in enumerate(flags) if f), None)
+            if len(flags) < len(grids[i]) and (first is None or len(flags) - 1 - first < SCAN_AFTER_FIRST):
+                still.append(i)
+        active = still
+    margins = []
+    edges = []   # (record, lower_safe, upper_ot, kind) to bisect; kind "rise" (safe→OT) or "fall" (OT→safe)
+    for i, grid in enumerate(grids):
+        flags = flags_of[i]
+        grid = grid[:len(flags)]
+        m = Margin(None, [], grid[-1], len(grid))
+        for k in range(len(grid)):
+            if flags[k] and (k == 0 or not flags[k - 1]):
+                edges.append([i, grid[k - 1] if k else 0.0, grid[k], "rise", len(m.intervals)])
+                m.intervals.append([grid[k], None])
+            if not flags[k] and k > 0 and flags[k - 1]:
+                edges.append([i, grid[k - 1], grid[k], "fall", len(m.intervals) - 1])
+        margins.append(m)
+    # bisect the first rise of every record (its margin) to the precision, all records in one batch per
+    # round; the other band edges are reported at the scan's resolution (SCAN_RATIO)
+    first_rise = {}
+    for e in edges:
+        if e[3] == "rise" and e[0] not in first_rise:
+            first_rise[e[0]] = e
+    to_bisect = list(first_rise.values())
+    while True:
+        active = [e for e in to_bisect if e[1] > 0 and e[2] / e[1] - 1.0 > precision]
+        if not active:
+            break
+        mids = [math.sqrt(e[1] * e[2]) for e in active]
+        res = run_jobs(system, choice, [motions[e[0]] for e in active], mids, **kw)
+        for e, mid, r in zip(active, mids, res):
+            margins[e[0]].runs += 1
+            ot_side = r.overturned
+            # "rise": lower is safe, upper overturns; "fall": lower overturns, upper is safe
+            if (e[3] == "rise") == ot_side:
+                e[2] = mid
+            else:
+                e[1] = mid
+    for e in edges:
+        m = margins[e[0]]
+        band = m.intervals[e[4]]
+        if e[3] == "rise":
+            band[0] = e[2]
+        else:
+            band[1] = e[2]
+    for m in margins:
+        m.intervals = [(a, b) for a, b in m.intervals]
+        m.overturn_scale = m.intervals[0][0] if m.intervals else None
+    return margins

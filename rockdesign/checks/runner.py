@@ -1,0 +1,97 @@
+"""Run one system against many (record, scale) jobs and read the engine summaries (SI)."""
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..design.geometry import displacement_capacity, slenderness_angle
+from ..dynamics.batch import batch_options, run_batch
+from ..dynamics.engine import (D_STATUS, S_DYNAMIC, S_IMPACTS, S_IMPACTS_BEFORE_EXCEEDED,
+                               S_IMPACTS_BEFORE_OVERTURN, S_T_UPLIFT, S_THETA_MAX, S_UB_MAX, S_UPLIFT_TIME,
+                               STATUS_NAMES)
+from ..dynamics.model import ModelChoice, system_parameters
+from ..systems import RockingSystem
+
+
+@dataclass(frozen=True)
+class RunSummary:
+    """What one analysis says about the design (SI)."""
+
+    theta_max: float
+    theta_max_over_alpha: float
+    theta_max_over_theta_c: float
+    u_B_max: float
+    u_B_max_over_capacity: float
+    impacts: int
+    uplift_time: float | None
+    time_uplifted: float
+    overturn_mode: str          # none | exceeded | dynamic
+    overturned: bool            # per the criterion
+    impacts_before_overturn: int | None
+    status: str
+
+
+def interpret(summary: np.ndarray, status: int, theta_c: float, alpha: float, capacity: float,
+              criterion: str) -> RunSummary:
+    """Turn an engine summary row into a :class:`RunSummary` (same rules as ``simulate``)."""
+    dynamic = summary[S_DYNAMIC] != 0.0
+    theta_max = float(summary[S_THETA_MAX])
+    exceeded = dynamic or theta_max >= theta_c
+    mode = "dynamic" if dynamic else ("exceeded" if exceeded else "none")
+    overturned = exceeded if criterion == "static" else dynamic
+    if dynamic:
+        before = int(summary[S_IMPACTS_BEFORE_OVERTURN])
+    elif exceeded and summary[S_IMPACTS_BEFORE_EXCEEDED] >= 0:
+        before = int(summary[S_IMPACTS_BEFORE_EXCEEDED])
+    else:
+        before = None
+    t_up = float(summary[S_T_UPLIFT])
+    return RunSummary(theta_max, theta_max / alpha, theta_max / theta_c, float(summary[S_UB_MAX]),
+                      float(summary[S_UB_MAX]) / capacity, int(summary[S_IMPACTS]),
+                      None if math.isnan(t_up) else t_up, float(summary[S_UPLIFT_TIME]), mode, bool(overturned),
+                      before, STATUS_NAMES[int(status)])
+
+
+def worker_count() -> int:
+    return max(1, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1)
+
+
+def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rtol: float, atol: float,
+             free_vibration: float, criterion: str, rest_velocity: float = 5e-4, energy_stop: bool = False,
+             stop_at_capacity: bool = False, restitution_factor: float = 1.0, progress=None,
+             chunk: int | None = None) -> list[RunSummary]:
+    """Analyse ``motions[i]`` × ``scales[i]`` for one system and model, in parallel, in job order.
+
+    ``restitution_factor`` multiplies the coefficient of restitution (capped at 1) for sensitivity
+    studies.  ``progress(n_done)`` is called after each chunk.
+    """
+    sp = system_parameters(system, choice, rest_velocity=rest_velocity)
+    if restitution_factor != 1.0:
+        sp = sp.copy()
+        sp[10] = min(1.0, sp[10] * restitution_factor)
+    opts = batch_options(rtol, atol, energy_stop=energy_stop, stop_at_capacity=stop_at_capacity)
+    theta_c = float(sp[12])
+    alpha = slenderness_angle(system.column.half_width, system.column.half_height)
+    capacity = displacement_capacity(system.column)
+    n = len(motions)
+    t_ends = [m.duration + free_vibration for m in motions]
+    out: list[RunSummary] = []
+    step = chunk or max(4 * worker_count(), 8)
+    for start in range(0, n, step):
+        sl = slice(start, min(n, start + step))
+        summaries, diags = run_batch(sp, motions[sl], scales[sl], t_ends[sl], opts)
+        out.extend(interpret(summaries[j], diags[j, D_STATUS], theta_c, alpha, capacity, criterion)
+                   for j in range(summaries.shape[0]))
+        if progress is not None:
+            progress(len(out))
+    return out
+
+
+def with_restitution_factor(system: RockingSystem, factor: float) -> RockingSystem:
+    """The system with c_r multiplied by ``factor`` (capped at 1), as a measured value."""
+    from ..design.quantities import coefficient_of_restitution
+    c_r, _ = coefficient_of_restitution(system)
+    return replace(system, restitution=min(1.0, c_r * factor), restitution_rule="measured")

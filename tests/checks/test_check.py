@@ -1,0 +1,149 @@
+"""The design check: classification, statistics and margins on constructed cases with known answers,
+and the ``check`` command's outputs, exit codes and input errors (thesis Fig 4.9, Sec 2.2)."""
+from __future__ import annotations
+
+import json
+import math
+import textwrap
+
+import pytest
+from scipy.stats import binomtest
+from typer.testing import CliRunner
+
+from rockdesign.checks.margins import overturning_margins
+from rockdesign.checks.polyakov import PolyakovRule, classify
+from rockdesign.checks.statistics import empirical_cdf, overturning_probability
+from rockdesign.cli import app
+from rockdesign.dynamics.model import ModelChoice
+from rockdesign.motions.motion import pulse_motion
+from support import G, block_from_p
+
+runner = CliRunner()
+
+
+@pytest.mark.parametrize("x,y,ot,expected", [
+    (0.5, 0.3, False, "a1"), (0.5, 0.5, False, "a1"), (0.5, 0.7, False, "a2"), (0.8, 0.2, True, "b"),
+    (0.8, 1.3, False, "b"), (1.2, 0.6, False, "c"), (1.0, 0.99, False, "c"), (1.5, 0.4, True, "d"), (2.0, 3.0, True, "d"),
+])
+def test_fig_4_9_classes(x, y, ot, expected):
+    assert classify(x, y, ot) == expected
+
+
+def test_polyakov_rule():
+    rule = PolyakovRule(0.45)
+    assert rule.utilisation(0.36) == pytest.approx(0.8)       # thesis A3: 0.36 m / 0.45 m = 0.80
+    assert rule.predicted_scale(0.36) == pytest.approx(1.25)
+
+
+@pytest.mark.parametrize("k,n", [(0, 44), (3, 44), (44, 44), (7, 21)])
+def test_overturning_probability_against_scipy(k, n):
+    p, lo, hi = overturning_probability(k, n, 0.90)
+    ci = binomtest(k, n).proportion_ci(confidence_level=0.90, method="exact")
+    assert p == pytest.approx(k / n)
+    assert lo == pytest.approx(ci.low, abs=1e-12) and hi == pytest.approx(ci.high, abs=1e-12)
+
+
+def test_empirical_cdf():
+    x, f = empirical_cdf([0.3, 0.1, 0.2])
+    assert list(x) == [0.1, 0.2, 0.3] and list(f) == pytest.approx([1 / 3, 2 / 3, 1.0])
+
+
+def test_margins_find_the_zhang_makris_bands():
+    # Sec 2.2: linearized block (α = 0.25, c_r = 0.81, p = 2.14), one-sine pulse ω_p/p = 5, dynamic
+    # overturning. Overturning for a_p/(αg) in [3.0186, 6.3181) and above 7.1681. With a design-level
+    # pulse of 2αg the margin is 3.0186/2 = 1.5093, safe again from 3.159, overturning again from 3.584.
+    s = block_from_p(2.14, math.tan(0.25)).with_restitution(0.81)
+    motion = pulse_motion("sine", 2.0 * 0.25 * G, 2 * math.pi / (5 * 2.14))
+    [m] = overturning_margins(s, ModelChoice("block", "linear"), [motion], uplift_factors=[0.5], max_scale=8.0,
+                              precision=0.01, rtol=1e-10, atol=1e-12, free_vibration=10.0, criterion="dynamic",
+                              rest_velocity=5e-4)
+    assert m.overturn_scale == pytest.approx(3.0186 / 2, rel=0.01)
+    assert m.overturn_scale >= 3.0186 / 2 - 1e-9      # the reported factor does overturn
+    assert len(m.intervals) == 2
+    first, second = m.intervals
+    assert first[1] == pytest.approx(6.3181 / 2, rel=0.2)     # band edges beyond the first: scan resolution
+    assert second[0] == pytest.approx(7.1681 / 2, rel=0.2) and second[1] is None
+
+
+# ----------------------------------------------------------------------------------------- CLI
+PROJECT = """
+[project]
+name = "stocky podium"
+
+[podium]
+columns = 20
+cap_beam_mass = "200 t"
+height = "3.0 m"
+width = "0.6 m"
+mass = "2.7 t"
+mass_distribution = 0.3333
+
+[superstructure]
+mass = "600 t"
+period = "rigid"
+
+[excitation]
+records = ["p695-ff/12a", "p695-ff/15b"]
+scale = {{ method = "pga", target = "{pga}" }}
+
+[analysis]
+overturn = "static"
+"""
+
+
+def _write(tmp_path, text, name="p.toml"):
+    path = tmp_path / name
+    path.write_text(textwrap.dedent(text))
+    return path
+
+
+def test_check_pass_exit_code_and_outputs(tmp_path):
+    path = _write(tmp_path, PROJECT.format(pga="0.1 g"))
+    out = tmp_path / "out"
+    result = runner.invoke(app, ["check", str(path), "-o", str(out), "--no-pdf", "--json"])
+    assert result.exit_code == 0, result.output
+    data = json.loads(result.stdout)
+    assert data["verdict"] == "PASS"
+    assert (out / "results.json").exists() and (out / "results.csv").exists()
+    assert json.loads((out / "results.json").read_text()) == data
+    rec = data["records"][0]
+    for key in ("id", "scale", "pga", "sd_max", "polyakov_ratio", "theta_max_over_alpha", "u_B_max_over_2B",
+                "impacts", "overturned", "class", "overturn_scale", "polyakov_scale"):
+        assert key in rec
+    assert rec["pga"] == pytest.approx(0.1 * G, rel=1e-12)
+    for key in ("n_records", "n_overturned", "n_false_negative", "classes", "median_margin"):
+        assert key in data["summary"]
+    assert data["model"]["chosen"] == "rigid-superstructure/linear" or data["model"]["chosen"].startswith("rigid")
+    # rerun: identical JSON
+    again = runner.invoke(app, ["check", str(path), "-o", str(tmp_path / "out2"), "--no-pdf", "--json"])
+    assert json.loads(again.stdout) == data
+
+
+def test_check_fail_exit_code(tmp_path):
+    path = _write(tmp_path, PROJECT.format(pga="1.2 g"))
+    result = runner.invoke(app, ["check", str(path), "-o", str(tmp_path / "o"), "--no-pdf", "--no-margins"])
+    assert result.exit_code == 1, result.output
+    assert "FAIL" in result.output
+
+
+@pytest.mark.parametrize("excitation,key", [
+    ('[excitation]\nsuites = ["p695-farfeld"]\ndesign_pga = "0.3 g"\n', "p695-farfeld"),
+    ('[excitation]\ndesign_pga = "0.3 kg"\n', "excitation.design_pga"),
+    ('[excitation]\ndesing_pga = "0.3 g"\n', "design_pga"),
+    ('[excitation]\nrecords = ["p695-ff/11a"]\nscale = { method = "pgv", target = "0.3 g" }\n', "excitation.scale"),
+])
+def test_bad_excitation_entries(tmp_path, excitation, key):
+    text = PROJECT.format(pga="0.1 g")
+    text = text[:text.index("[excitation]")] + excitation + "\n[analysis]\noverturn = \"static\"\n"
+    result = runner.invoke(app, ["check", str(_write(tmp_path, text)), "-o", str(tmp_path / "o"), "--no-pdf"])
+    assert result.exit_code == 2, result.output
+    assert key in " ".join(result.output.split())
+    assert "Traceback" not in result.output
+
+
+def test_check_without_excitation_needs_design_pga(tmp_path):
+    text = PROJECT.format(pga="0.1 g")
+    text = text[:text.index("[excitation]")] + "[analysis]\noverturn = \"static\"\n"
+    result = runner.invoke(app, ["check", str(_write(tmp_path, text)), "--no-pdf"])
+    assert result.exit_code == 2
+    assert "design_pga" in result.output
