@@ -340,7 +340,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
         t_new = t + h
         if t_new > tb - 1e-13 * max(1.0, abs(tb)) and tb < math.inf:
             t_new = tb
-        dense_coefficients(K, Q)
+        dense_coefficients(K, Q, n)
 
         # ------------------------------------------------------------ rest of a 2DOF podium
         if not rocking:

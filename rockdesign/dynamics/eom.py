@@ -21,7 +21,6 @@ import numpy as np
 from numba import njit
 
 from ..motions.excitation import ground_acceleration
-from .kinematics import centre_kinematics
 
 # Layout of the system parameter array ``sp`` (float64) --------------------------------------
 P_R = 0            # R used by the EOM [m] (R' for flat extensions)
@@ -42,7 +41,11 @@ P_REST_V = 14      # rest velocity threshold [rad/s] (SPEC §3.6)
 P_TWO_DOF = 15     # 1.0: the superstructure DOF u_T is integrated
 P_HYST = 16        # uplift hysteresis [rad/s²] (SPEC §3.6 chatter guard)
 P_TWO_RHO = 17     # 2ρ (linearized r/R)
-N_PARAMS = 18
+P_SIN_ALPHA = 18   # sin α, cos α, sin β, cos β (precomputed: two trigonometric calls per evaluation)
+P_COS_ALPHA = 19
+P_SIN_BETA = 20
+P_COS_BETA = 21
+N_PARAMS = 22
 
 
 @njit(cache=True)
@@ -64,8 +67,42 @@ def normalised_kinematics(theta, side, phase, sp):
             w1 = side * alpha - theta
             w0 = side * alpha * theta - 0.5 * theta * theta
         return theta, 1.0, 0.0, w0, w1, 0.0
-    u, u1, u2, w, w1, w2 = centre_kinematics(theta, side, phase, R, sp[P_ALPHA], sp[P_RADIUS], sp[P_BETA])
-    return u / R, u1 / R, u2 / R, w / R, w1 / R, w2 / R
+    # centre_kinematics (Eqs 3.1–3.2, 3.46–3.47, 3.51–3.52) divided by R, with sin(sα − θ) etc.
+    # expanded on precomputed sin α, cos α, sin β, cos β: two trigonometric calls per evaluation
+    st = math.sin(theta)
+    ct = math.cos(theta)
+    sa = side * sp[P_SIN_ALPHA]
+    ca = sp[P_COS_ALPHA]
+    s_at = sa * ct - ca * st
+    c_at = ca * ct + sa * st
+    u = sa - s_at
+    u1 = c_at
+    u2 = s_at
+    w = c_at
+    w1 = s_at
+    w2 = -c_at
+    r = sp[P_RADIUS]
+    if r != 0.0:
+        rr = r / R
+        if phase == 1:
+            u += rr * (theta - st)
+            u1 += rr * (1.0 - ct)
+            u2 += rr * st
+            w += rr * (1.0 - ct)
+            w1 += rr * st
+            w2 += rr * ct
+        else:
+            sb = side * sp[P_SIN_BETA]
+            cb = sp[P_COS_BETA]
+            s_bt = sb * ct - cb * st
+            c_bt = cb * ct + sb * st
+            u += rr * (side * sp[P_BETA] - s_bt - st)
+            u1 += rr * (c_bt - ct)
+            u2 += rr * (s_bt + st)
+            w += rr * (c_bt - ct)
+            w1 += rr * (s_bt + st)
+            w2 += rr * (ct - c_bt)
+    return u, u1, u2, w, w1, w2
 
 
 @njit(cache=True)
@@ -114,13 +151,13 @@ def uplift_condition(side, ag, u_t, u_tdot, sp):
     return side * thdd
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def rhs(t, y, out, rocking, side, phase, kind, xp, samples, sp):
     """dy/dt into ``out`` for the rocking (rocking=True) or resting (θ frozen at 0) state."""
     rhs_given_acceleration(ground_acceleration(t, kind, xp, samples), y, out, rocking, side, phase, sp)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def rhs_given_acceleration(ag, y, out, rocking, side, phase, sp):
     """dy/dt into ``out`` for a given ground acceleration ag [m/s²]."""
     if rocking:
@@ -182,4 +219,8 @@ def pack_parameters(values: dict) -> np.ndarray:
         sp[globals()["P_" + key.upper()]] = float(value)
     if sp[P_OVERTURN] == 0.0:
         sp[P_OVERTURN] = math.pi / 2
+    sp[P_SIN_ALPHA] = math.sin(sp[P_ALPHA])
+    sp[P_COS_ALPHA] = math.cos(sp[P_ALPHA])
+    sp[P_SIN_BETA] = math.sin(sp[P_BETA])
+    sp[P_COS_BETA] = math.cos(sp[P_BETA])
     return sp

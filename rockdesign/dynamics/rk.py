@@ -44,19 +44,20 @@ def dp5_step(t, y, f0, h, K, y_new, ytmp, rocking, side, phase, kind, xp, sample
     """One Dormand–Prince step of size h from (t, y) with f0 = f(t, y).
 
     Fills K[0..6] with the stage derivatives (K[6] = f(t+h, y_new), FSAL) and ``y_new``.
-    Only the first ``n`` components take part (2 for SDOF systems, 4 with a superstructure).
+    Only the first ``n`` components take part (2 for SDOF systems, 4 with a superstructure); the
+    others must be zero and stay untouched.
     Returns the number of right-hand-side evaluations (6).
     """
-    for i in range(4):
+    for i in range(n):
         K[0, i] = f0[i]
     for s in range(1, 6):
-        for i in range(4):
+        for i in range(n):
             acc = 0.0
             for j in range(s):
                 acc += A[s, j] * K[j, i]
             ytmp[i] = y[i] + h * acc
         rhs(t + C[s] * h, ytmp, K[s], rocking, side, phase, kind, xp, samples, sp)
-    for i in range(4):
+    for i in range(n):
         acc = 0.0
         for j in range(6):
             acc += B[j] * K[j, i]
@@ -80,9 +81,9 @@ def error_norm(y, y_new, K, h, rtol, atol, n):
 
 
 @njit(cache=True)
-def dense_coefficients(K, Q):
-    """Q = Kᵀ P (4 × 4): y(t + x h) = y + h Σ_j Q[:, j] x^(j+1), x ∈ [0, 1] (4th-order interpolant)."""
-    for i in range(4):
+def dense_coefficients(K, Q, n):
+    """Q = Kᵀ P (first n rows): y(t + x h) = y + h Σ_j Q[:, j] x^(j+1), x ∈ [0, 1] (4th-order interpolant)."""
+    for i in range(n):
         for j in range(4):
             acc = 0.0
             for k in range(7):
@@ -90,7 +91,7 @@ def dense_coefficients(K, Q):
             Q[i, j] = acc
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def dense_value(y, Q, h, x, i):
     """Component ``i`` of the dense output at fraction x of the step."""
     return y[i] + h * x * (Q[i, 0] + x * (Q[i, 1] + x * (Q[i, 2] + x * Q[i, 3])))
