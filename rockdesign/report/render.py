@@ -1,0 +1,121 @@
+"""The calculation report of ``rockdesign check``: jinja2 template → HTML (figures inline as SVG) →
+WeasyPrint PDF (CONTRACT §4: ``report.html``, ``report.pdf``).
+
+    write_report(result, out_dir, pdf=True, html=True) -> {"html": Path, "pdf": Path}
+    render_html(result) -> str
+
+The template is ``templates/report.html.j2`` with ``templates/report.css`` (folder
+:func:`rockdesign.paths.templates_dir`).  Numbers are printed by the ``fmt`` filter
+(:func:`rockdesign.report.formatting.fmt`) from the values of ``result.as_json()``, so the report
+and results.json agree.  Rendering is deterministic apart from the date (``SOURCE_DATE_EPOCH``
+fixes it).
+"""
+from __future__ import annotations
+
+import html as html_lib
+import re
+from pathlib import Path
+
+import jinja2
+
+from ..paths import templates_dir
+from .context import build_context
+from .formatting import DIGITS, fmt, number
+
+TEMPLATE = "report.html.j2"
+STYLESHEET = "report.css"
+
+_SUBSCRIPT = re.compile(r"(?<![A-Za-z]{4})_([A-Za-z0-9α-ωΑ-Ω,]{1,5})(?![A-Za-z0-9_])")
+"""A thesis subscript (``SD_max``, ``u_B,max``, ``ü_g,up``); longer words (``mass_distribution``) are names."""
+
+
+def symbols(text) -> str:
+    """HTML for a text with thesis symbols: escaped, ``x_ab`` → x<sub>ab</sub> (``SD_max``, ``u_B(θc)``);
+    identifiers such as ``mass_distribution`` are left alone."""
+    if text is None:
+        return ""
+    escaped = html_lib.escape(str(text), quote=False)
+    return _SUBSCRIPT.sub(r"<sub>\1</sub>", escaped)
+
+
+def environment(folder: Path | None = None) -> jinja2.Environment:
+    """The jinja2 environment of the report, with the filters ``fmt``, ``number`` and ``sym``."""
+    env = jinja2.Environment(loader=jinja2.FileSystemLoader(str(folder or templates_dir())),
+                             autoescape=jinja2.select_autoescape(["html", "j2", "xml"], default=True),
+                             undefined=jinja2.Undefined,   # a key missing from results.json prints "—"
+                             trim_blocks=False, lstrip_blocks=False, keep_trailing_newline=True)
+    env.filters["fmt"] = lambda value, unit=None: "—" if isinstance(value, jinja2.Undefined) else fmt(value, unit)
+    env.filters["number"] = lambda value: "—" if isinstance(value, jinja2.Undefined) else number(value)
+    env.filters["sym"] = lambda text: jinja2.utils.markupsafe.Markup(symbols(text))
+    return env
+
+
+def render_figures(result) -> dict[str, str]:
+    """Inline SVG of every report figure, keyed by name (``history:<record id>`` for time histories)."""
+    from . import figures
+    from .drawing import structure_drawing
+    system = result.project.system
+    out = {
+        "drawing": figures.svg(structure_drawing(system), "drawing"),
+        "pushover": figures.svg(figures.pushover_figure(system), "pushover"),
+        "spectra": figures.svg(figures.spectra_figure(result), "spectra"),
+        "scatter": figures.svg(figures.polyakov_scatter_figure(result), "scatter"),
+        "ecdf": figures.svg(figures.ecdf_figure(result), "ecdf"),
+        "margins": figures.svg(figures.margin_figure(result), "margins"),
+    }
+    for k, rid in enumerate(result.histories):
+        out[f"history:{rid}"] = figures.svg(figures.history_figure(result, rid), f"history{k}")
+    return out
+
+
+def verification_statement(result) -> dict:
+    """The engine's error on a closed-form case at the check's tolerance (see :mod:`.verification`):
+    taken from results.json when the check recorded it (``settings.engine_accuracy`` or
+    ``verification``), else measured now."""
+    from .verification import engine_accuracy_statement, normalise
+    data = result.as_json()
+    recorded = data.get("settings", {}).get("engine_accuracy") or data.get("verification")
+    if isinstance(recorded, dict) and recorded:
+        return normalise(recorded)
+    s = result.settings
+    return engine_accuracy_statement(float(s.get("rtol", 1e-10)), float(s.get("atol", 1e-12)))
+
+
+def render_html(result, *, figures: dict | None = None, date: str | None = None) -> str:
+    """The report as one self-contained HTML document (CSS and SVG figures inline)."""
+    folder = templates_dir()
+    env = environment(folder)
+    css = (folder / STYLESHEET).read_text(encoding="utf-8") if (folder / STYLESHEET).exists() else ""
+    ctx = build_context(result, figures=figures if figures is not None else render_figures(result),
+                        verification=verification_statement(result), date=date)
+    ctx["css"] = jinja2.utils.markupsafe.Markup(css)
+    ctx["digits"] = DIGITS
+    return env.get_template(TEMPLATE).render(**ctx)
+
+
+def html_to_pdf(html_text: str, path: Path, base_url: str | None = None) -> Path:
+    """Render HTML to a PDF file with WeasyPrint."""
+    from weasyprint import HTML
+    HTML(string=html_text, base_url=base_url or str(templates_dir())).write_pdf(str(path))
+    return path
+
+
+def write_report(result, out_dir, *, pdf: bool = True, html: bool = True) -> dict[str, Path]:
+    """Write ``report.html`` and/or ``report.pdf`` of a CheckResult into ``out_dir``.
+
+    Returns:
+        {"html": path, "pdf": path} for the files written.
+    """
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    written: dict[str, Path] = {}
+    if not (pdf or html):
+        return written
+    text = render_html(result)
+    if html:
+        path = out_dir / "report.html"
+        path.write_text(text, encoding="utf-8")
+        written["html"] = path
+    if pdf:
+        written["pdf"] = html_to_pdf(text, out_dir / "report.pdf")
+    return written

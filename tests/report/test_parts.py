@@ -1,0 +1,123 @@
+"""Parts of the report that need no design check: number formatting, formula substitutions, the
+verification statement, the drawings and the SVG export."""
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from rockdesign.design.quantities import design_quantities
+from rockdesign.paths import REPO_ROOT
+from rockdesign.project import load_project
+from rockdesign.report.context import pretty_exponents, supplement_formula
+from rockdesign.report.formatting import fmt, number
+
+EXAMPLES = sorted((REPO_ROOT / "examples").glob("*.toml"))
+
+
+@pytest.mark.parametrize("value, text", [
+    (0.14888994760949725, "0.1489"),
+    (0.45, "0.45"),
+    (2.943, "2.943"),
+    (10.550049563552268, "10.55"),
+    (1.0, "1"),
+    (9.99996, "10"),
+    (123456.7, "123500"),
+    (7290804.26, "7.291·10⁶"),
+    (1e-10, "1·10⁻¹⁰"),
+    (0.000123, "1.23·10⁻⁴"),
+    (-0.5, "−0.5"),
+    (44, "44"),
+    (0, "0"),
+    (None, "—"),
+    (math.inf, "∞"),
+    (True, "yes"),
+])
+def test_number(value, text):
+    assert number(value) == text
+
+
+def test_fmt_units():
+    assert fmt(1.4715, "m/s^2") == "1.472 m/s²"
+    assert fmt(0.3333, "-") == "0.3333"
+    assert fmt(2.2024654553865433, "1/s") == "2.202 1/s"
+    assert fmt(None, "m") == "—"
+
+
+def test_pretty_exponents():
+    assert pretty_exponents("2.9e+05 kg/(36·1518.8 kg)") == "2.9·10⁵ kg/(36·1518.8 kg)"
+    assert pretty_exponents("rtol 1e-10") == "rtol 1·10⁻¹⁰"
+
+
+@pytest.mark.parametrize("path", EXAMPLES, ids=lambda p: p.stem)
+def test_substitutions_evaluate_to_the_result(path):
+    """Where the report supplies a formula/substitution itself, it recomputes the printed value."""
+    project = load_project(path)
+    for name, q in design_quantities(project.system).items():
+        formula, substituted, value = supplement_formula(name, q, project.system, project.raw)
+        assert formula or name in ("k_phase2",), name
+        assert substituted, f"{path.stem}: {name} has no substituted values"
+        if value is not None:
+            assert value == pytest.approx(q.value, rel=1e-12, abs=1e-15), name
+
+
+def test_verification_statement():
+    from rockdesign.report.verification import closed_form_accuracy
+    s = closed_form_accuracy(1e-10)
+    assert s["impacts"] == s["impacts_engine"] > 3
+    assert s["theta_error"] < 1e-8
+    assert s["impact_time_error"] < 1e-7
+    loose = closed_form_accuracy(1e-6)
+    assert loose["theta_error"] > s["theta_error"]
+
+
+def test_verification_statement_shared_with_bench():
+    """The report uses the benchmark's engine_accuracy when present, with the report's keys."""
+    from rockdesign.report.verification import closed_form_accuracy, engine_accuracy_statement
+    s = engine_accuracy_statement(1e-9)
+    own = closed_form_accuracy(1e-9)
+    for key in ("theta_error", "impact_time_error", "impacts", "impacts_engine", "theta_error_over_alpha", "rtol"):
+        assert key in s, key
+    assert s["impacts"] == own["impacts"]
+    assert s["theta_error"] == pytest.approx(own["theta_error"], rel=0.5)
+    assert "seconds" not in s
+
+
+@pytest.mark.parametrize("path", EXAMPLES, ids=lambda p: p.stem)
+def test_structure_drawing_svg(path):
+    from rockdesign.report.drawing import structure_drawing
+    from rockdesign.report.figures import svg
+    project = load_project(path)
+    text = svg(structure_drawing(project.system), "d")
+    assert text.startswith("<svg")
+    assert "<dc:date>" not in text
+    assert 'id="d-' in text and 'id="' + "DejaVu" not in text
+
+
+def test_curved_extension_outline_is_true_arc():
+    """The drawn extension lies on the circle of radius r tangent to the ground at x = B, ends at B'."""
+    from rockdesign.design.geometry import rocking_geometry
+    from rockdesign.report.drawing import extension_outline
+    project = load_project(REPO_ROOT / "examples" / "bridge_pier.toml")
+    c = project.system.column
+    geo = rocking_geometry(c)
+    pts = extension_outline(c, 1.0, n=50)[:50]
+    dist = ((pts[:, 0] - c.half_width) ** 2 + (pts[:, 1] - geo.radius) ** 2) ** 0.5
+    assert dist == pytest.approx(geo.radius, rel=1e-12)
+    assert pts[-1, 0] == pytest.approx(c.half_width_ext, rel=1e-12)
+    assert pts[-1, 1] == pytest.approx(geo.radius * (1 - math.cos(geo.beta)), rel=1e-12)
+
+
+def test_svg_is_deterministic():
+    from rockdesign.report.drawing import structure_drawing
+    from rockdesign.report.figures import svg
+    system = load_project(REPO_ROOT / "examples" / "podium_curved.toml").system
+    assert svg(structure_drawing(system), "a") == svg(structure_drawing(system), "a")
+
+
+def test_symbols_subscripts():
+    from rockdesign.report.render import symbols
+    assert symbols("SD_max < u_B(θc)") == "SD<sub>max</sub> &lt; u<sub>B</sub>(θc)"
+    assert symbols("u_B,max/2B") == "u<sub>B,max</sub>/2B"
+    assert symbols("project input (mass_distribution)") == "project input (mass_distribution)"
+    assert symbols(None) == ""
