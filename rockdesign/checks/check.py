@@ -242,6 +242,12 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
                 "overturn_probability_limit": a.overturn_probability_limit,
                 "rigid_superstructure_ratio": a.rigid_superstructure_ratio,
                 "scale_basis": "overturn_scale and polyakov_scale multiply the design-level (scaled) record"}
+    try:   # the engine's error against a closed form at the tolerance used (report appendix)
+        from ..bench.accuracy import engine_accuracy
+        acc = engine_accuracy(a.rtol, a.atol)
+        settings["engine_accuracy"] = {k: v for k, v in acc.items() if k != "seconds"}
+    except ImportError:  # pragma: no cover - the bench package is part of rockdesign
+        pass
     return CheckResult(project, q, rule, selection, outcomes, resolved.missing, resolved.scale_description,
                        resolved.default_used or spec.default_used, resolved.suites, stats, checks, verdict, histories,
                        sensitivity, settings)

@@ -48,9 +48,14 @@ class Quantity:
 
 
 def _f(x: float) -> str:
+    """A number for substituted formulas: 5 significant digits, powers of ten written out."""
     if math.isinf(x):
         return "∞"
-    return f"{x:.5g}"
+    text = f"{x:.5g}"
+    if "e" in text:
+        mant, exp = text.split("e")
+        text = f"{mant}·10^{int(exp)}"
+    return text
 
 
 def effective_gamma(system: RockingSystem) -> float:
