@@ -117,7 +117,8 @@ class CheckResult:
                       "full_model": self.selection.full.label, "rejected": self.selection.rejected,
                       "verification": self.selection.verification,
                       "max_difference_theta_over_theta_c": self.selection.max_difference,
-                      "verdict_changes": self.selection.verdict_changes},
+                      "verdict_changes": self.selection.verdict_changes,
+                      "equivalent_block": self.settings.get("equivalent_block")},
             "excitation": {"suites": self.suites, "scaling": self.scale_description,
                            "default_used": self.default_excitation_used,
                            "missing": [{"id": i, "reason": r, "suite": su} for i, r, su in self.missing],
@@ -242,6 +243,12 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
                 "overturn_probability_limit": a.overturn_probability_limit,
                 "rigid_superstructure_ratio": a.rigid_superstructure_ratio,
                 "scale_basis": "overturn_scale and polyakov_scale multiply the design-level (scaled) record"}
+    from ..design.quantities import at_critical_curvature
+    if at_critical_curvature(system) and "R_hat" in q:
+        settings["equivalent_block"] = (
+            f"ρ = ρc: to linear order and up to the first impact the columns respond like flat-based blocks of "
+            f"size R̂ = {q['R_hat'].value:.4g} m ({q['R_hat'].equation}); not used as a substitute model because "
+            "impacts differ (c_r) — the curved column itself is analysed (SPEC §6)")
     try:   # the engine's error against a closed form at the tolerance used (report appendix)
         from ..bench.accuracy import engine_accuracy
         acc = engine_accuracy(a.rtol, a.atol)
