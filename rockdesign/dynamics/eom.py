@@ -48,7 +48,7 @@ P_COS_BETA = 21
 N_PARAMS = 22
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def normalised_kinematics(theta, side, phase, sp):
     """(U, U', U'', W, W', W'') = (u_C, w_C and θ-derivatives)/R for the model (exact or linear)."""
     R = sp[P_R]
@@ -105,7 +105,7 @@ def normalised_kinematics(theta, side, phase, sp):
     return u, u1, u2, w, w1, w2
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def accelerations(theta, thetadot, u_t, u_tdot, side, phase, ag, sp):
     """(θ̈ [rad/s²], ü_T [m/s²]) while rocking on ``side`` in ``phase`` under ground acceleration ag."""
     R = sp[P_R]
@@ -131,7 +131,7 @@ def accelerations(theta, thetadot, u_t, u_tdot, side, phase, ag, sp):
     return rhs / mass, -ag - f
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def rest_acceleration(u_t, u_tdot, ag, sp):
     """ü_T [m/s²] of the fixed-base superstructure before uplift (Eq 4.3); 0 without a 2DOF model."""
     if sp[P_TWO_DOF] == 0.0:
@@ -154,12 +154,18 @@ def uplift_condition(side, ag, u_t, u_tdot, sp):
 @njit(cache=True, inline="always")
 def rhs(t, y, out, rocking, side, phase, kind, xp, samples, sp):
     """dy/dt into ``out`` for the rocking (rocking=True) or resting (θ frozen at 0) state."""
-    rhs_given_acceleration(ground_acceleration(t, kind, xp, samples), y, out, rocking, side, phase, sp)
+    state_derivatives(ground_acceleration(t, kind, xp, samples), y, out, rocking, side, phase, sp)
+
+
+@njit(cache=True)
+def rhs_given_acceleration(ag, y, out, rocking, side, phase, sp):
+    """dy/dt into ``out`` for a given ground acceleration ag [m/s²] (the same as :func:`rhs`)."""
+    state_derivatives(ag, y, out, rocking, side, phase, sp)
 
 
 @njit(cache=True, inline="always")
-def rhs_given_acceleration(ag, y, out, rocking, side, phase, sp):
-    """dy/dt into ``out`` for a given ground acceleration ag [m/s²]."""
+def state_derivatives(ag, y, out, rocking, side, phase, sp):
+    """dy/dt into ``out`` under ground acceleration ag: θ̇, θ̈ (or 0, 0 at rest), u̇_T, ü_T (0, 0 for SDOF)."""
     if rocking:
         thdd, utdd = accelerations(y[0], y[1], y[2], y[3], side, phase, ag, sp)
         out[0] = y[1]

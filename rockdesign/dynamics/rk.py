@@ -50,19 +50,25 @@ def dp5_step(t, y, f0, h, K, y_new, ytmp, rocking, side, phase, kind, xp, sample
     """
     for i in range(n):
         K[0, i] = f0[i]
-    for s in range(1, 6):
-        for i in range(n):
-            acc = 0.0
-            for j in range(s):
-                acc += A[s, j] * K[j, i]
-            ytmp[i] = y[i] + h * acc
-        rhs(t + C[s] * h, ytmp, K[s], rocking, side, phase, kind, xp, samples, sp)
-    for i in range(n):
-        acc = 0.0
-        for j in range(6):
-            acc += B[j] * K[j, i]
-        y_new[i] = y[i] + h * acc
-    rhs(t + h, y_new, K[6], rocking, side, phase, kind, xp, samples, sp)
+    # one call site of the (inlined) right-hand side for all six evaluations: stages 1–5, then the
+    # FSAL evaluation at the new point (stage 6 combines with B into y_new)
+    for s in range(1, 7):
+        if s < 6:
+            for i in range(n):
+                acc = 0.0
+                for j in range(s):
+                    acc += A[s, j] * K[j, i]
+                ytmp[i] = y[i] + h * acc
+            ts = t + C[s] * h
+        else:
+            for i in range(n):
+                acc = 0.0
+                for j in range(6):
+                    acc += B[j] * K[j, i]
+                y_new[i] = y[i] + h * acc
+                ytmp[i] = y_new[i]
+            ts = t + h
+        rhs(ts, ytmp, K[s], rocking, side, phase, kind, xp, samples, sp)
     return 6
 
 

@@ -39,7 +39,7 @@ CYCLOIDAL_C1_PHASE = 0.21897
 # none:     []
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def ground_acceleration(t, kind, params, samples):
     """ü_g(t) in m/s² for the excitation ``(kind, params, samples)``.
 
