@@ -293,6 +293,7 @@ def _statistics(outcomes: list[RecordOutcome], a, with_margins: bool) -> dict:
             "median_margin_censored": bool(math.isinf(med)),
             "min_margin": min(finite) if finite else None,
             "n_margin_above_scan": censored,
+            "n_margin_below_design": sum(1 for v in finite if v < 1.0),
             "margin_scan_max": a.margin_max_scale,
             "median_polyakov_scale": pystats.median(o.polyakov_scale for o in outcomes),
             "n_polyakov_unconservative_margin": sum(
@@ -341,6 +342,17 @@ def _checks(outcomes: list[RecordOutcome], q: dict, a, stats: dict, sensitivity:
          "governs_verdict": False,
          "detail": f"informative: {sensitivity['verdict_flips']} record verdict(s) flip"},
     ]
+    margins = [(o.id, o.margin.overturn_scale) for o in outcomes if o.margin is not None and
+               o.margin.overturn_scale is not None]
+    if any(o.margin is not None for o in outcomes):
+        below = sorted((m, i) for i, m in margins if m < 1.0)
+        checks.append({
+            "name": "RHA incremental: no overturning at any amplitude up to the design level",
+            "utilisation": (1.0 / min(m for _, m in margins)) if margins else 0.0,
+            "passed": not below, "governs_verdict": False,
+            "detail": ("informative: every record's smallest overturning factor is above 1" if not below else
+                       "informative: overturning below the design level (responses are not monotonic in "
+                       "amplitude): " + ", ".join(f"{i} at {m:.3g}" for m, i in below))})
     if "omega_s_over_p" in q:
         ratio = q["omega_s_over_p"].value
         checks.append({"name": f"Polyakov rule 1: rigid superstructure (ω_s/p ≥ {a.rigid_superstructure_ratio:g})",

@@ -17,8 +17,8 @@ SCAN_RATIO = 1.2
 """Ratio between consecutive factors of the scan; bands narrower than this can be missed."""
 SCAN_BLOCK = 4
 """Factors analysed per record and round of the scan."""
-SCAN_AFTER_FIRST = 6
-"""Factors scanned above the first overturning one: 1.2⁶ ≈ 3, enough to find a safe-again band like
+SCAN_AFTER_FIRST = 5
+"""Factors scanned above the first overturning one: 1.2⁵ ≈ 2.5, enough to find a safe-again band like
 Zhang & Makris' (an overturning band spanning a factor ≈ 2, SPEC §7)."""
 
 

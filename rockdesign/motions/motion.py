@@ -145,5 +145,3 @@ def no_motion() -> GroundMotion:
     """Zero ground acceleration (free vibration)."""
     return GroundMotion("free vibration", EXC_NONE, np.zeros(0), _EMPTY, {})
 
-
-assert abs(cycloidal_c_phase(1) - CYCLOIDAL_C1_PHASE) < 1e-4

@@ -12,6 +12,8 @@ fixes it).
 """
 from __future__ import annotations
 
+import base64
+
 import html as html_lib
 import re
 from pathlib import Path
@@ -47,7 +49,17 @@ def environment(folder: Path | None = None) -> jinja2.Environment:
     env.filters["fmt"] = lambda value, unit=None: "—" if isinstance(value, jinja2.Undefined) else fmt(value, unit)
     env.filters["number"] = lambda value: "—" if isinstance(value, jinja2.Undefined) else number(value)
     env.filters["sym"] = lambda text: jinja2.utils.markupsafe.Markup(symbols(text))
+    env.filters["svgimg"] = svg_image
     return env
+
+
+def svg_image(svg_text) -> str:
+    """An SVG figure as an ``<img>`` with a data URI: still a vector figure, but WeasyPrint renders it
+    through its SVG module instead of cascading the page's CSS over every path (≈ 3× faster)."""
+    if isinstance(svg_text, jinja2.Undefined) or not svg_text:
+        return ""
+    data = base64.b64encode(str(svg_text).encode("utf-8")).decode("ascii")
+    return jinja2.utils.markupsafe.Markup(f'<img class="figure" alt="figure" src="data:image/svg+xml;base64,{data}">')
 
 
 def render_figures(result) -> dict[str, str]:

@@ -89,3 +89,10 @@ def test_sine_pulse_eq_2_20_and_zero_outside():
 def test_scaled_pulse():
     motion = pulse_motion("ricker-anti", 1.0, 1.0).scaled(2.5)
     assert motion.pga == 2.5
+
+
+def test_cycloidal_c1_phase_constant_matches_its_equation():
+    # φ of Makris' type-C1 pulse: root of 2 cos φ = sin φ (3π − 2φ) (zero final displacement)
+    from rockdesign.motions.excitation import CYCLOIDAL_C1_PHASE
+    from rockdesign.motions.motion import cycloidal_c_phase
+    assert abs(cycloidal_c_phase(1) - CYCLOIDAL_C1_PHASE) < 1e-4

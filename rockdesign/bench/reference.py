@@ -1,0 +1,201 @@
+"""Reference solutions of the work-precision problems, evaluable at any time, with their error bounds.
+
+Two kinds (``ReferenceSolution.kind``):
+
+* ``closed-form`` (linearized SDOF problems): the exact event-driven solution of the linearized
+  equations (SPEC §3.8, :mod:`rockdesign.dynamics.linear_exact`).  Between events it is an explicit
+  formula and every event is a bracketed root found to round-off, so its own error is round-off
+  (~1e-15 rad).  As an independent check, our engine and scipy DOP853 at rtol 1e-13 are compared
+  with it (``checks``).
+* ``converged`` (exact equations; the 2DOF podium): our engine at rtol = 1e-13, atol = 1e-15.  Its
+  error is bounded by comparing it with two other solutions: the same engine at rtol = 1e-12
+  (self-convergence) and the independent scipy implementation (DOP853, rtol = 1e-13, atol = 1e-15,
+  restarted at every event and sample; :mod:`rockdesign.reference`).  The stated bound per metric is
+  the larger of the two differences.
+
+Histories are evaluated at arbitrary times by re-running the kernel with those output times (its
+dense output or closed form there), so no method's output is ever interpolated.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..design.geometry import rocking_geometry
+from ..dynamics.engine import N_OPTIONS, O_ATOL, O_H_MAX, O_MAX_EVENTS, O_MAX_STEPS, O_RTOL, O_SCAN, O_T_END
+from ..dynamics.engine import integrate
+from ..dynamics.kinematics import top_displacement
+from ..dynamics.linear_exact import integrate_linear_exact, sampled_pulse
+from ..dynamics.model import ModelChoice, resolve_structure, system_parameters
+from ..dynamics.simulate import simulate
+from ..reference.scipy_engine import simulate_scipy
+from . import metrics
+from .problems import Problem
+
+REFERENCE_RTOL = 1e-13
+REFERENCE_ATOL = 1e-15
+SELF_CHECK_RTOL = 1e-12
+
+
+def engine_history_at(problem: Problem, times, *, model: str = "exact", rtol: float = REFERENCE_RTOL,
+                      atol: float = REFERENCE_ATOL, scan_points: int = 8) -> np.ndarray:
+    """θ(t) [rad] of our engine (or closed form) for ``problem`` at the given times [s].
+
+    Sets up the kernel exactly as :func:`rockdesign.dynamics.simulate.simulate` does and passes
+    ``times`` as output times, so the values come from the integrator's dense output (``exact``,
+    ``linear``) or the closed form (``linear-exact``) at those very instants.
+
+    Args:
+        problem: the problem.
+        times: any times [s] in [0, t_end] (unsorted, duplicates allowed).
+        model: ``exact`` | ``linear`` | ``linear-exact``.
+        rtol, atol: integrator tolerances (ignored by the closed form).
+
+    Returns:
+        θ at ``times`` (same shape).
+    """
+    times = np.asarray(times, dtype=np.float64)
+    t_sorted, inverse = np.unique(times, return_inverse=True)
+    system = problem.system
+    structure = resolve_structure(system, problem.structure)
+    equations = "linear" if model in ("linear", "linear-exact") else "exact"
+    sp = system_parameters(system, ModelChoice(structure, equations))
+    y0 = np.array([problem.theta0, 0.0, 0.0, 0.0])
+    if problem.theta0 != 0.0 and structure == "podium-2dof":
+        # as simulate(): the superstructure starts undeformed on the tilted frame
+        geo = rocking_geometry(system.column)
+        phase = 2 if geo.radius > 0 and abs(problem.theta0) > geo.beta else 1
+        y0[2] = math.copysign(top_displacement(abs(problem.theta0), 1.0, phase, geo.R, geo.alpha, geo.radius,
+                                               geo.beta), problem.theta0)
+    side0 = 1.0 if problem.theta0 >= 0.0 else -1.0
+    t_out = np.ascontiguousarray(np.clip(t_sorted, 0.0, problem.t_end))
+    out_y = np.zeros((t_out.size, 4))
+    cap = 1
+    ev_t, ev_kind, ev_y = np.zeros(cap), np.zeros(cap, dtype=np.int64), np.zeros((cap, 4))
+    motion = problem.motion
+    if model == "linear-exact":
+        motion = sampled_pulse(motion)
+        integrate_linear_exact(sp, motion.kind, motion.params, motion.samples, y0, side0, 0.0, problem.t_end,
+                               t_out, out_y, ev_t, ev_kind, ev_y, 1_000_000, False, False)
+    else:
+        opts = np.zeros(N_OPTIONS)
+        opts[O_T_END] = problem.t_end
+        opts[O_RTOL] = rtol
+        opts[O_ATOL] = atol
+        opts[O_H_MAX] = math.inf
+        opts[O_MAX_STEPS] = 50_000_000
+        opts[O_SCAN] = scan_points
+        opts[O_MAX_EVENTS] = 1_000_000
+        integrate(sp, motion.kind, motion.params, motion.samples, y0, side0, 0.0, opts, t_out, out_y,
+                  ev_t, ev_kind, ev_y)
+    return out_y[:, 0][inverse].reshape(times.shape)
+
+
+@dataclass
+class ReferenceSolution:
+    """The reference of one problem.
+
+    Attributes:
+        kind: ``closed-form`` or ``converged``.
+        how: how it is made (one sentence, for bench.json and the docs).
+        model, rtol, atol: what :func:`engine_history_at` re-runs to evaluate θ at any time.
+        theta_max: peak |θ| [rad]; impact_times [s]; overturn_mode; impacts.
+        error_bound: estimated error of the reference per metric (``theta`` [rad], ``theta_max``
+            [rad], ``impact_times`` [s]).
+        checks: the comparisons behind the bound (name → metrics).
+        seconds: wall time spent building the reference [s].
+    """
+
+    problem: Problem
+    kind: str
+    how: str
+    model: str
+    rtol: float
+    atol: float
+    theta_max: float
+    impact_times: np.ndarray
+    overturn_mode: str
+    impacts: int
+    error_bound: dict = field(default_factory=dict)
+    checks: dict = field(default_factory=dict)
+    seconds: float = 0.0
+
+    def theta_at(self, times) -> np.ndarray:
+        """θ_ref(t) [rad] at the given times [s]."""
+        return engine_history_at(self.problem, times, model=self.model, rtol=self.rtol, atol=self.atol)
+
+    def as_json(self) -> dict:
+        return {"kind": self.kind, "how": self.how, "theta_max": self.theta_max, "impacts": self.impacts,
+                "first_impact_times": [float(x) for x in self.impact_times[:metrics.IMPACTS_COMPARED]],
+                "overturn_mode": self.overturn_mode, "error_bound": dict(self.error_bound),
+                "checks": {k: dict(v) for k, v in self.checks.items()}, "seconds": self.seconds}
+
+
+def _compare(ref: ReferenceSolution, t, theta, impact_times, theta_max, overturn_mode) -> dict:
+    t = np.asarray(t, dtype=float)
+    return {"theta": metrics.max_abs_difference(theta, ref.theta_at(t)),
+            "theta_max": metrics.theta_max_error(theta_max, ref.theta_max),
+            "impact_times": metrics.impact_time_error(impact_times, ref.impact_times, ref.problem.t_end),
+            "overturn_agrees": metrics.overturn_agreement(overturn_mode, ref.overturn_mode)}
+
+
+def build_reference(problem: Problem, independent_check: bool = True) -> ReferenceSolution:
+    """Make the reference solution of ``problem`` and estimate its error (module docstring).
+
+    Args:
+        problem: the problem.
+        independent_check: also run scipy DOP853 at rtol 1e-13 (the slow part; needed for the bound
+            of ``converged`` references).
+    """
+    import time
+    t0 = time.perf_counter()
+    if problem.closed_form:
+        r = simulate(problem.system, problem.motion, model="linear-exact", structure=problem.structure,
+                     t_end=problem.t_end, theta0=problem.theta0)
+        ref = ReferenceSolution(problem, "closed-form",
+                                "closed-form solution of the linearized equations (SPEC §3.8): explicit formulas "
+                                "between events, events as bracketed roots to round-off",
+                                "linear-exact", REFERENCE_RTOL, REFERENCE_ATOL, float(r.theta_max),
+                                r.impact_times, r.overturn_mode, int(r.impacts))
+        ours = simulate(problem.system, problem.motion, model="linear", structure=problem.structure,
+                        rtol=REFERENCE_RTOL, atol=REFERENCE_ATOL, t_end=problem.t_end, theta0=problem.theta0)
+        ref.checks["rockdesign rtol=1e-13"] = _compare(ref, ours.t, ours.theta, ours.impact_times, ours.theta_max,
+                                                      ours.overturn_mode)
+        if independent_check:
+            s = simulate_scipy(problem.system, problem.motion, method="DOP853", rtol=REFERENCE_RTOL,
+                               atol=REFERENCE_ATOL, linear=True, linear_beta="exact", t_end=problem.t_end,
+                               theta0=problem.theta0, record_every_step=True)
+            ref.checks["scipy DOP853 rtol=1e-13"] = _compare(ref, s.t, s.theta, _impacts(s), s.theta_max,
+                                                            s.overturn_mode)
+        ref.error_bound = {"theta": 1e-15, "theta_max": 1e-15, "impact_times": 1e-15,
+                           "note": "round-off of the closed form; the checks show other solvers converging to it"}
+    else:
+        model = "linear" if problem.equations == "linear" else "exact"
+        r = simulate(problem.system, problem.motion, model=model, structure=problem.structure, rtol=REFERENCE_RTOL,
+                     atol=REFERENCE_ATOL, t_end=problem.t_end, theta0=problem.theta0)
+        ref = ReferenceSolution(problem, "converged",
+                                "rockdesign engine at rtol = 1e-13, atol = 1e-15; error bounded by its distance "
+                                "to itself at rtol = 1e-12 and to scipy DOP853 at rtol = 1e-13 (independent code)",
+                                model, REFERENCE_RTOL, REFERENCE_ATOL, float(r.theta_max), r.impact_times,
+                                r.overturn_mode, int(r.impacts))
+        coarse = simulate(problem.system, problem.motion, model=model, structure=problem.structure,
+                          rtol=SELF_CHECK_RTOL, atol=SELF_CHECK_RTOL * 1e-2, t_end=problem.t_end,
+                          theta0=problem.theta0)
+        ref.checks["rockdesign rtol=1e-12"] = _compare(ref, coarse.t, coarse.theta, coarse.impact_times,
+                                                      coarse.theta_max, coarse.overturn_mode)
+        if independent_check:
+            s = simulate_scipy(problem.system, problem.motion, method="DOP853", rtol=REFERENCE_RTOL,
+                               atol=REFERENCE_ATOL, linear=problem.equations == "linear", linear_beta="exact",
+                               t_end=problem.t_end, theta0=problem.theta0, record_every_step=True)
+            ref.checks["scipy DOP853 rtol=1e-13"] = _compare(ref, s.t, s.theta, _impacts(s), s.theta_max,
+                                                            s.overturn_mode)
+        ref.error_bound = {key: max(c[key] for c in ref.checks.values())
+                           for key in ("theta", "theta_max", "impact_times")}
+    ref.seconds = time.perf_counter() - t0
+    return ref
+
+
+def _impacts(result) -> np.ndarray:
+    return np.array([e.t for e in result.events if e.kind == "impact"])

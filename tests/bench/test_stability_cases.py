@@ -1,0 +1,49 @@
+"""Each stability case finishes and returns a diagnosed result for our engine (engine-only runs)."""
+from __future__ import annotations
+
+import pytest
+
+from rockdesign.bench.stability import VERDICTS, StabilityCase, case_functions, stability_markdown
+
+ENGINE_ONLY = ("rockdesign",)
+
+
+@pytest.fixture(scope="module")
+def cases():
+    return {key: fn(quick=True, methods=ENGINE_ONLY) for key, fn in case_functions().items()}
+
+
+def test_all_seven_conditions_are_covered(cases):
+    assert set(cases) == {"missed-events", "zeno", "stiff-superstructure", "overturning-threshold",
+                          "long-record-drift", "coarse-sampling", "event-location-crash"}
+
+
+@pytest.mark.parametrize("key", ["missed-events", "zeno", "stiff-superstructure", "overturning-threshold",
+                                 "long-record-drift", "coarse-sampling", "event-location-crash"])
+def test_case_returns_a_diagnosed_engine_result(cases, key):
+    case = cases[key]
+    assert isinstance(case, StabilityCase)
+    assert case.diagnosed
+    assert case.engine["status"] in ("completed", "overturned (|θ| = π/2)", "event limit reached")
+    assert isinstance(case.engine["steps"], int) and case.engine["function_evaluations"] > 0
+    ours = case.outcome("rockdesign")
+    assert ours is not None and ours.verdict in VERDICTS and ours.detail
+    assert case.engine_behaviour and case.setup
+
+
+def test_engine_keeps_every_impact_and_ends_zeno(cases):
+    assert cases["missed-events"].outcome("rockdesign").verdict == "ok"
+    zeno = cases["zeno"]
+    assert zeno.outcome("rockdesign").verdict == "ok"
+    # without a rest threshold the event bound stops the run: diagnosed, not hung
+    assert zeno.engine["status"] == "event limit reached" and zeno.engine["events"] == 100_000
+
+
+def test_markdown_table_and_a_figure(cases, tmp_path):
+    from rockdesign.bench.stability import write_stability_figures
+    picked = [cases["missed-events"], cases["zeno"]]
+    figs = write_stability_figures(picked, tmp_path)
+    assert all(p.stat().st_size > 1000 for paths in figs.values() for p in paths)
+    md = stability_markdown(list(cases.values()), figs)
+    assert md.count("\n| ") >= 8          # header + one row per condition
+    assert "Zeno" in md and "stability_zeno.png" in md
