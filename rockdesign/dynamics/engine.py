@@ -123,6 +123,18 @@ def _top_displacement(abs_theta, sp):
 
 
 @njit(cache=True)
+def _energy_bound(y, rocking, side, phase, theta_max, sp):
+    """True when the mechanical energy can no longer lift |θ| to θ_max (docs/early_termination.md).
+
+    Valid once the ground is at rest: E never increases, and the potential is increasing in |θ| on
+    [0, θc], so E < V(θ_max) < V(θc) means neither θ_max nor θc (nor overturning) can be reached.
+    """
+    if theta_max >= sp[P_THETA_C]:
+        return False
+    return total_energy(y, rocking, side, phase, sp) < potential_energy(theta_max, 1.0, _phase_of(theta_max, sp), sp)
+
+
+@njit(cache=True)
 def top_displacements(theta, sp):
     """Column-top displacement u_B(θ) [m] for an array of tilts (sign of θ = side), model kinematics."""
     out = np.empty(theta.shape[0])
@@ -417,11 +429,9 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
                                        phase, sp)
                 diag[D_NFEV] += 1
             h = h_next
-            if energy_stop and t >= t_exc and summary[S_THETA_MAX] < theta_c:
-                e = total_energy(y, False, side, phase, sp)
-                if e < potential_energy(summary[S_THETA_MAX], 1.0, _phase_of(summary[S_THETA_MAX], sp), sp):
-                    status = ST_ENERGY_BOUND
-                    break
+            if energy_stop and t >= t_exc and _energy_bound(y, False, side, phase, summary[S_THETA_MAX], sp):
+                status = ST_ENERGY_BOUND
+                break
             continue
 
         # ------------------------------------------------------------ rocking: scan for events
@@ -520,12 +530,10 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
                                        phase, sp)
                 diag[D_NFEV] += 1
             h = h_next
-            if energy_stop and t >= t_exc and summary[S_THETA_MAX] < theta_c:
-                e = total_energy(y, True, side, phase, sp)
-                if e < potential_energy(summary[S_THETA_MAX], 1.0, _phase_of(summary[S_THETA_MAX], sp), sp):
-                    status = ST_ENERGY_BOUND
-                    summary[S_UPLIFT_TIME] += t - t_rock_start
-                    break
+            if energy_stop and t >= t_exc and _energy_bound(y, True, side, phase, summary[S_THETA_MAX], sp):
+                status = ST_ENERGY_BOUND
+                summary[S_UPLIFT_TIME] += t - t_rock_start
+                break
             continue
 
         # a terminal event inside the step -----------------------------------------------
@@ -583,6 +591,12 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
             side = -side
             phase = 1
         need_start = True
+        if energy_stop and t >= t_exc and _energy_bound(y, rocking, side, phase, summary[S_THETA_MAX], sp):
+            status = ST_ENERGY_BOUND
+            if rocking:
+                summary[S_UPLIFT_TIME] += t - t_rock_start
+                rocking = False   # accounted for
+            break
 
     if rocking and status == ST_OK:
         summary[S_UPLIFT_TIME] += t - t_rock_start

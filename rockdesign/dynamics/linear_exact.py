@@ -25,7 +25,7 @@ from .engine import (D_EVENTS, D_REST, D_STATUS, D_STEPS, EV_EXCEEDED, EV_IMPACT
                      S_EXCEEDED, S_IMPACTS, S_IMPACTS_BEFORE_EXCEEDED, S_IMPACTS_BEFORE_OVERTURN, S_T_END,
                      S_T_EXCEEDED, S_T_OVERTURN, S_T_THETA_MAX, S_T_UPLIFT, S_THETA_MAX, S_UB_MAX,
                      S_UPLIFT_TIME, S_UPLIFTS, ST_ENERGY_BOUND, ST_OK, ST_OVERTURNED, ST_STOPPED_EXCEEDED,
-                     ST_TOO_MANY_EVENTS, _store_event, _top_displacement)
+                     ST_TOO_MANY_EVENTS, _energy_bound, _store_event, _top_displacement)
 from .eom import (P_ALPHA, P_BETA, P_CR, P_G, P_GAMMA, P_HYST, P_LAM, P_OVERTURN, P_R, P_RADIUS, P_REST_V,
                   P_THETA_C, P_TWO_DOF, P_TWO_RHO, potential_energy, total_energy, uplift_condition)
 from .events import next_threshold_crossing
@@ -407,6 +407,12 @@ def integrate_linear_exact(sp, kind, xp, samples, y_init, side_init, t0, t_end, 
         else:
             side = -side
             phase = 1
+            if energy_stop and t >= t_exc:
+                ystate[0] = th
+                ystate[1] = v
+                if _energy_bound(ystate, True, side, phase, summary[S_THETA_MAX], sp):
+                    status = ST_ENERGY_BOUND
+                    break
     if rocking:
         summary[S_UPLIFT_TIME] += t - t_rock
     while i_out < n_out and t_out[i_out] <= t + 1e-12:
