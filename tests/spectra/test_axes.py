@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from conftest import reference_podium, table34_column
+from support import reference_podium, table34_column
 from rockdesign.errors import RockdesignError
 from rockdesign.spectra.axes import (Axis, parse_axis, pulse_amplitudes, pulse_periods, spectrum_scales,
                                      x_from_periods)

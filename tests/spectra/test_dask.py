@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from conftest import reference_podium, table34_column
+from support import reference_podium, table34_column
 from rockdesign.spectra import (ChunkStore, DaskExecutor, SpectrumRequest, compute_spectrum, make_executor,
                                 parse_axis)
 from rockdesign.spectra.kernel import warm_up

@@ -15,7 +15,7 @@ import zlib
 import numpy as np
 import pytest
 
-from conftest import reference_podium, table34_column
+from support import reference_podium, table34_column
 from rockdesign.dynamics.batch import batch_options, run_batch
 from rockdesign.dynamics.engine import (D_STATUS, D_STEPS, N_OPTIONS, O_ATOL, O_H_MAX, O_MAX_EVENTS, O_MAX_STEPS,
                                         O_RTOL, O_SCAN, O_T_END, S_DYNAMIC, S_EXCEEDED, S_IMPACTS_BEFORE_EXCEEDED,

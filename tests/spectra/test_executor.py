@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from conftest import table34_column
+from support import table34_column
 from rockdesign.spectra import (ChunkStore, LocalExecutor, SpectrumRequest, compute_spectrum, fingerprint,
                                 parse_axis, run_chunks)
 from rockdesign.spectra import spectrum as spectrum_module

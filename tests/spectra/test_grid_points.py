@@ -13,7 +13,7 @@ import math
 import numpy as np
 import pytest
 
-from conftest import block_from_p, reference_podium, table34_column
+from support import block_from_p, reference_podium, table34_column
 from rockdesign.dynamics.simulate import simulate
 from rockdesign.motions.motion import pulse_motion
 from rockdesign.spectra import SpectrumRequest, compute_spectrum, parse_axis

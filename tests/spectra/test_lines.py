@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from conftest import table34_column
+from support import table34_column
 from rockdesign.motions.motion import pulse_motion
 from rockdesign.motions.spectra import sd_max
 from rockdesign.spectra import SpectrumRequest, compute_spectrum, parse_axis

@@ -15,7 +15,7 @@ import math
 import numpy as np
 import pytest
 
-from conftest import block_from_p
+from support import block_from_p
 from rockdesign.spectra import Axis, SpectrumRequest, compute_spectrum, parse_axis
 
 ALPHA = 0.25
