@@ -71,6 +71,17 @@ def run_batch(sp: np.ndarray, motions, scales, t_ends, opts: np.ndarray, y0s=Non
         (summaries n × N_SUMMARY, diagnostics n × N_DIAG) in the order of the jobs.
     """
     n = len(motions)
+    kinds, xps, samples, offsets, lengths = pack_motions(motions, scales)
+    y0 = np.zeros((n, 4)) if y0s is None else np.ascontiguousarray(y0s, dtype=np.float64)
+    return _run_batch(sp, kinds, xps, samples, offsets, lengths, np.asarray(t_ends, dtype=np.float64), opts, y0)
+
+
+def pack_motions(motions, scales) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """(kinds, xps, samples, offsets, lengths) of jobs ``motions[i]`` scaled by ``scales[i]``.
+
+    Records shared by several jobs (the same ``GroundMotion`` object) store their samples once.
+    """
+    n = len(motions)
     kinds = np.array([m.kind for m in motions], dtype=np.int64)
     width = max([m.params.size for m in motions] + [1])
     xps = np.zeros((n, width))
@@ -88,7 +99,5 @@ def run_batch(sp: np.ndarray, motions, scales, t_ends, opts: np.ndarray, y0s=Non
             chunks.append(m.samples)
             offset += m.samples.size
         offsets[j], lengths[j] = unique[key]
-    samples = np.concatenate(chunks) if chunks else np.zeros(0)
-    y0 = np.zeros((n, 4)) if y0s is None else np.ascontiguousarray(y0s, dtype=np.float64)
-    return _run_batch(sp, kinds, xps, np.ascontiguousarray(samples, dtype=np.float64), offsets, lengths,
-                      np.asarray(t_ends, dtype=np.float64), opts, y0)
+    samples = np.ascontiguousarray(np.concatenate(chunks) if chunks else np.zeros(0), dtype=np.float64)
+    return kinds, xps, samples, offsets, lengths

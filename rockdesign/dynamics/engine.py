@@ -167,6 +167,21 @@ def _fill_outputs(t_out, out_y, i_out, t_hi, t0, y, Q, h, y_end, use_dense, rest
 
 
 @njit(cache=True)
+def _advance(t_out, out_y, i_out, t, t_new, tb, y, y_new, Q, h, K, f0, rocking, side, phase, kind, xp, samples, sp,
+             diag):
+    """Accept a step: write outputs up to t_new, move the state, keep the FSAL derivative — or, on a kink
+    or jump of ü_g (a breakpoint), restart from its right limit.  Returns the next output index."""
+    i_out = _fill_outputs(t_out, out_y, i_out, t_new, t, y, Q, h, y_new, True, False)
+    for i in range(4):
+        y[i] = y_new[i]
+        f0[i] = K[6, i]
+    if t_new == tb:
+        rhs_given_acceleration(ground_acceleration_right(t_new, kind, xp, samples), y, f0, rocking, side, phase, sp)
+        diag[D_NFEV] += 1
+    return i_out
+
+
+@njit(cache=True)
 def _refine_event(t, y, f0, x_e, h, level, sgn, K, y_e, ytmp, side, phase, kind, xp, samples, sp, n, diag):
     """Re-step from t to the event and Newton-correct so that sgn·θ − level = 0 to round-off.
 
@@ -418,16 +433,9 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
                 need_start = True
                 fresh_start = True
                 continue
-            i_out = _fill_outputs(t_out, out_y, i_out, t_new, t, y, Q, h, y_new, True, False)
+            i_out = _advance(t_out, out_y, i_out, t, t_new, tb, y, y_new, Q, h, K, f0, rocking, side, phase,
+                             kind, xp, samples, sp, diag)
             t = t_new
-            for i in range(4):
-                y[i] = y_new[i]
-                f0[i] = K[6, i]
-            if t == tb:
-                # on a kink or jump of ü_g: the next step starts from the right limit
-                rhs_given_acceleration(ground_acceleration_right(t, kind, xp, samples), y, f0, rocking, side,
-                                       phase, sp)
-                diag[D_NFEV] += 1
             h = h_next
             if energy_stop and t >= t_exc and _energy_bound(y, False, side, phase, summary[S_THETA_MAX], sp):
                 status = ST_ENERGY_BOUND
@@ -519,16 +527,9 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
             va = vb
 
         if ev_type == 0:
-            i_out = _fill_outputs(t_out, out_y, i_out, t_new, t, y, Q, h, y_new, True, False)
+            i_out = _advance(t_out, out_y, i_out, t, t_new, tb, y, y_new, Q, h, K, f0, rocking, side, phase,
+                             kind, xp, samples, sp, diag)
             t = t_new
-            for i in range(4):
-                y[i] = y_new[i]
-                f0[i] = K[6, i]
-            if t == tb:
-                # on a kink or jump of ü_g: the next step starts from the right limit
-                rhs_given_acceleration(ground_acceleration_right(t, kind, xp, samples), y, f0, rocking, side,
-                                       phase, sp)
-                diag[D_NFEV] += 1
             h = h_next
             if energy_stop and t >= t_exc and _energy_bound(y, True, side, phase, summary[S_THETA_MAX], sp):
                 status = ST_ENERGY_BOUND

@@ -10,8 +10,7 @@ from ..errors import ModelError
 from ..motions.motion import GroundMotion, no_motion
 from ..systems import RockingSystem
 from .engine import (D_EVENTS, D_EVENTS_STORED, D_NFEV, D_REFINE, D_REJECTED, D_REST, D_STATUS, D_STEPS,
-                     EVENT_NAMES, N_OPTIONS, O_ATOL, O_ENERGY_STOP, O_H_MAX, O_MAX_EVENTS, O_MAX_STEPS,
-                     O_RTOL, O_SCAN, O_STOP_EXCEEDED, O_T_END, S_DRIFT_MAX, S_DYNAMIC, S_EXCEEDED,
+                     EVENT_NAMES, O_T_END, S_DRIFT_MAX, S_DYNAMIC, S_EXCEEDED,
                      S_IMPACTS, S_IMPACTS_BEFORE_EXCEEDED, S_IMPACTS_BEFORE_OVERTURN, S_T_END,
                      S_T_THETA_MAX, S_T_UPLIFT, S_THETA_MAX, S_UB_MAX, S_UPLIFT_TIME, STATUS_NAMES,
                      integrate)
@@ -86,16 +85,10 @@ def simulate(system: RockingSystem, motion: GroundMotion | None = None, *, model
                                                           side0, 0.0, t_end, t_out, out_y, ev_t, ev_kind, ev_y,
                                                           max_events, stop_at_capacity, energy_stop)
     else:
-        opts = np.zeros(N_OPTIONS)
+        from .batch import batch_options
+        opts = batch_options(rtol, atol, energy_stop=energy_stop, stop_at_capacity=stop_at_capacity,
+                             max_steps=max_steps, max_events=max_events, scan_points=scan_points)
         opts[O_T_END] = t_end
-        opts[O_RTOL] = rtol
-        opts[O_ATOL] = atol
-        opts[O_H_MAX] = math.inf
-        opts[O_MAX_STEPS] = max_steps
-        opts[O_ENERGY_STOP] = 1.0 if energy_stop else 0.0
-        opts[O_STOP_EXCEEDED] = 1.0 if stop_at_capacity else 0.0
-        opts[O_SCAN] = scan_points
-        opts[O_MAX_EVENTS] = max_events
         out_y = np.zeros((t_out.size, 4))
         ev_t, ev_kind, ev_y = _event_buffers(event_capacity)
         summary, diag, n_written = integrate(sp, motion.kind, motion.params, motion.samples, y0, side0, 0.0,

@@ -12,7 +12,7 @@ from typing import Callable, Sequence
 
 import numpy as np
 
-from ..dynamics.batch import _run_batch
+from ..dynamics.batch import pack_motions, _run_batch
 from .executor import ChunkStore, LocalExecutor, fingerprint, run_chunks
 
 
@@ -23,33 +23,6 @@ def motion_rows(sp: np.ndarray, samples: np.ndarray, opts: np.ndarray, kinds: np
     "diagnostics": n × N_DIAG}."""
     s, d = _run_batch(sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s)
     return {"summaries": s, "diagnostics": d}
-
-
-def pack_motions(motions, scales) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """(kinds, xps, samples, offsets, lengths) of jobs ``motions[i]`` scaled by ``scales[i]``.
-
-    Records shared by several jobs (the same ``GroundMotion`` object) store their samples once.
-    """
-    n = len(motions)
-    kinds = np.array([m.kind for m in motions], dtype=np.int64)
-    width = max([m.params.size for m in motions] + [1])
-    xps = np.zeros((n, width))
-    unique: dict[int, tuple[int, int]] = {}
-    chunks = []
-    offset = 0
-    offsets = np.zeros(n, dtype=np.int64)
-    lengths = np.zeros(n, dtype=np.int64)
-    for j, (m, f) in enumerate(zip(motions, scales)):
-        xps[j, :m.params.size] = m.params
-        xps[j, 0] *= f
-        key = id(m.samples)
-        if key not in unique:
-            unique[key] = (offset, m.samples.size)
-            chunks.append(m.samples)
-            offset += m.samples.size
-        offsets[j], lengths[j] = unique[key]
-    samples = np.ascontiguousarray(np.concatenate(chunks) if chunks else np.zeros(0), dtype=np.float64)
-    return kinds, xps, samples, offsets, lengths
 
 
 def run_motions(sp: np.ndarray, motions: Sequence, scales, t_ends, opts: np.ndarray, *, y0s=None, executor=None,
