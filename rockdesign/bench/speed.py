@@ -57,16 +57,15 @@ def summarise_file(path: Path) -> dict:
     picked = {}
     summary = data.get("summary") if isinstance(data, dict) else None
     if isinstance(summary, dict):
-        # a file with a summary: its scalars are the headline (goals as booleans included)
+        # a file with a summary: its scalars come first (goals as booleans included)
         for k, v in summary.items():
             if isinstance(v, bool) or (isinstance(v, (int, float)) and math.isfinite(float(v))):
                 picked[f"summary.{k}"] = v
-    else:
-        for p, v in _leaves(data):
-            if _headline(p) and isinstance(v, (int, float)) and math.isfinite(float(v)):
-                picked[p] = v
-            if len(picked) >= MAX_ITEMS:
-                break
+    for p, v in _leaves(data):
+        if len(picked) >= MAX_ITEMS:
+            break
+        if not p.startswith("summary.") and _headline(p) and isinstance(v, (int, float)) and math.isfinite(float(v)):
+            picked[p] = v
     out["headline"] = dict(list(picked.items())[:MAX_ITEMS])
     return out
 
