@@ -41,7 +41,9 @@ def register(app: typer.Typer, handle_errors) -> None:
               no_pdf: bool = typer.Option(False, "--no-pdf", help="Skip the PDF (results.json/csv and HTML only)."),
               html: bool = typer.Option(False, "--html", help="Write report.html even with --no-pdf."),
               no_margins: bool = typer.Option(False, "--no-margins", help="Skip the incremental margin analysis."),
-              records_dir: Optional[Path] = typer.Option(None, "--records-dir", help="Folder of PEER AT2 files.")):
+              records_dir: Optional[Path] = typer.Option(None, "--records-dir", help="Folder of PEER AT2 files."),
+              dask: Optional[str] = typer.Option(None, "--dask", help="Run the analyses on dask.distributed: "
+                                                 "'local:N' (a local cluster of N workers) or a scheduler address.")):
         """Polyakov design check over record suites, with a PDF calculation report (exit 1 = FAIL)."""
         from .checks.check import run_check
         from .project import load_project
@@ -56,8 +58,17 @@ def register(app: typer.Typer, handle_errors) -> None:
                     tasks[stage] = bar.add_task(stage, total=total)
                 bar.update(tasks[stage], completed=min(done, total), total=total)
 
-            result = run_check(proj, records_dir=str(records_dir) if records_dir else None,
-                               margins=not no_margins, progress=progress)
+            executor = None
+            if dask:
+                from .spectra.executor import make_executor
+                executor = make_executor(dask)
+                executor.start()
+            try:
+                result = run_check(proj, records_dir=str(records_dir) if records_dir else None,
+                                   margins=not no_margins, progress=progress, executor=executor)
+            finally:
+                if executor is not None:
+                    executor.close()
             for t in tasks.values():
                 bar.update(t, completed=bar.tasks[t].total)
         out_dir = out if out is not None else Path(f"{Path(project).stem}_check")

@@ -149,10 +149,13 @@ def _excitation(project: Project):
     return spec
 
 
-def run_check(project: Project, *, records_dir: str | None = None, margins: bool = True, progress=None) -> CheckResult:
+def run_check(project: Project, *, records_dir: str | None = None, margins: bool = True, progress=None,
+              executor=None) -> CheckResult:
     """Run the design check of a project (see module docstring).
 
     ``progress(stage, done, total)`` is called as work proceeds (the CLI draws rich progress bars).
+    ``executor``: run the analyses on the chunked executor of :mod:`rockdesign.spectra.executor`
+    (e.g. a dask.distributed cluster); default in-process on all cores.  Results are identical.
     """
     system = project.system
     a = project.analysis
@@ -182,7 +185,7 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
         if tick:
             tick(k + 1)
     run_kw = dict(rtol=a.rtol, atol=a.atol, free_vibration=a.free_vibration, criterion=a.overturn,
-                  rest_velocity=a.rest_velocity)
+                  rest_velocity=a.rest_velocity, executor=executor)
     selection, runs = select_model(system, a, motions, run_kw, progress=stage("suite analysis (RHA)", n))
     chosen = selection.chosen
 

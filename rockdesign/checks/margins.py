@@ -40,7 +40,7 @@ def _scan_grid(start: float, stop: float, ratio: float) -> list[float]:
 
 def overturning_margins(system, choice: ModelChoice, motions, *, uplift_factors, max_scale: float, precision: float,
                         rtol: float, atol: float, free_vibration: float, criterion: str, rest_velocity: float,
-                        progress=None) -> list[Margin]:
+                        progress=None, executor=None) -> list[Margin]:
     """Scan, bracket and bisect the overturning factor of every motion (see module docstring).
 
     Args:
@@ -50,7 +50,7 @@ def overturning_margins(system, choice: ModelChoice, motions, *, uplift_factors,
         precision: relative width to which band edges are bisected (e.g. 0.01).
     """
     kw = dict(rtol=rtol, atol=atol, free_vibration=free_vibration, criterion=criterion, rest_velocity=rest_velocity,
-              energy_stop=True, stop_at_capacity=(criterion == "static"))
+              energy_stop=True, stop_at_capacity=(criterion == "static"), executor=executor)
     grids = [_scan_grid(min(max(0.5 * f_up, 1e-3), max_scale / 4), max_scale, SCAN_RATIO) for f_up in uplift_factors]
     # scan in rounds of a few factors per record; a record stops scanning a few points after its first
     # overturning factor (enough to see a safe-again band right above it) or at the largest factor

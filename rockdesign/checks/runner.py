@@ -62,11 +62,13 @@ def worker_count() -> int:
 def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rtol: float, atol: float,
              free_vibration: float, criterion: str, rest_velocity: float = 5e-4, energy_stop: bool = False,
              stop_at_capacity: bool = False, restitution_factor: float = 1.0, progress=None,
-             chunk: int | None = None) -> list[RunSummary]:
+             chunk: int | None = None, executor=None) -> list[RunSummary]:
     """Analyse ``motions[i]`` × ``scales[i]`` for one system and model, in parallel, in job order.
 
     ``restitution_factor`` multiplies the coefficient of restitution (capped at 1) for sensitivity
-    studies.  ``progress(n_done)`` is called after each chunk.
+    studies.  ``progress(n_done)`` is called after each chunk.  With an ``executor`` (the chunked
+    executor of :mod:`rockdesign.spectra.executor`, e.g. a dask.distributed cluster) the jobs run
+    there in chunks; the results are identical to the in-process run.
     """
     sp = system_parameters(system, choice, rest_velocity=rest_velocity)
     if restitution_factor != 1.0:
@@ -80,6 +82,18 @@ def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rto
     t_ends = [m.duration + free_vibration for m in motions]
     out: list[RunSummary] = []
     step = chunk or max(4 * worker_count(), 8)
+    if executor is not None:
+        from ..spectra.batches import run_motions
+        done = [0]
+
+        def on_chunk(k):
+            done[0] += k
+            if progress is not None:
+                progress(done[0])
+
+        summaries, diags = run_motions(sp, list(motions), list(scales), t_ends, opts, executor=executor,
+                                       chunk_jobs=step, progress=on_chunk)
+        return [interpret(summaries[j], diags[j, D_STATUS], theta_c, alpha, capacity, criterion) for j in range(n)]
     for start in range(0, n, step):
         sl = slice(start, min(n, start + step))
         summaries, diags = run_batch(sp, motions[sl], scales[sl], t_ends[sl], opts)

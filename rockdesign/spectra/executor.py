@@ -255,7 +255,9 @@ class DaskExecutor:
         from distributed import as_completed
         self.start()
         client = self.client
-        shared = tuple(client.scatter(c, broadcast=True) if isinstance(c, np.ndarray) and c.nbytes > 100_000
+        # hash=False: a fresh key per call (with content hashing, a second map over the same arrays gets the
+        # key the first call is releasing, and its tasks fail with "lost dependencies")
+        shared = tuple(client.scatter(c, broadcast=True, hash=False) if isinstance(c, np.ndarray) and c.nbytes > 100_000
                        else c for c in common)
         futures = {}
         for i, args in tasks.items():

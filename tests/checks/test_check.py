@@ -148,3 +148,12 @@ def test_check_without_excitation_needs_design_pga(tmp_path):
     result = runner.invoke(app, ["check", str(_write(tmp_path, text)), "--no-pdf"])
     assert result.exit_code == 2
     assert "design_pga" in result.output
+
+
+def test_check_on_dask_equals_local(tmp_path):
+    # the same executor as rocking spectra (dask.distributed LocalCluster): identical results.json
+    path = _write(tmp_path, PROJECT.format(pga="0.35 g"))
+    local = runner.invoke(app, ["check", str(path), "-o", str(tmp_path / "a"), "--no-pdf", "--json"])
+    dask = runner.invoke(app, ["check", str(path), "-o", str(tmp_path / "b"), "--no-pdf", "--json", "--dask", "local:2"])
+    assert local.exit_code in (0, 1) and dask.exit_code == local.exit_code, dask.output
+    assert json.loads(dask.stdout) == json.loads(local.stdout)
