@@ -18,6 +18,33 @@ def quantities_json(project: Project) -> dict:
     return {"quantities": {name: x.as_json() for name, x in q.items()}, "warnings": list(project.warnings)}
 
 
+def write_pushover(system, path) -> None:
+    """The pushover curve F_R/(m_C g) against θ through both phases (Fig 3.15, Eqs 3.18/3.48), from θ = 0
+    to θc: a CSV table (``theta_rad, F_R_over_mg, phase``) or, for .png/.svg/.pdf, the report's plot."""
+    from pathlib import Path
+
+    import numpy as np
+
+    from .design.geometry import rocking_geometry
+    from .design.pushover import pushover_curve
+    from .errors import RockdesignError
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix == ".csv":
+        geo = rocking_geometry(system.column)
+        theta, force = pushover_curve(geo)
+        phase = np.where((geo.radius > 0) & (theta <= geo.beta), 1, 2)
+        np.savetxt(path, np.column_stack([theta, force, phase]), delimiter=",", fmt=["%.10g", "%.10g", "%d"],
+                   header="theta_rad,F_R_over_mg,phase", comments="")
+    elif suffix in (".png", ".svg", ".pdf"):
+        from .report.figures import pushover_figure
+        from .report.plots import save
+        save(pushover_figure(system), path)
+    else:
+        raise RockdesignError("unknown pushover file type", key="--pushover", expected=".csv, .png, .svg or .pdf",
+                              found=f"'{path.name}'")
+
+
 def quantities_table(project: Project, console, units: str | None = None) -> None:
     """Print the design quantities of a project as a table."""
     from .display import quantities_table as _table

@@ -66,11 +66,15 @@ def init(kind: str = typer.Argument(..., help="podium | column"),
 def quantities(project: Path = typer.Argument(..., help="Project file (TOML)"),
                as_json: bool = typer.Option(False, "--json", help="Print CONTRACT §3 JSON (SI units)."),
                units: Optional[str] = typer.Option(None, "--units",
-                                                   help="Display units, comma separated, e.g. 'mm,deg,kN,g'.")):
+                                                   help="Display units, comma separated, e.g. 'mm,deg,kN,g'."),
+               pushover: Optional[Path] = typer.Option(None, "--pushover", help="Write the pushover curve "
+                                                       "F_R/(m g) vs θ: .csv for the numbers, .png/.svg/.pdf for a plot.")):
     """Closed-form design quantities (SPEC §2)."""
-    from .api import quantities_json, quantities_table
+    from .api import quantities_json, quantities_table, write_pushover
     from .project import load_project
     proj = load_project(project)
+    if pushover is not None:
+        write_pushover(proj.system, pushover)
     if as_json:
         sys.stdout.write(json.dumps(quantities_json(proj), indent=2) + "\n")
         return

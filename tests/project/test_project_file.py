@@ -211,3 +211,17 @@ def test_init_writes_loadable_templates(tmp_path):
         assert proj.system.kind == kind
         again = runner.invoke(app, ["init", kind, str(out)])
         assert again.exit_code == 2 and "exists" in again.output
+
+
+def test_quantities_pushover_curve_file(tmp_path):
+    # Fig 3.15 through both phases: F_R/(m g) = tan α at uplift, 0 at θc; β is a grid point
+    import numpy as np
+    out = tmp_path / "pushover.csv"
+    result = runner.invoke(app, ["quantities", "examples/bridge_pier.toml", "--pushover", str(out)])
+    assert result.exit_code == 0, result.output
+    data = np.loadtxt(out, delimiter=",", skiprows=1)
+    q = json.loads(runner.invoke(app, ["quantities", "examples/bridge_pier.toml", "--json"]).output)["quantities"]
+    assert data[0, 1] == pytest.approx(0.16, rel=1e-12)
+    assert data[-1, 0] == pytest.approx(q["theta_c"]["value"], rel=1e-12) and abs(data[-1, 1]) < 1e-12
+    assert np.any(np.isclose(data[:, 0], q["beta"]["value"], rtol=1e-12))
+    assert set(np.unique(data[:, 2])) == {1.0, 2.0}
