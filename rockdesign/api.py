@@ -34,7 +34,7 @@ def write_pushover(system, path) -> None:
         geo = rocking_geometry(system.column)
         theta, force = pushover_curve(geo)
         phase = np.where((geo.radius > 0) & (theta <= geo.beta), 1, 2)
-        np.savetxt(path, np.column_stack([theta, force, phase]), delimiter=",", fmt=["%.10g", "%.10g", "%d"],
+        np.savetxt(path, np.column_stack([theta, force, phase]), delimiter=",", fmt=["%.15g", "%.15g", "%d"],
                    header="theta_rad,F_R_over_mg,phase", comments="")
     elif suffix in (".png", ".svg", ".pdf"):
         from .report.figures import pushover_figure
