@@ -57,7 +57,7 @@ class AnalysisSettings:
     margin_max_scale: float = 8.0
     free_vibration: float = 10.0
     rigid_superstructure_ratio: float = 10.0
-    scan_rtol: float = 1e-7
+    scan_rtol: float = 1e-6
     overturn_probability_limit: float = 0.10
 
 
@@ -397,7 +397,7 @@ def _parse_analysis(data: dict, file: str) -> AnalysisSettings:
         margin_max_scale=t.number("margin_max_scale", default=8.0, low=1.0, high=1000.0),
         free_vibration=t.quantity("free_vibration", "time", default=10.0, positive=False),
         rigid_superstructure_ratio=t.number("rigid_superstructure_ratio", default=10.0, low=0.0),
-        scan_rtol=t.number("scan_rtol", default=1e-7, low=0.0, high=1e-3),
+        scan_rtol=t.number("scan_rtol", default=1e-6, low=0.0, high=1e-3),
         overturn_probability_limit=t.quantity("overturn_probability_limit", "dimensionless", default=0.10)
         if isinstance(t.data.get("overturn_probability_limit"), str)
         else t.number("overturn_probability_limit", default=0.10, low=0.0, high=1.0),
