@@ -113,27 +113,18 @@ def simulate(project: Path = typer.Argument(..., help="Project file (TOML)"),
     response_table(result, console)
 
 
-def _mount_optional_apps():
-    """Mount the command groups that live in their own modules (records, spectrum, bench)."""
-    import importlib
-    try:
-        from .cli_records import app as records_app
-        for command in records_app.registered_commands:
-            command.callback = handle_errors(command.callback)
-        app.add_typer(records_app, name="records", help="Ground-motion tools: list, show, spectrum, synth.")
-    except ImportError:
-        pass
-    for name in ("cli_check", "cli_spectrum", "cli_bench"):
-        try:
-            module = importlib.import_module(f".{name}", __package__)
-        except ImportError as exc:
-            if exc.name and exc.name.endswith(name):
-                continue
-            raise
+def _mount_command_modules():
+    """Mount the commands that live in their own modules (records, check, spectrum, bench)."""
+    from . import cli_bench, cli_check, cli_spectrum
+    from .cli_records import app as records_app
+    for command in records_app.registered_commands:
+        command.callback = handle_errors(command.callback)
+    app.add_typer(records_app, name="records", help="Ground-motion tools: list, show, spectrum, synth.")
+    for module in (cli_check, cli_spectrum, cli_bench):
         module.register(app, handle_errors)
 
 
-_mount_optional_apps()
+_mount_command_modules()
 
 
 def main():  # console-script entry point

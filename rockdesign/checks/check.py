@@ -252,12 +252,10 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
             f"ρ = ρc: to linear order and up to the first impact the columns respond like flat-based blocks of "
             f"size R̂ = {q['R_hat'].value:.4g} m ({q['R_hat'].equation}); not used as a substitute model because "
             "impacts differ (c_r) — the curved column itself is analysed (SPEC §6)")
-    try:   # the engine's error against a closed form at the tolerance used (report appendix)
-        from ..bench.accuracy import engine_accuracy
-        acc = engine_accuracy(a.rtol, a.atol)
-        settings["engine_accuracy"] = {k: v for k, v in acc.items() if k != "seconds"}
-    except ImportError:  # pragma: no cover - the bench package is part of rockdesign
-        pass
+    # the engine's error against a closed form at the tolerance used (report appendix)
+    from ..bench.accuracy import engine_accuracy
+    acc = engine_accuracy(a.rtol, a.atol)
+    settings["engine_accuracy"] = {k: v for k, v in acc.items() if k != "seconds"}
     return CheckResult(project, q, rule, selection, outcomes, resolved.missing, resolved.scale_description,
                        resolved.default_used or spec.default_used, resolved.suites, stats, checks, verdict, histories,
                        sensitivity, settings)
