@@ -21,6 +21,7 @@ import numpy as np
 from numba import njit
 
 from ..motions.excitation import ground_acceleration
+from .kinematics import unit_centre_kinematics
 
 # Layout of the system parameter array ``sp`` (float64) --------------------------------------
 P_R = 0            # R used by the EOM [m] (R' for flat extensions)
@@ -67,42 +68,10 @@ def normalised_kinematics(theta, side, phase, sp):
             w1 = side * alpha - theta
             w0 = side * alpha * theta - 0.5 * theta * theta
         return theta, 1.0, 0.0, w0, w1, 0.0
-    # centre_kinematics (Eqs 3.1–3.2, 3.46–3.47, 3.51–3.52) divided by R, with sin(sα − θ) etc.
-    # expanded on precomputed sin α, cos α, sin β, cos β: two trigonometric calls per evaluation
-    st = math.sin(theta)
-    ct = math.cos(theta)
-    sa = side * sp[P_SIN_ALPHA]
-    ca = sp[P_COS_ALPHA]
-    s_at = sa * ct - ca * st
-    c_at = ca * ct + sa * st
-    u = sa - s_at
-    u1 = c_at
-    u2 = s_at
-    w = c_at
-    w1 = s_at
-    w2 = -c_at
-    r = sp[P_RADIUS]
-    if r != 0.0:
-        rr = r / R
-        if phase == 1:
-            u += rr * (theta - st)
-            u1 += rr * (1.0 - ct)
-            u2 += rr * st
-            w += rr * (1.0 - ct)
-            w1 += rr * st
-            w2 += rr * ct
-        else:
-            sb = side * sp[P_SIN_BETA]
-            cb = sp[P_COS_BETA]
-            s_bt = sb * ct - cb * st
-            c_bt = cb * ct + sb * st
-            u += rr * (side * sp[P_BETA] - s_bt - st)
-            u1 += rr * (c_bt - ct)
-            u2 += rr * (s_bt + st)
-            w += rr * (c_bt - ct)
-            w1 += rr * (s_bt + st)
-            w2 += rr * (ct - c_bt)
-    return u, u1, u2, w, w1, w2
+    # centre_kinematics divided by R, on precomputed sin α, cos α, sin β, cos β (two trig calls)
+    return unit_centre_kinematics(theta, side, phase, sp[P_RADIUS] / R, sp[P_BETA], sp[P_SIN_ALPHA],
+                                  sp[P_COS_ALPHA], sp[P_SIN_BETA], sp[P_COS_BETA])
+
 
 
 @njit(cache=True, inline="always")

@@ -25,35 +25,48 @@ def centre_kinematics(theta, side, phase, R, alpha, r, beta):
         R: half-diagonal √(B²+H²) [m]; alpha: atan(B/H) [rad]; r: extension radius [m];
         beta: wedge angle β [rad] (Eq 3.44).
     """
-    sa = side * alpha
-    s_at = math.sin(sa - theta)
-    c_at = math.cos(sa - theta)
+    u, u1, u2, w, w1, w2 = unit_centre_kinematics(theta, side, phase, r / R, beta, math.sin(alpha), math.cos(alpha),
+                                                  math.sin(beta), math.cos(beta))
+    return R * u, R * u1, R * u2, R * w, R * w1, R * w2
+
+
+@njit(cache=True, inline="always")
+def unit_centre_kinematics(theta, side, phase, r_over_R, beta, sin_a, cos_a, sin_b, cos_b):
+    """(u_C, u_C', u_C'', w_C, w_C', w_C'')/R for a column of unit size R = 1 and radius r/R.
+
+    Eqs 3.1–3.2 (block), 3.46–3.47 (phase I), 3.51–3.52 (phase II), with sin(sα − θ), cos(sα − θ),
+    sin(sβ − θ), cos(sβ − θ) expanded on the given sin α, cos α, sin β, cos β: two trigonometric calls.
+    """
     st = math.sin(theta)
     ct = math.cos(theta)
-    u = R * (math.sin(sa) - s_at)
-    u1 = R * c_at
-    u2 = R * s_at
-    w = R * c_at
-    w1 = R * s_at
-    w2 = -R * c_at
-    if r != 0.0:
+    sa = side * sin_a
+    s_at = sa * ct - cos_a * st
+    c_at = cos_a * ct + sa * st
+    u = sa - s_at
+    u1 = c_at
+    u2 = s_at
+    w = c_at
+    w1 = s_at
+    w2 = -c_at
+    if r_over_R != 0.0:
+        rr = r_over_R
         if phase == 1:
-            u += r * (theta - st)
-            u1 += r * (1.0 - ct)
-            u2 += r * st
-            w += r * (1.0 - ct)
-            w1 += r * st
-            w2 += r * ct
+            u += rr * (theta - st)
+            u1 += rr * (1.0 - ct)
+            u2 += rr * st
+            w += rr * (1.0 - ct)
+            w1 += rr * st
+            w2 += rr * ct
         else:
-            sb = side * beta
-            s_bt = math.sin(sb - theta)
-            c_bt = math.cos(sb - theta)
-            u += r * (sb - s_bt - st)
-            u1 += r * (c_bt - ct)
-            u2 += r * (s_bt + st)
-            w += r * (c_bt - ct)
-            w1 += r * (s_bt + st)
-            w2 += r * (ct - c_bt)
+            sb = side * sin_b
+            s_bt = sb * ct - cos_b * st
+            c_bt = cos_b * ct + sb * st
+            u += rr * (side * beta - s_bt - st)
+            u1 += rr * (c_bt - ct)
+            u2 += rr * (s_bt + st)
+            w += rr * (c_bt - ct)
+            w1 += rr * (s_bt + st)
+            w2 += rr * (ct - c_bt)
     return u, u1, u2, w, w1, w2
 
 
