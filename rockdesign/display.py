@@ -106,18 +106,37 @@ def response_table(result, console: Console) -> None:
 
 
 def check_summary(data: dict, out_dir, console: Console) -> None:
-    """Print the verdict, the checks and where the report went."""
+    """Print the checks, what the run found (failed analyses, missing records), the verdict and its
+    reason, and where the report went."""
     s = data["summary"]
     table = Table(title=f"{data['project']['name']} — design check", title_justify="left")
     for col in ("check", "utilisation", "result"):
         table.add_column(col, justify="right" if col == "utilisation" else "left")
     for c in data["checks"]:
-        res = ("PASS" if c["passed"] else "FAIL") + ("" if c["governs_verdict"] else " (info)")
-        table.add_row(escape(c["name"]), f"{c['utilisation']:.3f}", res)
+        res = ("PASS" if c["passed"] else "FAIL") + {"governs": "", "robustness": " (robustness)"}.get(
+            c.get("role", "governs" if c["governs_verdict"] else ""), " (info)")
+        table.add_row(escape(c["name"]), format_value(c["utilisation"]), res)
     console.print(table)
-    console.print(f"model: {escape(data['model']['chosen'])} — records: {s['n_records']}, overturned: "
-                  f"{s['n_overturned']} ({s['overturn_criterion']} criterion), false negatives (class b): "
-                  f"{s['n_false_negative']}, P(overturn) = {s['p_overturn']:.3f} "
-                  f"[{s['p_overturn_ci90'][0]:.3f}, {s['p_overturn_ci90'][1]:.3f}] (90 %)", highlight=False)
-    colour = "green" if data["verdict"] == "PASS" else "red"
-    console.print(f"verdict: [bold {colour}]{data['verdict']}[/]   output: {escape(str(out_dir))}", highlight=False)
+    exc = data["excitation"]
+    for m in exc.get("missing", []):
+        console.print(f"[yellow]warning:[/] record {escape(m['id'])} not analysed: {escape(str(m['reason']))}",
+                      highlight=False)
+    for f in data.get("failed_records", []):
+        console.print(f"[bold red]analysis failed:[/] {escape(f['id'])} — {escape(f['status'])} (not counted as "
+                      "safe)", highlight=False)
+    if s["n_records"]:
+        ci = s["p_overturn_ci90"]
+        prob = f"P(overturn) = {s['p_overturn']:.3f}, 90 % interval [{ci[0]:.3f}, {ci[1]:.3f}]"
+    else:
+        prob = "P(overturn) not estimated"
+    console.print(f"model: {escape(data['model']['chosen'])} — records analysed: {s['n_records']}"
+                  + (f" (+{s.get('n_failed')} failed)" if s.get("n_failed") else "")
+                  + (f", missing: {len(exc.get('missing', []))}" if exc.get("missing") else "")
+                  + f", overturned: {s['n_overturned']} ({s['overturn_criterion']} criterion), false negatives "
+                  f"(class b): {s['n_false_negative']}, {prob}", highlight=False)
+    if exc.get("intensity_analysed"):
+        console.print(f"intensity analysed: {escape(exc['intensity_analysed'])}", highlight=False)
+    colour = "green" if data["verdict"] == "PASS" and data.get("verdict_robust", True) else (
+        "yellow" if data["verdict"] == "PASS" else "red")
+    console.print(f"verdict: [bold {colour}]{escape(data.get('verdict_reason') or data['verdict'])}[/]", highlight=False)
+    console.print(f"output: {escape(str(out_dir))}", highlight=False)

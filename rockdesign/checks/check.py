@@ -3,7 +3,12 @@
 project → design quantities → records (suites, scaling) → model selection → suite RHA →
 Polyakov's rule and Fig 4.9 classes → overturning margins → statistics and c_r sensitivity →
 checks and verdict.  :func:`run_check` returns a :class:`CheckResult`; its :meth:`~CheckResult.as_json`
-is ``results.json`` (CONTRACT §3, SI units).
+is ``results.json`` (SI units; keys documented in docs/model.md, "Verdict").
+
+The verdict comes from the criteria classes of :mod:`rockdesign.checks.criteria` (one class per
+criterion, one :func:`~rockdesign.checks.criteria.decide`).  Analyses that fail (engine status other
+than completed / overturned / energy stop) are listed, excluded from the statistics and make the
+verdict FAIL — never counted as safe.
 """
 from __future__ import annotations
 
@@ -19,6 +24,7 @@ from ..errors import ProjectError
 from ..motions.config import default_excitation, parse_excitation, resolve_motions
 from ..motions.spectra import sd_max
 from ..project import Project
+from .criteria import CheckContext, analysis_failed, decide, evaluate_criteria, minimum_records
 from .margins import SCAN_AFTER_FIRST, SCAN_RATIO, Margin, overturning_margins
 from .polyakov import CLASS_MEANING, CLASSES, PolyakovRule, classify
 from .runner import RunSummary, run_jobs
@@ -79,6 +85,7 @@ class RecordOutcome:
             "polyakov_scale": self.polyakov_scale,
             "verdict_flips_with_restitution": self.sensitivity_flip,
             "status": r.status,
+            "analysis_failed": analysis_failed(r.status),
         }
 
 
@@ -101,6 +108,14 @@ class CheckResult:
     histories: dict = field(default_factory=dict)
     sensitivity: dict = field(default_factory=dict)
     settings: dict = field(default_factory=dict)
+    verdict_reason: str = ""
+    verdict_robust: bool = True
+    intensity: dict = field(default_factory=dict)
+
+    @property
+    def failed_records(self) -> list[RecordOutcome]:
+        """Records whose analysis failed (listed loudly; never counted as safe)."""
+        return [o for o in self.records if analysis_failed(o.run.status)]
 
     def as_json(self) -> dict:
         p = self.project
@@ -122,12 +137,16 @@ class CheckResult:
             "excitation": {"suites": self.suites, "scaling": self.scale_description,
                            "default_used": self.default_excitation_used,
                            "missing": [{"id": i, "reason": r, "suite": su} for i, r, su in self.missing],
+                           **self.intensity,
                            "sd_max_damping": self.rule.damping, "sd_max_band": list(self.rule.band),
                            "capacity": self.rule.capacity},
             "records": [r.as_json() for r in self.records],
             "summary": self.statistics,
             "sensitivity": self.sensitivity,
             "verdict": self.verdict,
+            "verdict_reason": self.verdict_reason,
+            "verdict_robust": self.verdict_robust,
+            "failed_records": [{"id": o.id, "status": o.run.status} for o in self.failed_records],
             "checks": self.checks,
             "settings": self.settings,
         }
@@ -212,12 +231,14 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
         res = run_jobs(system, chosen, motions, [1.0] * n, restitution_factor=factor, energy_stop=True,
                        progress=(lambda d, j=j: tick(j * n + d)) if tick else None, **run_kw)
         # (same tolerance as the nominal suite run: a verdict flip must come from c_r, not from rtol)
-        changed = [i for i in range(n) if res[i].overturned != runs[i].overturned]
+        ok = [i for i in range(n) if not analysis_failed(res[i].status) and not analysis_failed(runs[i].status)]
+        changed = [i for i in ok if res[i].overturned != runs[i].overturned]
         for i in changed:
             flips[i] = True
         sens[f"{factor:.4g}"] = {"restitution_factor": factor, "verdict_changes": len(changed),
                                  "records": [resolved.records[i].id for i in changed],
-                                 "n_overturned": sum(r.overturned for r in res)}
+                                 "n_overturned": sum(res[i].overturned for i in ok), "n_records": len(ok),
+                                 "failed": [resolved.records[i].id for i in range(n) if analysis_failed(res[i].status)]}
     sensitivity = {"variation": a.restitution_variation, "runs": sens,
                    "verdict_flips": sum(flips), "note": "c_r ≤ 1 (capped)"}
 
@@ -228,11 +249,18 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
                                       ratio, rule.predicted_scale(sd), run,
                                       classify(ratio, run.u_B_max_over_capacity, run.overturned), margin_list[i],
                                       flips[i]))
-    stats = _statistics(outcomes, a, margins)
-    checks, verdict = _checks(outcomes, q, a, stats, sensitivity)
+    valid = [o for o in outcomes if not analysis_failed(o.run.status)]
+    stats = _statistics(valid, a, margins)
+    stats["n_failed"] = n - len(valid)
+    stats["min_records_for_bound"] = minimum_records(a.overturn_probability_limit)
+    items, skipped = evaluate_criteria(CheckContext(outcomes, a, q, sensitivity, margins))
+    decision = decide(items, skipped)
+    checks = [i.as_json() for i in items]
+    checks.sort(key=lambda c: (not c["governs_verdict"], -c["utilisation"]))
+    verdict = decision.verdict
     histories = {}
     from ..dynamics.simulate import simulate
-    governing = sorted(outcomes, key=lambda o: -min(o.run.theta_max_over_theta_c, 2.0))[:GOVERNING_HISTORIES]
+    governing = sorted(valid, key=lambda o: -min(o.run.theta_max_over_theta_c, 2.0))[:GOVERNING_HISTORIES]
     for o in governing:
         histories[o.id] = simulate(system, o.motion, model=chosen.equations, structure=chosen.structure, rtol=a.rtol,
                                    atol=a.atol, t_end=o.motion.duration + a.free_vibration, overturn=a.overturn,
@@ -256,9 +284,10 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     from ..bench.accuracy import engine_accuracy
     acc = engine_accuracy(a.rtol, a.atol)
     settings["engine_accuracy"] = {k: v for k, v in acc.items() if k != "seconds"}
+    intensity = {"design_pga": spec.design_pga, "intensity_analysed": resolved.scale_description}
     return CheckResult(project, q, rule, selection, outcomes, resolved.missing, resolved.scale_description,
                        resolved.default_used or spec.default_used, resolved.suites, stats, checks, verdict, histories,
-                       sensitivity, settings)
+                       sensitivity, settings, decision.reason, decision.robust, intensity)
 
 
 def _statistics(outcomes: list[RecordOutcome], a, with_margins: bool) -> dict:
@@ -281,10 +310,10 @@ def _statistics(outcomes: list[RecordOutcome], a, with_margins: bool) -> dict:
         "p_overturn_ci90": [lo, hi],
         "theta_max_over_alpha_ecdf": {"x": [float(v) for v in x], "F": [float(v) for v in f]},
         "median_theta_max_over_alpha": float(np.median(x)) if n else None,
-        "max_polyakov_ratio": max(o.polyakov_ratio for o in outcomes),
-        "max_theta_max_over_theta_c": max(o.run.theta_max_over_theta_c for o in outcomes),
+        "max_polyakov_ratio": max((o.polyakov_ratio for o in outcomes), default=None),
+        "max_theta_max_over_theta_c": max((o.run.theta_max_over_theta_c for o in outcomes), default=None),
     }
-    if with_margins:
+    if with_margins and outcomes:
         vals = [o.margin.overturn_scale if o.margin.overturn_scale is not None else math.inf for o in outcomes]
         finite = [v for v in vals if math.isfinite(v)]
         censored = len(vals) - len(finite)
@@ -296,7 +325,7 @@ def _statistics(outcomes: list[RecordOutcome], a, with_margins: bool) -> dict:
             "n_margin_above_scan": censored,
             "n_margin_below_design": sum(1 for v in finite if v < 1.0),
             "margin_scan_max": a.margin_max_scale,
-            "median_polyakov_scale": pystats.median(o.polyakov_scale for o in outcomes),
+            "median_polyakov_scale": pystats.median([o.polyakov_scale for o in outcomes]),
             "n_polyakov_unconservative_margin": sum(
                 1 for o in outcomes if o.margin.overturn_scale is not None and o.margin.overturn_scale < o.polyakov_scale),
             "n_nonmonotonic": sum(1 for o in outcomes if len(o.margin.intervals) > 1 or (
@@ -305,61 +334,3 @@ def _statistics(outcomes: list[RecordOutcome], a, with_margins: bool) -> dict:
     else:
         out["median_margin"] = None
     return out
-
-
-def _checks(outcomes: list[RecordOutcome], q: dict, a, stats: dict, sensitivity: dict) -> tuple[list[dict], str]:
-    """The checks, sorted by utilisation (governing first), and the verdict.
-
-    The verdict is statistical (thesis Ch. 6–7: single histories are not predictable): the one-sided
-    95 % upper bound of P(overturn) over the suite (the upper end of the 90 % interval) must not exceed
-    the limit (default 10 %; with 44 records this admits no overturning record).  Polyakov's rules are
-    evaluated and compared but do not decide — the RHA does.
-    """
-    crit = a.overturn
-    n = len(outcomes)
-    n_ot = stats["n_overturned"]
-    upper = stats["p_overturn_ci90"][1]
-    limit = a.overturn_probability_limit
-    sds = sorted(o.polyakov_ratio for o in outcomes)
-    median_sd = float(np.median(sds))
-    checks = [
-        {"name": f"RHA: P(overturn) ≤ {100 * limit:g} % at 95 % confidence ({crit} criterion: "
-                 + ("θ_max ≥ θc" if crit == "static" else "|θ| = π/2") + " counts as overturning)",
-         "utilisation": upper / limit if limit > 0 else math.inf,
-         "passed": upper <= limit, "governs_verdict": True,
-         "detail": f"{n_ot} of {n} records overturn; P = {stats['p_overturn']:.3g}, 90 % interval "
-                   f"[{stats['p_overturn_ci90'][0]:.3g}, {upper:.3g}]"},
-        {"name": "RHA: largest θ_max/θc of the suite",
-         "utilisation": max(o.run.theta_max_over_theta_c for o in outcomes),
-         "passed": n_ot == 0, "governs_verdict": False,
-         "detail": "informative: every record below capacity" if n_ot == 0 else
-                   f"informative: {n_ot} record(s) reach the capacity θc"},
-        {"name": "Polyakov rule 2: median SD_max < u_B(θc)",
-         "utilisation": median_sd, "passed": median_sd < 1.0, "governs_verdict": False,
-         "detail": f"informative: {sum(x >= 1 for x in sds)} of {n} records with SD_max ≥ capacity; "
-                   f"{stats['n_false_negative']} false negative(s) (class b)"},
-        {"name": f"Robustness: verdicts unchanged for c_r ± {100 * a.restitution_variation:g} %",
-         "utilisation": sensitivity["verdict_flips"] / n, "passed": sensitivity["verdict_flips"] == 0,
-         "governs_verdict": False,
-         "detail": f"informative: {sensitivity['verdict_flips']} record verdict(s) flip"},
-    ]
-    margins = [(o.id, o.margin.overturn_scale) for o in outcomes if o.margin is not None and
-               o.margin.overturn_scale is not None]
-    if any(o.margin is not None for o in outcomes):
-        below = sorted((m, i) for i, m in margins if m < 1.0)
-        checks.append({
-            "name": "RHA incremental: no overturning at any amplitude up to the design level",
-            "utilisation": (1.0 / min(m for _, m in margins)) if margins else 0.0,
-            "passed": not below, "governs_verdict": False,
-            "detail": ("informative: every record's smallest overturning factor is above 1" if not below else
-                       "informative: overturning below the design level (responses are not monotonic in "
-                       "amplitude): " + ", ".join(f"{i} at {m:.3g}" for m, i in below))})
-    if "omega_s_over_p" in q:
-        ratio = q["omega_s_over_p"].value
-        checks.append({"name": f"Polyakov rule 1: rigid superstructure (ω_s/p ≥ {a.rigid_superstructure_ratio:g})",
-                       "utilisation": a.rigid_superstructure_ratio / ratio,
-                       "passed": ratio >= a.rigid_superstructure_ratio, "governs_verdict": False,
-                       "detail": "informative: the flexible superstructure is analysed (2DOF) when this fails"})
-    checks.sort(key=lambda c: (not c["governs_verdict"], -c["utilisation"]))
-    verdict = "PASS" if all(c["passed"] for c in checks if c["governs_verdict"]) else "FAIL"
-    return checks, verdict

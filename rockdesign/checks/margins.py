@@ -11,6 +11,7 @@ import math
 from dataclasses import dataclass, field
 
 from ..dynamics.model import ModelChoice
+from .criteria import analysis_failed
 from .runner import run_jobs
 
 SCAN_RATIO = 1.2
@@ -31,6 +32,7 @@ class Margin:
     # the first lower edge is bisected to the precision; the other edges are known to the scan ratio
     scanned_up_to: float = 0.0
     runs: int = 0
+    failed_scales: list[float] = field(default_factory=list)  # factors whose analysis failed (not counted safe)
 
 
 def _scan_grid(start: float, stop: float, ratio: float) -> list[float]:
@@ -55,6 +57,7 @@ def overturning_margins(system, choice: ModelChoice, motions, *, uplift_factors,
     # scan in rounds of a few factors per record; a record stops scanning a few points after its first
     # overturning factor (enough to see a safe-again band right above it) or at the largest factor
     flags_of = [[] for _ in grids]
+    failed_of = [[] for _ in grids]
     active = list(range(len(grids)))
     done = [0]
     while active:
@@ -70,8 +73,10 @@ def overturning_margins(system, choice: ModelChoice, motions, *, uplift_factors,
                 progress(done[0])
 
         results = run_jobs(system, choice, [motions[i] for i, _ in jobs], [f for _, f in jobs], progress=tick, **kw)
-        for (i, _), r in zip(jobs, results):
+        for (i, f), r in zip(jobs, results):
             flags_of[i].append(r.overturned)
+            if analysis_failed(r.status):
+                failed_of[i].append(f)
         still = []
         for i in active:
             flags = flags_of[i]
@@ -84,7 +89,7 @@ def overturning_margins(system, choice: ModelChoice, motions, *, uplift_factors,
     for i, grid in enumerate(grids):
         flags = flags_of[i]
         grid = grid[:len(flags)]
-        m = Margin(None, [], grid[-1], len(grid))
+        m = Margin(None, [], grid[-1], len(grid), failed_of[i])
         for k in range(len(grid)):
             if flags[k] and (k == 0 or not flags[k - 1]):
                 edges.append([i, grid[k - 1] if k else 0.0, grid[k], "rise", len(m.intervals)])
@@ -107,6 +112,8 @@ def overturning_margins(system, choice: ModelChoice, motions, *, uplift_factors,
         res = run_jobs(system, choice, [motions[e[0]] for e in active], mids, **kw)
         for e, mid, r in zip(active, mids, res):
             margins[e[0]].runs += 1
+            if analysis_failed(r.status):
+                margins[e[0]].failed_scales.append(mid)
             ot_side = r.overturned
             # "rise": lower is safe, upper overturns; "fall": lower overturns, upper is safe
             if (e[3] == "rise") == ot_side:
