@@ -66,12 +66,20 @@ class SimulationResult:
     project: Project
     motion_text: str
     response: Response
+    motion_parameters: dict | None = None     # resolved pulse parameters (SI): a_p [m/s²], T_p [s], t_m/t_0 [s]
+    motion_warnings: tuple[str, ...] = ()
+
+    @property
+    def warnings(self) -> list[str]:
+        return list(self.project.warnings) + list(self.motion_warnings)
 
     def as_json(self) -> dict:
         out = self.response.as_json()
         out["motion"] = self.motion_text
+        if self.motion_parameters:
+            out["motion_parameters"] = dict(self.motion_parameters)
         out["project"] = self.project.name
-        out["warnings"] = list(self.project.warnings)
+        out["warnings"] = self.warnings
         return out
 
 
@@ -102,7 +110,11 @@ def simulate_project(project: Project, motion: str, *, model: str = "auto", t_en
                         t_end=t_end if t_end is not None else spec.motion.duration + a.free_vibration,
                         theta0=spec.theta0, thetadot0=spec.thetadot0, overturn=a.overturn,
                         rest_velocity=a.rest_velocity, rigid_ratio=a.rigid_superstructure_ratio)
-    return SimulationResult(project, motion, response)
+    from .motions.measures import plausibility_warnings
+    m = spec.motion
+    params = ({k: float(m.meta[k]) for k in ("a_p", "T_p", "t_m", "t_0") if k in m.meta}
+              if not m.is_record and "a_p" in m.meta else None)
+    return SimulationResult(project, motion, response, params, tuple(plausibility_warnings(m, system.g)))
 
 
 def write_history_csv(response: Response, path) -> None:

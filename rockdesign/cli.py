@@ -21,11 +21,34 @@ from .errors import RockdesignError
 app = typer.Typer(add_completion=False, no_args_is_help=True,
                   help="Design checks for rocking columns, rocking frames and rocking podium buildings.")
 err_console = Console(stderr=True)
+FLAG = " "
+"""metavar of on/off options (typer would print "<bool>" after them in --help)."""
 console = Console()
 
 
+INTERRUPTED = 130
+"""Exit code after Ctrl-C (128 + SIGINT), as shells report it."""
+
+
+def interrupted(exc: BaseException) -> bool:
+    """True for Ctrl-C, also when numba re-raises it from a parallel kernel as ``SystemError:
+    CPUDispatcher(...) returned a result with an exception set`` (the KeyboardInterrupt is its context)."""
+    seen = set()
+    while exc is not None and id(exc) not in seen:
+        if isinstance(exc, KeyboardInterrupt):
+            return True
+        seen.add(id(exc))
+        exc = exc.__cause__ or exc.__context__
+    return False
+
+
+def _interrupt_exit():
+    err_console.print("interrupted (Ctrl-C): nothing more was written", highlight=False)
+    raise typer.Exit(INTERRUPTED)
+
+
 def handle_errors(func):
-    """Convert user-input errors to a clean message and exit code 2."""
+    """Convert user-input errors to a clean message and exit code 2; Ctrl-C to one line and exit 130."""
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
@@ -34,6 +57,10 @@ def handle_errors(func):
         except RockdesignError as exc:
             err_console.print(f"[bold red]error:[/] {escape(str(exc))}", highlight=False, markup=True, soft_wrap=True)
             raise typer.Exit(2) from None
+        except (KeyboardInterrupt, SystemError) as exc:
+            if not interrupted(exc):
+                raise
+            _interrupt_exit()
 
     return wrapper
 
@@ -45,7 +72,7 @@ def _version_callback(value: bool):
 
 
 @app.callback()
-def _root(version: bool = typer.Option(False, "--version", callback=_version_callback, is_eager=True,
+def _root(version: bool = typer.Option(False, "--version", callback=_version_callback, is_eager=True, metavar=FLAG,
                                        help="Print the version and exit.")):
     """rockdesign: uplift thresholds, capacities, time-history analysis and Polyakov checks."""
 
@@ -54,7 +81,7 @@ def _root(version: bool = typer.Option(False, "--version", callback=_version_cal
 @handle_errors
 def init(kind: str = typer.Argument(..., help="podium | column"),
          path: Optional[Path] = typer.Argument(None, help="Where to write (default: KIND.toml)"),
-         force: bool = typer.Option(False, "--force", help="Overwrite an existing file.")):
+         force: bool = typer.Option(False, "--force", metavar=FLAG, help="Overwrite an existing file.")):
     """Write a commented template project file."""
     from .templates import write_template
     out = write_template(kind, path, force=force)
@@ -64,14 +91,16 @@ def init(kind: str = typer.Argument(..., help="podium | column"),
 @app.command()
 @handle_errors
 def quantities(project: Path = typer.Argument(..., help="Project file (TOML)"),
-               as_json: bool = typer.Option(False, "--json", help="Print CONTRACT §3 JSON (SI units)."),
+               as_json: bool = typer.Option(False, "--json", metavar=FLAG, help="Print CONTRACT §3 JSON (SI units)."),
                units: Optional[str] = typer.Option(None, "--units",
                                                    help="Display units, comma separated, e.g. 'mm,deg,kN,g'."),
                pushover: Optional[Path] = typer.Option(None, "--pushover", help="Write the pushover curve "
                                                        "F_R/(m g) vs θ: .csv for the numbers, .png/.svg/.pdf for a plot.")):
     """Closed-form design quantities (SPEC §2)."""
+    from . import cli_inputs
     from .api import quantities_json, quantities_table, write_pushover
     from .project import load_project
+    cli_inputs.output_file(pushover, "--pushover", (".csv",) + cli_inputs.FIGURE_SUFFIXES)
     proj = load_project(project)
     if pushover is not None:
         write_pushover(proj.system, pushover)
@@ -87,7 +116,7 @@ def simulate(project: Path = typer.Argument(..., help="Project file (TOML)"),
              motion: str = typer.Option(..., "--motion", "-m", help="e.g. 'ricker-anti:ap=0.38g,Tp=0.95s', "
                                         "'free:theta0=0.8alpha', 'record:p695-ff/11a,scale=1.5', 'file:X.AT2'"),
              model: str = typer.Option("auto", "--model", help="exact | linear | linear-exact | auto"),
-             as_json: bool = typer.Option(False, "--json", help="Print CONTRACT §3 JSON (SI units)."),
+             as_json: bool = typer.Option(False, "--json", metavar=FLAG, help="Print CONTRACT §3 JSON (SI units)."),
              plot: Optional[Path] = typer.Option(None, "--plot", help="Write a time-history figure (png/svg/pdf)."),
              csv: Optional[Path] = typer.Option(None, "--csv", help="Write the time history as CSV."),
              t_end: Optional[float] = typer.Option(None, "--t-end", help="End time [s] (default: motion + "
@@ -95,8 +124,13 @@ def simulate(project: Path = typer.Argument(..., help="Project file (TOML)"),
              rtol: Optional[float] = typer.Option(None, "--rtol", help="Relative tolerance (default: project)."),
              records_dir: Optional[Path] = typer.Option(None, "--records-dir", help="Folder of PEER AT2 files.")):
     """One nonlinear time-history analysis (SPEC §3)."""
+    from . import cli_inputs
     from .api import simulate_project
     from .project import load_project
+    cli_inputs.positive_time(t_end, "--t-end")
+    cli_inputs.rtol(rtol)
+    cli_inputs.output_file(plot, "--plot", cli_inputs.FIGURE_SUFFIXES)
+    cli_inputs.output_file(csv, "--csv")
     proj = load_project(project)
     result = simulate_project(proj, motion, model=model, t_end=t_end, rtol=rtol,
                               records_dir=str(records_dir) if records_dir else None)
@@ -108,9 +142,15 @@ def simulate(project: Path = typer.Argument(..., help="Project file (TOML)"),
         save(time_history_figure(result.response, proj.system.g, f"{proj.name} — {motion}"), plot)
     if as_json:
         sys.stdout.write(json.dumps(result.as_json(), indent=2) + "\n")
-        return
-    from .display import response_table
-    response_table(result, console)
+    else:
+        from .display import response_table
+        response_table(result, console)
+    from .checks.criteria import analysis_failed
+    if analysis_failed(result.response.status):
+        err_console.print(f"[bold red]error:[/] the analysis failed: {escape(result.response.status)} — its "
+                          "θ_max and verdict are not results (check the model and the motion)", highlight=False,
+                          soft_wrap=True)
+        raise typer.Exit(2)
 
 
 def _mount_command_modules():
@@ -127,8 +167,26 @@ def _mount_command_modules():
 _mount_command_modules()
 
 
+_SIGINT_SEEN = [False]
+
+
+def _on_sigint(signum, frame):
+    _SIGINT_SEEN[0] = True
+    raise KeyboardInterrupt
+
+
 def main():  # console-script entry point
-    app()
+    """Run the CLI.  Ctrl-C inside a command (also in a numba kernel) ends with one line and exit 130
+    (:func:`handle_errors`); outside one (while parsing options) typer aborts, and the exit code is
+    still 130."""
+    import signal
+    signal.signal(signal.SIGINT, _on_sigint)
+    try:
+        app()
+    except SystemExit as exc:
+        if _SIGINT_SEEN[0] and exc.code not in (0, INTERRUPTED):
+            sys.exit(INTERRUPTED)
+        raise
 
 
 if __name__ == "__main__":

@@ -44,7 +44,8 @@ def register(app: typer.Typer, handle_errors) -> None:
               records_dir: Optional[Path] = typer.Option(None, "--records-dir", help="Folder of PEER AT2 files."),
               dask: Optional[str] = typer.Option(None, "--dask", help="Run the analyses on dask.distributed: "
                                                  "'local:N' (a local cluster of N workers) or a scheduler address.")):
-        """Polyakov design check over record suites, with a PDF calculation report (exit 1 = FAIL)."""
+        """Polyakov design check over record suites, with a PDF calculation report (exit 0 = PASS,
+        1 = FAIL, 2 = input error or failed analyses, 130 = interrupted)."""
         from .checks.check import run_check
         from .project import load_project
         err = Console(stderr=True)
@@ -78,4 +79,5 @@ def register(app: typer.Typer, handle_errors) -> None:
         else:
             from .display import check_summary
             check_summary(data, out_dir, Console())
-        raise typer.Exit(0 if data["verdict"] == "PASS" else 1)
+        # failed analyses: the check is incomplete (exit 2), whatever the other records say
+        raise typer.Exit(2 if data.get("failed_records") else 0 if data["verdict"] == "PASS" else 1)

@@ -25,6 +25,7 @@ from .units import QuantityParseError, parse_quantity
 app = typer.Typer(help="Ground-motion records: list, show, spectra, synthetic ensembles.", no_args_is_help=True)
 
 RECORDS_DIR_HELP = "Folder of your PEER *.AT2 files (for rsn:<RSN>:<component> ids)."
+FLAG = " "  # metavar of on/off options (typer prints "<bool>" otherwise)
 GRAVITY_HELP = "Gravitational acceleration g [m/s²] for records in g."
 
 
@@ -41,7 +42,13 @@ def _record_id(text: str) -> str:
 
 
 def _load(record_id: str, gravity: float, records_dir: Optional[Path]):
-    return load_record(_record_id(record_id), gravity=gravity, records_dir=records_dir)
+    from .cli_inputs import gravity as check_gravity
+    from .motions.measures import plausibility_warnings
+    check_gravity(gravity)
+    motion = load_record(_record_id(record_id), gravity=gravity, records_dir=records_dir)
+    for text in plausibility_warnings(motion, gravity):
+        Console(stderr=True, highlight=False, markup=False).print(f"warning: {text}")
+    return motion
 
 
 def _parse_band(text: str) -> tuple[float, float]:
@@ -88,11 +95,13 @@ def _fmt(value, digits: int = 4) -> str:
 def list_command(
     suite: Optional[str] = typer.Option(None, "--suite",
                                         help="Suite name or manifest path (default: all built-in records)."),
-    as_json: bool = typer.Option(False, "--json", help="JSON on stdout (CONTRACT §3)."),
+    as_json: bool = typer.Option(False, "--json", metavar=FLAG, help="JSON on stdout (CONTRACT §3)."),
     records_dir: Optional[Path] = typer.Option(None, "--records-dir", help=RECORDS_DIR_HELP),
     gravity: float = typer.Option(9.81, "--gravity", help=GRAVITY_HELP),
 ) -> None:
-    """List built-in records, or the records of a suite (PGA in m/s²)."""
+    """List built-in records, or the records of a suite (table: dt in s, PGA in g; --json: SI, PGA in m/s²)."""
+    from .cli_inputs import gravity as check_gravity
+    check_gravity(gravity)
     rows = list_records(suite, gravity=gravity, records_dir=records_dir)
     if as_json:
         typer.echo(json.dumps(rows))
@@ -123,6 +132,8 @@ def show_command(
     gravity: float = typer.Option(9.81, "--gravity", help=GRAVITY_HELP),
 ) -> None:
     """Metadata and intensity measures of one record."""
+    from .cli_inputs import FIGURE_SUFFIXES, output_file
+    output_file(plot, "--plot", FIGURE_SUFFIXES)
     motion = _load(record_id, gravity, records_dir)
     measures = motion_measures(motion, gravity)
     sd, period = sd_max(motion, DEFAULT_DAMPING, DEFAULT_BAND)
@@ -144,7 +155,8 @@ def show_command(
     table.add_row("bracketed duration (0.05 g)", f"{measures['bracketed_duration']:.3f} s")
     table.add_row("significant duration D5–95", f"{measures['significant_duration']:.3f} s")
     table.add_row("a_rms over T_d (Eq 5.45)", f"{measures['a_rms']:.4g} m/s²")
-    table.add_row("predominant frequency (Konno–Ohmachi b=40)", f"{measures['predominant_frequency']:.3f} Hz")
+    f_p = measures["predominant_frequency"]
+    table.add_row("predominant frequency (Konno–Ohmachi b=40)", "n/a (no motion)" if f_p is None else f"{f_p:.3f} Hz")
     table.add_row("SD_max (2 % damping, 0.05–10 s)", f"{sd:.4g} m at T = {period:.3f} s")
     _console().print(table)
     if plot is not None:
@@ -180,13 +192,15 @@ def spectrum_command(
     damping: str = typer.Option(str(DEFAULT_DAMPING), "--damping", help="Damping ratio (0.02 or '2 %')."),
     band: str = typer.Option(f"{DEFAULT_BAND[0]:g}:{DEFAULT_BAND[1]:g}", "--band", help="Period band Tmin:Tmax [s]."),
     n_periods: int = typer.Option(DEFAULT_N_PERIODS, "--n-periods", min=2, help="Log-spaced periods in the band."),
-    as_json: bool = typer.Option(False, "--json", help="JSON on stdout (CONTRACT §3, SI)."),
+    as_json: bool = typer.Option(False, "--json", metavar=FLAG, help="JSON on stdout (CONTRACT §3, SI)."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write SD/PSA plot (PNG, SVG, PDF)."),
     records_dir: Optional[Path] = typer.Option(None, "--records-dir", help=RECORDS_DIR_HELP),
     gravity: float = typer.Option(9.81, "--gravity", help=GRAVITY_HELP),
 ) -> None:
     """Elastic response spectrum (exact, free vibration after the record included), SD_max and
     intensity measures."""
+    from .cli_inputs import FIGURE_SUFFIXES, output_file
+    output_file(plot, "--plot", FIGURE_SUFFIXES)
     zeta = _parse_damping(damping)
     lo, hi = _parse_band(band)
     motion = _load(record_id, gravity, records_dir)
@@ -210,7 +224,7 @@ def spectrum_command(
     table.add_row("PGA", f"{measures['pga']:.4g} m/s² ({measures['pga'] / gravity:.4g} g)")
     for key, unit in (("pgv", "m/s"), ("pgd", "m"), ("arias", "m/s"), ("cav", "m/s"), ("bracketed_duration", "s"),
                       ("significant_duration", "s"), ("a_rms", "m/s²"), ("predominant_frequency", "Hz")):
-        table.add_row(key, f"{measures[key]:.4g} {unit}")
+        table.add_row(key, "n/a" if measures[key] is None else f"{measures[key]:.4g} {unit}")
     console = _console()
     console.print(table)
     if plot is not None:
@@ -256,6 +270,8 @@ def synth_command(
     if scale_to not in SCALE_CHOICES:
         raise MotionError("invalid --scale-to", key="--scale-to", expected=" | ".join(SCALE_CHOICES),
                           found=repr(scale_to))
+    from .cli_inputs import output_folder
+    output_folder(out_dir, "--out")
     motion = _load(seed, gravity, records_dir)
     path, match = synthesize(motion, n, out_dir, seed_value=seed_value, scale_to=scale_to)
     console = _console()

@@ -98,10 +98,18 @@ def response_table(result, console: Console) -> None:
     ]
     if r.drift_max:
         rows.insert(5, ("max |u_T − u_B| (sampled)", format_value(r.drift_max), "m"))
+    params = getattr(result, "motion_parameters", None)
+    if params:
+        g = result.project.system.g
+        extra = [("pulse amplitude a_p", f"{format_value(params['a_p'])} ({params['a_p'] / g:.4g} g)", "m/s^2"),
+                 ("pulse period T_p", format_value(params["T_p"]), "s")]
+        if "t_m" in params:
+            extra.append(("wavelet centre t_m", format_value(params["t_m"]), "s"))
+        rows[1:1] = extra
     for row in rows:
         table.add_row(*row)
     console.print(table)
-    for w in result.project.warnings:
+    for w in getattr(result, "warnings", result.project.warnings):
         console.print(f"[yellow]warning:[/] {escape(w)}", highlight=False)
 
 
@@ -121,6 +129,8 @@ def check_summary(data: dict, out_dir, console: Console) -> None:
     for m in exc.get("missing", []):
         console.print(f"[yellow]warning:[/] record {escape(m['id'])} not analysed: {escape(str(m['reason']))}",
                       highlight=False)
+    for w in exc.get("record_warnings", []):
+        console.print(f"[yellow]warning:[/] {escape(w)}", highlight=False)
     for f in data.get("failed_records", []):
         console.print(f"[bold red]analysis failed:[/] {escape(f['id'])} — {escape(f['status'])} (not counted as "
                       "safe)", highlight=False)

@@ -170,7 +170,7 @@ def load_project(path: str | Path) -> Project:
     path = Path(path)
     file = str(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        text = path.read_text(encoding="utf-8-sig")   # a UTF-8 BOM (Windows Notepad) is not content
     except FileNotFoundError:
         raise ProjectError("file not found", file=file, expected="an existing project file (.toml)") from None
     except (OSError, UnicodeDecodeError) as exc:
@@ -227,6 +227,10 @@ def parse_project(raw: dict, *, file: str = "<project>", text: str = "") -> Proj
     if "excitation" in raw and not isinstance(raw["excitation"], dict):
         raise ProjectError("must be a table", file=file, key="excitation", expected="an [excitation] table",
                            found=repr(raw["excitation"]))
+    if raw.get("excitation") is not None:
+        # validated here so that every command (quantities, simulate, check) rejects the same input
+        from .motions.config import parse_excitation
+        parse_excitation(raw["excitation"], file=file, gravity=g)
     from .validity import validity_warnings
     return Project(file, info["name"], system, analysis, info, raw.get("excitation"), raw, text,
                    hashlib.sha256(text.encode("utf-8")).hexdigest() if text else "",
@@ -395,13 +399,21 @@ def _parse_analysis(data: dict, file: str) -> AnalysisSettings:
         restitution_variation=t.number("restitution_variation", default=0.02, low=0.0, high=0.5),
         margin_precision=t.number("margin_precision", default=0.01, low=0.0, high=0.5),
         margin_max_scale=t.number("margin_max_scale", default=8.0, low=1.0, high=1000.0),
-        free_vibration=t.quantity("free_vibration", "time", default=10.0, positive=False),
+        free_vibration=_free_vibration(t),
         rigid_superstructure_ratio=t.number("rigid_superstructure_ratio", default=10.0, low=0.0),
         scan_rtol=t.number("scan_rtol", default=1e-6, low=0.0, high=1e-3),
         overturn_probability_limit=t.quantity("overturn_probability_limit", "dimensionless", default=0.10)
         if isinstance(t.data.get("overturn_probability_limit"), str)
         else t.number("overturn_probability_limit", default=0.10, low=0.0, high=1.0),
     )
+
+
+def _free_vibration(t: _Table) -> float:
+    value = t.quantity("free_vibration", "time", default=10.0, positive=False)
+    if value < 0.0:
+        raise t.error("free_vibration", "out of range", expected="a time ≥ 0 s analysed after the motion ends "
+                      "(e.g. \"10 s\")", found=t.data["free_vibration"])
+    return value
 
 
 def _check_model_choice(analysis: AnalysisSettings, system: RockingSystem, file: str) -> None:

@@ -190,6 +190,10 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
                            found="; ".join(f"{i}: {r}" for i, r, _ in resolved.missing) or "an empty suite")
     motions = [r.motion for r in resolved.records]
     n = len(motions)
+    from ..motions.measures import plausibility_warnings
+    record_warnings = [w for r in resolved.records for w in plausibility_warnings(r.motion, system.g)]
+    record_warnings += [f"{r.id}: amplitude factor {r.scale:.3g} is implausible — check the record's units"
+                        for r in resolved.records if not 1e-3 <= r.scale <= 1e3]
 
     def stage(name, total):
         if progress is None:
@@ -284,7 +288,8 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     from ..bench.accuracy import engine_accuracy
     acc = engine_accuracy(a.rtol, a.atol)
     settings["engine_accuracy"] = {k: v for k, v in acc.items() if k != "seconds"}
-    intensity = {"design_pga": spec.design_pga, "intensity_analysed": resolved.scale_description}
+    intensity = {"design_pga": spec.design_pga, "intensity_analysed": resolved.scale_description,
+                 "record_warnings": record_warnings}
     return CheckResult(project, q, rule, selection, outcomes, resolved.missing, resolved.scale_description,
                        resolved.default_used or spec.default_used, resolved.suites, stats, checks, verdict, histories,
                        sensitivity, settings, decision.reason, decision.robust, intensity)

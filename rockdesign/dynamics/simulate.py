@@ -63,6 +63,10 @@ def simulate(system: RockingSystem, motion: GroundMotion | None = None, *, model
     sp = system_parameters(system, choice, rest_velocity=rest_velocity)
     if t_end is None:
         t_end = motion.duration + FREE_VIBRATION
+    if not (math.isfinite(t_end) and t_end > 0.0):
+        raise ModelError("invalid end time", key="--t-end", expected="a finite time > 0 s", found=repr(t_end))
+    if record_history:
+        check_memory(motion, t_end, output_dt)
     t_out = _output_times(motion, t_end, output_dt) if record_history else np.zeros(0)
     y0 = np.array([theta0, thetadot0, 0.0, 0.0])
     if theta0 != 0.0 and structure == "podium-2dof":
@@ -102,12 +106,49 @@ def _event_buffers(capacity: int):
     return np.zeros(capacity), np.zeros(capacity, dtype=np.int64), np.zeros((capacity, 4))
 
 
-def _output_times(motion: GroundMotion, t_end: float, output_dt: float | None) -> np.ndarray:
+BYTES_PER_OUTPUT_SAMPLE = 8 * 24
+"""Memory [bytes] per output time of a history: the integrator's buffers (t, 4 states) and the
+Response's arrays (t, θ, θ̇, u_B, u_T, u_T − u_B, ü_g) with their temporary copies, 8-byte floats."""
+MEMORY_FRACTION = 0.5
+"""A history may use at most this fraction of the machine's physical memory ..."""
+MEMORY_CAP = 4e9
+"""... and at most this many bytes (a 60-s record needs ~2 MB, a 1-s pulse with 10 s of free
+vibration at T_p/200 ~ 0.4 MB)."""
+
+
+def _output_dt(motion: GroundMotion, output_dt: float | None) -> float:
     if motion.is_record and output_dt is None:
-        dt = motion.dt
-    else:
-        dt = output_dt if output_dt is not None else (min(0.01, motion.params[1] / 200.0)
-                                                     if motion.kind not in (0, 7) else 0.01)
+        return motion.dt
+    return output_dt if output_dt is not None else (min(0.01, motion.params[1] / 200.0)
+                                                    if motion.kind not in (0, 7) else 0.01)
+
+
+def _physical_memory() -> float:
+    try:
+        import os
+        return float(os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES"))
+    except (ValueError, OSError, AttributeError):  # pragma: no cover - non-POSIX
+        return 8e9
+
+
+def check_memory(motion: GroundMotion, t_end: float, output_dt: float | None = None) -> float:
+    """Estimated memory [bytes] of a time history; raises ModelError (before allocating anything)
+    when it exceeds :data:`MEMORY_FRACTION` of the physical memory (e.g. a pulse with T_p = 1e-6 s, whose
+    output interval is T_p/200, or ``--t-end 1e7``)."""
+    dt = _output_dt(motion, output_dt)
+    n = t_end / dt + 2.0
+    need = n * BYTES_PER_OUTPUT_SAMPLE
+    avail = min(MEMORY_CAP, MEMORY_FRACTION * _physical_memory())
+    if not need <= avail:
+        raise ModelError("the time history would need too much memory",
+                         expected=f"at most {avail / 1e9:.3g} GB: a shorter end time (--t-end) or a longer pulse "
+                                  "period (the output interval is T_p/200)",
+                         found=f"{n:.3g} output times (t_end = {t_end:g} s every {dt:.3g} s) ≈ {need / 1e9:.3g} GB")
+    return need
+
+
+def _output_times(motion: GroundMotion, t_end: float, output_dt: float | None) -> np.ndarray:
+    dt = _output_dt(motion, output_dt)
     n = int(math.floor(t_end / dt + 1e-9)) + 1
     t = np.arange(n) * dt
     if t[-1] < t_end - 1e-12:

@@ -162,6 +162,12 @@ def parse_excitation(raw: dict | None, *, file: str, gravity: float = 9.81) -> E
         if not design_pga > 0:
             raise ProjectError("invalid design PGA", file=file, key="excitation.design_pga",
                                expected="a positive acceleration", found=repr(raw["design_pga"]))
+    for name in ("suites", "records"):
+        if name in raw and isinstance(raw[name], list) and not raw[name] and not (
+                raw.get("records") if name == "suites" else raw.get("suites")):
+            raise ProjectError(f"empty {name} list", file=file, key=f"excitation.{name}",
+                               expected=f"at least one {name[:-1]} (e.g. suites = [\"{DEFAULT_SUITE}\"]), or leave the "
+                                        "key out for the default suite", found="[]")
     suites = _string_list(raw.get("suites", []), "suites", file)
     for i, name in enumerate(suites):
         if _looks_like_path(name):
@@ -182,6 +188,8 @@ def parse_excitation(raw: dict | None, *, file: str, gravity: float = 9.81) -> E
     scale = None
     if "scale" in raw:
         scale = parse_scale_rule(raw["scale"], file=file, key="excitation.scale", gravity=gravity)
+    if design_pga is not None and scale is not None:
+        _check_one_intensity(design_pga, scale, raw, file, gravity)
     records_dir = None
     if "records_dir" in raw:
         if not isinstance(raw["records_dir"], str) or not raw["records_dir"].strip():
@@ -194,6 +202,24 @@ def parse_excitation(raw: dict | None, *, file: str, gravity: float = 9.81) -> E
     time_scale = _parse_time_scale(raw.get("time_scale", 1.0), file, gravity)
     return ExcitationSpec(design_pga=design_pga, suites=tuple(suites), records=tuple(records), scale=scale,
                           records_dir=records_dir, time_scale=time_scale, file=file)
+
+
+def _check_one_intensity(design_pga: float, scale: ScaleRule, raw: dict, file, gravity: float) -> None:
+    """``design_pga`` and an explicit ``scale`` must not name two different intensities: the records
+    are scaled by ``scale``, so a design PGA that differs from it (or that the scale method does not
+    use) would be silently dropped."""
+    given = repr(raw["design_pga"])
+    if scale.method == "pga":
+        if abs(scale.value - design_pga) > 1e-9 * design_pga:
+            raise ProjectError("conflicting design intensities", file=file, key="excitation.scale.target",
+                               expected=f"the design PGA design_pga = {given} "
+                                        f"({design_pga / gravity:.4g} g), or only one of the two",
+                               found=f"{raw['scale'].get('target')!r} ({scale.value / gravity:.4g} g)")
+        return
+    raise ProjectError(f"design_pga is not used by scale method '{scale.method}'", file=file,
+                       key="excitation.design_pga",
+                       expected=f"either design_pga (records scaled to that PGA) or scale = {{ method = "
+                                f"\"{scale.method}\", ... }}, not both", found=given)
 
 
 def _parse_time_scale(raw, file, gravity) -> float:

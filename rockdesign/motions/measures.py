@@ -274,11 +274,14 @@ def fourier_amplitude(accel, dt: float) -> tuple[np.ndarray, np.ndarray]:
 
 def predominant_frequency(accel, dt: float, b: float = KONNO_OHMACHI_B, n_freqs: int = 400,
                           f_min: float = 0.1, f_max: float = 25.0) -> float:
-    """Frequency [Hz] of the peak of the Konno–Ohmachi-smoothed Fourier amplitude spectrum (Table 5.6)."""
+    """Frequency [Hz] of the peak of the Konno–Ohmachi-smoothed Fourier amplitude spectrum (Table 5.6);
+    None for a record without motion (all zeros)."""
     freqs, amplitude = fourier_amplitude(accel, dt)
     hi = min(f_max, 0.8 * 0.5 / dt)
     centres = np.geomspace(f_min, hi, n_freqs)
     smooth = _konno_ohmachi(freqs, amplitude, centres, float(b))
+    if not np.any(smooth > 0.0):
+        return None         # no motion: there is no predominant frequency
     return float(centres[int(np.argmax(smooth))])
 
 
@@ -303,6 +306,39 @@ def intensity_measures(accel, dt: float, gravity: float = 9.81) -> dict[str, flo
         "a_rms": rms_acceleration(accel, dt, t1, t2) if t_d > 0 else 0.0,
         "predominant_frequency": predominant_frequency(accel, dt),
     }
+
+
+PLAUSIBLE_DT = (1e-4, 0.1)
+"""Sample intervals [s] of real accelerograms (0.005–0.02 s typically); outside: a warning."""
+PLAUSIBLE_PGA_G = 5.0
+"""Largest PGA [g] not flagged (recorded peaks stay below ~4 g)."""
+
+
+def plausibility_warnings(motion, gravity: float = 9.81) -> list[str]:
+    """Warnings for a record that is probably not what the user meant (the record is still analysed).
+
+    Flags a sample interval outside :data:`PLAUSIBLE_DT`, a PGA above :data:`PLAUSIBLE_PGA_G` g, an
+    all-zero record and non-finite samples.  Pulses are not checked.
+    """
+    if not getattr(motion, "is_record", False):
+        return []
+    out = []
+    name = motion.name
+    dt = motion.dt
+    if not PLAUSIBLE_DT[0] <= dt <= PLAUSIBLE_DT[1]:
+        out.append(f"{name}: sample interval dt = {dt:g} s is implausible for an accelerogram "
+                   f"(expected {PLAUSIBLE_DT[0]:g}–{PLAUSIBLE_DT[1]:g} s) — check the file's DT")
+    samples = np.asarray(motion.samples)
+    if samples.size and not np.all(np.isfinite(samples)):
+        out.append(f"{name}: the record contains non-finite values")
+        return out
+    pga = float(np.max(np.abs(samples))) * abs(motion.scale) if samples.size else 0.0
+    if pga == 0.0:
+        out.append(f"{name}: the record is all zeros (no ground motion)")
+    elif pga > PLAUSIBLE_PGA_G * gravity:
+        out.append(f"{name}: PGA = {pga / gravity:.3g} g is implausible (recorded PGAs stay below ~4 g) — "
+                   "check the file's units and the scale")
+    return out
 
 
 def motion_measures(motion, gravity: float = 9.81) -> dict[str, float]:

@@ -92,7 +92,7 @@ def read_record_file(path, *, units: str | None = None, dt: float | None = None,
         raise RecordError("record file not found", file=file, expected="an existing file",
                           found="no such file")
     try:
-        text = path.read_text(errors="replace")
+        text = path.read_text(encoding="utf-8-sig", errors="replace")
     except OSError as exc:
         raise RecordError(f"cannot read record file ({exc.strerror})", file=file) from None
     lines = text.splitlines()

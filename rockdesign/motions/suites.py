@@ -99,10 +99,12 @@ def suite_path(name_or_path) -> Path:
 
 def _read_manifest(path: Path) -> dict:
     try:
-        with open(path, "rb") as fh:
-            return tomllib.load(fh)
+        with open(path, encoding="utf-8-sig") as fh:    # a UTF-8 BOM is not content
+            return tomllib.loads(fh.read())
     except tomllib.TOMLDecodeError as exc:
         raise MotionError(f"invalid TOML ({exc})", file=str(path)) from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise MotionError(f"cannot read the suite manifest ({exc})", file=str(path)) from None
 
 
 def list_suites() -> list[dict]:

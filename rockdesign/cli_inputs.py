@@ -1,0 +1,81 @@
+"""Validation of command-line options before any work is done (the project file is validated in
+:mod:`rockdesign.project`).
+
+Every check raises a :class:`~rockdesign.errors.RockdesignError` naming the option, what was expected
+and what was found, so the CLI prints one line and exits with code 2 — never a traceback after
+minutes of analysis.  Output files are checked before the analysis runs: a bad suffix, a missing
+folder or a path that is a directory fails at once.
+"""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+from .errors import RockdesignError
+
+FIGURE_SUFFIXES = (".png", ".svg", ".pdf")
+G_RANGE = (9.7, 9.9)
+"""Accepted gravitational accelerations [m/s²] (the same range as ``[analysis] g``)."""
+RTOL_RANGE = (0.0, 1e-3)
+"""rtol must be in (0, 1e-3]: the engine's events and margins need at least 1e-3 (as ``[analysis] rtol``)."""
+
+
+def positive_time(value: float | None, key: str) -> float | None:
+    """A finite time > 0 [s] (or None)."""
+    if value is None:
+        return None
+    if not (math.isfinite(value) and value > 0.0):
+        raise RockdesignError("out of range", key=key, expected="a finite time > 0 in seconds", found=repr(value))
+    return value
+
+
+def gravity(value: float, key: str = "--gravity") -> float:
+    """g [m/s²] within :data:`G_RANGE` (a negative or zero g would print negative or infinite values in g)."""
+    if not (math.isfinite(value) and G_RANGE[0] <= value <= G_RANGE[1]):
+        raise RockdesignError("out of range", key=key,
+                              expected=f"a gravitational acceleration {G_RANGE[0]:g}–{G_RANGE[1]:g} m/s²",
+                              found=repr(value))
+    return value
+
+
+def rtol(value: float | None, key: str = "--rtol") -> float | None:
+    """Relative tolerance in (0, 1e-3] (or None for the project's)."""
+    if value is None:
+        return None
+    lo, hi = RTOL_RANGE
+    if not (math.isfinite(value) and lo < value <= hi):
+        raise RockdesignError("out of range", key=key, expected=f"a relative tolerance > {lo:g} and ≤ {hi:g} "
+                              "(e.g. 1e-10)", found=repr(value))
+    return value
+
+
+def output_file(path: Path | None, key: str, suffixes: tuple[str, ...] | None = None) -> Path | None:
+    """A file we can create: known suffix, not a directory, in an existing folder."""
+    if path is None:
+        return None
+    path = Path(path).expanduser()
+    if suffixes is not None and path.suffix.lower() not in suffixes:
+        raise RockdesignError("unknown file type", key=key, expected="a file ending in " + ", ".join(suffixes),
+                              found=f"'{path}'")
+    if path.is_dir():
+        raise RockdesignError("is a directory", key=key, expected="a file name", found=f"'{path}' (a directory)")
+    parent = path.parent if str(path.parent) else Path(".")
+    if not parent.is_dir():
+        raise RockdesignError("folder not found", key=key, expected="a file in an existing folder",
+                              found=f"'{path}' ('{parent}' does not exist)")
+    return path
+
+
+def output_folder(path: Path, key: str) -> Path:
+    """A folder we can write into (created if missing): not an existing file, parent not a file."""
+    path = Path(path).expanduser()
+    if path.exists() and not path.is_dir():
+        raise RockdesignError("is a file, not a folder", key=key, expected="a folder (new or existing)",
+                              found=f"'{path}' (an existing file)")
+    for parent in path.parents:
+        if parent.exists():
+            if not parent.is_dir():
+                raise RockdesignError("cannot create folder", key=key, expected="a path below an existing folder",
+                                      found=f"'{parent}' is a file")
+            break
+    return path
