@@ -47,7 +47,7 @@ def _load(record_id: str, gravity: float, records_dir: Optional[Path]):
     check_gravity(gravity)
     motion = load_record(_record_id(record_id), gravity=gravity, records_dir=records_dir)
     for text in plausibility_warnings(motion, gravity):
-        Console(stderr=True, highlight=False, markup=False).print(f"warning: {text}")
+        Console(stderr=True, highlight=False, markup=False, soft_wrap=True).print(f"warning: {text}")
     return motion
 
 

@@ -202,12 +202,17 @@ class OverturningProbability(Criterion):
                   f"(= upper end of the two-sided 90 % interval); {need}")
         if passed:
             reason = f"{k} of {n} records overturn at the design level (P ≤ {upper:.3g} at 95 % confidence)"
-        elif k == 0:
-            reason = (f"{n} records cannot show P(overturn) ≤ {_pct(limit)} at 95 % confidence "
-                      f"(the bound {upper:.3g} {need})")
         else:
-            ids = ", ".join(o.id for o in valid if o.run.overturned)
-            reason = f"{k} of {n} records overturn at the design level ({ids})"
+            parts = []
+            if k:
+                ids = ", ".join(o.id for o in valid if o.run.overturned)
+                parts.append(f"{k} of {n} records overturn at the design level ({ids})")
+            if n_min is None or n < n_min:
+                parts.append(f"{n} records cannot show P(overturn) ≤ {_pct(limit)} at 95 % confidence "
+                             f"(the bound {upper:.3g}; {need})")
+            elif not k:   # pragma: no cover - k = 0 and n ≥ n_min always passes
+                parts.append(f"bound {upper:.3g} > {_pct(limit)}")
+            reason = "; ".join(parts)
         return self.item(util, passed, detail, reason, name=name)
 
 
@@ -253,7 +258,7 @@ class IncrementalMargin(Criterion):
             reason = f"no intensity up to the design level overturns more than the suite bound allows ({k} of {n})"
         elif below and below[0][0] < 1.0:
             f, rid = below[0]
-            reason = f"overturning at {f:.2f}× design ({rid}" + (f" and {k - 1} more)" if k > 1 else ")")
+            reason = f"overturning at {f:.2g}× design ({rid}" + (f" and {k - 1} more)" if k > 1 else ")")
         elif below:
             reason = f"{k} of {n} records overturn at or below the design level"
         else:
