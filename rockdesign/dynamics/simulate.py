@@ -98,8 +98,12 @@ def simulate(system: RockingSystem, motion: GroundMotion | None = None, *, model
         summary, diag, n_written = integrate(sp, motion.kind, motion.params, motion.samples, y0, side0, 0.0,
                                              opts, t_out, out_y, ev_t, ev_kind, ev_y)
     label = f"{structure}/{model if model != 'auto' else 'exact'}"
-    return _build_response(system, motion, sp, model, label, summary, diag, t_out[:n_written], out_y[:n_written],
+    response = _build_response(system, motion, sp, model, label, summary, diag, t_out[:n_written], out_y[:n_written],
                            ev_t, ev_kind, ev_y, overturn)
+    if model == "linear-exact" and "sampled_dt" in motion.meta:
+        response.diagnostics["input"] = (f"analytic pulse sampled every {motion.meta['sampled_dt']:.3g} s (piecewise "
+                                         "linear; see rockdesign.dynamics.linear_exact.PULSE_SAMPLES_PER_PERIOD)")
+    return response
 
 
 def _event_buffers(capacity: int):
