@@ -91,12 +91,12 @@ def init(kind: str = typer.Argument(..., help="podium | column"),
 @app.command()
 @handle_errors
 def quantities(project: Path = typer.Argument(..., help="Project file (TOML)"),
-               as_json: bool = typer.Option(False, "--json", metavar=FLAG, help="Print CONTRACT §3 JSON (SI units)."),
+               as_json: bool = typer.Option(False, "--json", metavar=FLAG, help="Print the results as JSON (SI units)."),
                units: Optional[str] = typer.Option(None, "--units",
                                                    help="Display units, comma separated, e.g. 'mm,deg,kN,g'."),
                pushover: Optional[Path] = typer.Option(None, "--pushover", help="Write the pushover curve "
                                                        "F_R/(m g) vs θ: .csv for the numbers, .png/.svg/.pdf for a plot.")):
-    """Closed-form design quantities (SPEC §2)."""
+    """Closed-form design quantities (thesis Ch. 3–4; docs/model.md §3)."""
     from . import cli_inputs
     from .api import quantities_json, quantities_table, write_pushover
     from .project import load_project
@@ -116,14 +116,14 @@ def simulate(project: Path = typer.Argument(..., help="Project file (TOML)"),
              motion: str = typer.Option(..., "--motion", "-m", help="e.g. 'ricker-anti:ap=0.38g,Tp=0.95s', "
                                         "'free:theta0=0.8alpha', 'record:p695-ff/11a,scale=1.5', 'file:X.AT2'"),
              model: str = typer.Option("auto", "--model", help="exact | linear | linear-exact | auto"),
-             as_json: bool = typer.Option(False, "--json", metavar=FLAG, help="Print CONTRACT §3 JSON (SI units)."),
+             as_json: bool = typer.Option(False, "--json", metavar=FLAG, help="Print the results as JSON (SI units)."),
              plot: Optional[Path] = typer.Option(None, "--plot", help="Write a time-history figure (png/svg/pdf)."),
              csv: Optional[Path] = typer.Option(None, "--csv", help="Write the time history as CSV."),
              t_end: Optional[float] = typer.Option(None, "--t-end", help="End time [s] (default: motion + "
                                                    "free vibration)."),
              rtol: Optional[float] = typer.Option(None, "--rtol", help="Relative tolerance (default: project)."),
              records_dir: Optional[Path] = typer.Option(None, "--records-dir", help="Folder of PEER AT2 files.")):
-    """One nonlinear time-history analysis (SPEC §3)."""
+    """One nonlinear time-history analysis (docs/model.md §4)."""
     from . import cli_inputs
     from .api import simulate_project
     from .project import load_project

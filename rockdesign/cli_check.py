@@ -16,6 +16,17 @@ CSV_COLUMNS = ["id", "suite", "event", "station", "rsn", "component", "scale", "
                "impacts", "uplift_time", "overturned", "overturn_mode", "class", "overturn_scale", "polyakov_scale"]
 
 
+CSV_UNITS = {"scale": "-", "pga": "m/s^2", "sd_max": "m", "sd_max_period": "s", "polyakov_ratio": "-",
+             "theta_max_over_alpha": "-", "theta_max_over_theta_c": "-", "u_B_max": "m", "u_B_max_over_2B": "-",
+             "uplift_time": "s", "overturn_scale": "-", "polyakov_scale": "-"}
+"""Units of the results.csv columns (header "pga [m/s^2]"); the others are counts, ids or words."""
+
+
+def csv_header(column: str) -> str:
+    """results.csv header of a column, with its unit in brackets when it has one."""
+    return f"{column} [{CSV_UNITS[column]}]" if column in CSV_UNITS else column
+
+
 def write_results(result, out_dir: Path, *, pdf: bool = True, html: bool = True) -> dict:
     """Write results.json, results.csv and (optionally) report.html / report.pdf into ``out_dir``."""
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -23,7 +34,7 @@ def write_results(result, out_dir: Path, *, pdf: bool = True, html: bool = True)
     (out_dir / "results.json").write_text(json.dumps(data, indent=2, ensure_ascii=False) + "\n", encoding="utf-8")
     with open(out_dir / "results.csv", "w", newline="", encoding="utf-8") as fh:
         w = csv.writer(fh)
-        w.writerow(CSV_COLUMNS)
+        w.writerow([csv_header(c) for c in CSV_COLUMNS])
         for row in data["records"]:
             w.writerow(["" if row.get(c) is None else row.get(c) for c in CSV_COLUMNS])
     if pdf or html:

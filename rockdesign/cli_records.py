@@ -95,7 +95,7 @@ def _fmt(value, digits: int = 4) -> str:
 def list_command(
     suite: Optional[str] = typer.Option(None, "--suite",
                                         help="Suite name or manifest path (default: all built-in records)."),
-    as_json: bool = typer.Option(False, "--json", metavar=FLAG, help="JSON on stdout (CONTRACT §3)."),
+    as_json: bool = typer.Option(False, "--json", metavar=FLAG, help="JSON on stdout (SI units)."),
     records_dir: Optional[Path] = typer.Option(None, "--records-dir", help=RECORDS_DIR_HELP),
     gravity: float = typer.Option(9.81, "--gravity", help=GRAVITY_HELP),
 ) -> None:
@@ -192,7 +192,7 @@ def spectrum_command(
     damping: str = typer.Option(str(DEFAULT_DAMPING), "--damping", help="Damping ratio (0.02 or '2 %')."),
     band: str = typer.Option(f"{DEFAULT_BAND[0]:g}:{DEFAULT_BAND[1]:g}", "--band", help="Period band Tmin:Tmax [s]."),
     n_periods: int = typer.Option(DEFAULT_N_PERIODS, "--n-periods", min=2, help="Log-spaced periods in the band."),
-    as_json: bool = typer.Option(False, "--json", metavar=FLAG, help="JSON on stdout (CONTRACT §3, SI)."),
+    as_json: bool = typer.Option(False, "--json", metavar=FLAG, help="JSON on stdout (SI units)."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write SD/PSA plot (PNG, SVG, PDF)."),
     records_dir: Optional[Path] = typer.Option(None, "--records-dir", help=RECORDS_DIR_HELP),
     gravity: float = typer.Option(9.81, "--gravity", help=GRAVITY_HELP),

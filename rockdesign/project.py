@@ -105,7 +105,7 @@ class _Table:
     def quantity(self, name: str, dimension: str, *, positive: bool = True, default=None, required=False):
         if name not in self.data:
             if required:
-                raise self.error(name, "missing required value", expected=f"a {dimension}")
+                raise self.error(name, "missing required value", expected=f"{'an' if dimension[0] in 'aeiou' else 'a'} {dimension}")
             return default
         raw = self.data[name]
         try:
@@ -115,7 +115,8 @@ class _Table:
         if not math.isfinite(value):
             raise self.error(name, "must be finite", expected=f"a finite {dimension}", found=raw)
         if positive and value <= 0.0:
-            raise self.error(name, "must be positive", expected=f"a {dimension} > 0", found=raw)
+            raise self.error(name, "must be positive", expected=f"{'an' if dimension[0] in 'aeiou' else 'a'} {dimension} > 0",
+                             found=raw)
         return value
 
     def choice(self, name: str, options: tuple[str, ...], default: str) -> str:

@@ -68,31 +68,36 @@ def parse_quantity(text, dimension: str, *, gravity: float = G_DEFAULT) -> float
     if dimension not in DIMENSIONS:
         raise KeyError(dimension)
     if isinstance(text, bool):
-        raise QuantityParseError(f"a {_describe(dimension)}, got the boolean {text!r}")
+        raise QuantityParseError(f"{_a(_describe(dimension))}, got the boolean {text!r}")
     if isinstance(text, (int, float)):
         if dimension in ("dimensionless", "angle"):
             return float(text)
         raise QuantityParseError(
-            f"a {_describe(dimension)} with units (e.g. {_example(dimension)}), got the plain number {text!r}")
+            f"{_a(_describe(dimension))} with units (e.g. {_example(dimension)}), got the plain number {text!r}")
     if not isinstance(text, str):
-        raise QuantityParseError(f"a {_describe(dimension)} as a string with units, got {text!r}")
+        raise QuantityParseError(f"{_a(_describe(dimension))} as a string with units, got {text!r}")
     match = _NUMBER.match(text)
     if not match:
-        raise QuantityParseError(f"a {_describe(dimension)} like {_example(dimension)}, got '{text}'")
+        raise QuantityParseError(f"{_a(_describe(dimension))} like {_example(dimension)}, got '{text}'")
     number, unit_text = match.groups()
     ureg = registry()
     try:
         unit = ureg.parse_expression(_normalise_unit_text(unit_text, gravity)) if unit_text else 1.0
     except Exception as exc:  # pint raises several error types
         raise QuantityParseError(
-            f"a {_describe(dimension)} like {_example(dimension)}, got '{text}' (unknown unit: {exc})") from None
+            f"{_a(_describe(dimension))} like {_example(dimension)}, got '{text}' (unknown unit: {exc})") from None
     q = float(number) * unit
     if not isinstance(q, pint.Quantity):
         q = ureg.Quantity(q, "")
     want = ureg.get_dimensionality(DIMENSIONS[dimension]) if DIMENSIONS[dimension] else ureg.Quantity(1).dimensionality
     if q.dimensionality != want:
-        raise QuantityParseError(f"a {_describe(dimension)}, got '{text}' (a {_name_of(q)})")
+        raise QuantityParseError(f"{_a(_describe(dimension))}, got '{text}' ({_a(_name_of(q))})")
     return float(q.to_base_units().magnitude)
+
+
+def _a(noun: str) -> str:
+    """The noun with its indefinite article ("an acceleration", "a length")."""
+    return ("an " if noun[:1].lower() in "aeiou" else "a ") + noun
 
 
 def _describe(dimension: str) -> str:

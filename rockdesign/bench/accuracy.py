@@ -18,7 +18,7 @@ from .problems import G, Problem
 from .reference import engine_history_at
 
 ACCURACY_CASE = ("thesis Table 3.4 B1 (2H = 3 m, tan α = 0.1, λ = 1/3) under the antisymmetric Ricker pulse "
-                 "(a_p = 0.38 g, T_p = 0.95 s, t_m = 1.5 T_p) sampled at T_p/200, linearized equations (SPEC §3.2), "
+                 "(a_p = 0.38 g, T_p = 0.95 s, t_m = 1.5 T_p) sampled at T_p/200, linearized equations (Eq 3.15, docs/model.md §4), "
                  "10 s")
 
 
@@ -56,7 +56,7 @@ def engine_accuracy(rtol: float = 1e-10, atol: float | None = None) -> dict:
     n_ref = exact.impacts
     return {
         "case": ACCURACY_CASE,
-        "reference": "closed-form solution of the linearized equations (SPEC §3.8), events to round-off",
+        "reference": "closed-form solution of the linearized equations (docs/model.md §4), events to round-off",
         "rtol": float(rtol), "atol": atol,
         "max_abs_dtheta_rad": metrics.max_abs_difference(run.theta, theta_exact),
         "theta_max_error_rad": metrics.theta_max_error(run.theta_max, exact.theta_max),
@@ -73,7 +73,7 @@ def engine_accuracy(rtol: float = 1e-10, atol: float | None = None) -> dict:
 def accuracy_sentence(acc: dict) -> str:
     """One sentence for the report appendix from an :func:`engine_accuracy` result."""
     return (f"Engine accuracy at the tolerance used (rtol = {acc['rtol']:.0e}, atol = {acc['atol']:.0e}): on "
-            f"{acc['case']}, the integrator reproduces the closed-form solution (SPEC §3.8) to "
+            f"{acc['case']}, the integrator reproduces the closed-form solution (docs/model.md §4) to "
             f"{acc['max_abs_dtheta_rad']:.1e} rad in θ(t) over the whole history, "
             f"{acc['theta_max_error_rad']:.1e} rad "
             f"in θ_max and {acc['max_impact_time_error_s']:.1e} s in all {acc['impacts_reference']} impact times.")

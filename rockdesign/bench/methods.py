@@ -99,7 +99,7 @@ METHODS = (
     Method("rockdesign", "rockdesign", "dp54-events",
            "rockdesign engine: numba DP5(4), dense-output event search, exact event refinement"),
     Method("rockdesign linear-exact", "closed-form", "linear-exact",
-           "rockdesign closed form of the linearized SDOF equations (SPEC §3.8); no tolerance"),
+           "rockdesign closed form of the linearized SDOF equations (docs/model.md §4); no tolerance"),
 ) + tuple(Method(f"scipy {m}", "scipy", m, f"scipy.integrate.solve_ivp(method='{m}'), restarted at events "
                                                  "and record samples") for m in SCIPY_METHODS)
 

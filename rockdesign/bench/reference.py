@@ -155,7 +155,7 @@ def build_reference(problem: Problem, independent_check: bool = True) -> Referen
         r = simulate(problem.system, problem.motion, model="linear-exact", structure=problem.structure,
                      t_end=problem.t_end, theta0=problem.theta0)
         ref = ReferenceSolution(problem, "closed-form",
-                                "closed-form solution of the linearized equations (SPEC §3.8): explicit formulas "
+                                "closed-form solution of the linearized equations (docs/model.md §4): explicit formulas "
                                 "between events, events as bracketed roots to round-off",
                                 "linear-exact", REFERENCE_RTOL, REFERENCE_ATOL, float(r.theta_max),
                                 r.impact_times, r.overturn_mode, int(r.impacts))

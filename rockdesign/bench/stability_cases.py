@@ -203,7 +203,7 @@ def zeno(quick: bool = False, methods=ALL_METHODS) -> StabilityCase:
     imp = [e for e in deepest.events if e.kind == "impact"]
     t_imp = np.array([e.time for e in imp])
     v_minus = np.array([abs(e.state[1]) for e in imp])
-    behaviour = ("Ends the Zeno sequence with the documented rest threshold (SPEC §3.6, default 5e-4 rad/s; "
+    behaviour = ("Ends the Zeno sequence with the documented rest threshold (docs/model.md §4, default 5e-4 rad/s; "
                  f"accumulation point t* = {t_imp[-1]:.9f} s). Down to {levels[-1]:g} rad/s it completes "
                  f"({deepest.impacts} impacts, status '{deepest.status}'); with no threshold at all "
                  f"(rest_velocity = 0) the event bound stops it after {r0.diagnostics['events']} events in "
@@ -296,8 +296,8 @@ def stiff_superstructure(quick: bool = False, methods=ALL_METHODS) -> StabilityC
                  + (f"(from {ours_rows[0][1] * 1e3:.1f} ms at ω_s/p = {ratios[0]:g} to "
                     f"{ours_rows[-1][1] * 1e3:.1f} ms at {ratios[-1]:g}). " if ours_rows else ". ")
                  + f"By default (structure = auto) a superstructure with ω_s/p ≥ 10 is analysed as rigid "
-                 f"(model '{auto.model}', SPEC §6); the 2DOF model does not converge to it as ω_s grows "
-                 f"(θ_max/α {ours_last.theta_max_over_alpha:.3f} vs {theta_rigid:.3f}, SPEC §3.3)")
+                 f"(model '{auto.model}', docs/model.md §7); the 2DOF model does not converge to it as ω_s grows "
+                 f"(θ_max/α {ours_last.theta_max_over_alpha:.3f} vs {theta_rigid:.3f}, docs/model.md §4)")
     data = {"table": table, "ratios": ratios, "theta2": theta2, "theta_rigid": theta_rigid}
     return StabilityCase("stiff-superstructure", "Step-size collapse with a stiff superstructure",
                          "podium-2dof (γ = 10, η = 5, ζ_s = 1 %) with ω_s/p = "

@@ -283,7 +283,7 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
         settings["equivalent_block"] = (
             f"ρ = ρc: to linear order and up to the first impact the columns respond like flat-based blocks of "
             f"size R̂ = {q['R_hat'].value:.4g} m ({q['R_hat'].equation}); not used as a substitute model because "
-            "impacts differ (c_r) — the curved column itself is analysed (SPEC §6)")
+            "impacts differ (c_r) — the curved column itself is analysed (docs/model.md §3)")
     # the engine's error against a closed form at the tolerance used (report appendix)
     from ..bench.accuracy import engine_accuracy
     acc = engine_accuracy(a.rtol, a.atol)

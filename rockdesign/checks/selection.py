@@ -50,7 +50,7 @@ def select_model(system, analysis, motions, run_kw, *, progress=None) -> tuple[M
     if a.equations == "auto":
         equations = "linear"
         e_reason = (f"linearized equations tried first; kept only if θ_max/θc changes by less than "
-                    f"{a.linearization_tolerance:g} and no verdict changes on the governing records (SPEC §6)")
+                    f"{a.linearization_tolerance:g} and no verdict changes on the governing records (docs/model.md §7)")
     else:
         equations = a.equations
         e_reason = f"forced by [analysis] equations = \"{a.equations}\""

@@ -86,7 +86,7 @@ def coefficient_of_restitution(system: RockingSystem) -> tuple[float, str]:
         alpha_e = slenderness_angle(c.half_width_ext, c.half_height)
         printed = system.restitution_rule == "thesis-eq-3.39"
         g_hat = effective_gamma(system)
-        eq = "Eq 3.39 as printed (sin²α)" if printed else "Eq 3.39 corrected (CoAM about 2B', SPEC §8)"
+        eq = "Eq 3.39 as printed (sin²α)" if printed else "Eq 3.39 corrected (CoAM about 2B', docs/model.md §9)"
         return restitution_flat_extensions(alpha, alpha_e, lam, g_hat, printed), eq
     if system.superstructure is not None:
         return restitution_podium(alpha, lam, gamma, system.eta), "Eq 4.20"
@@ -173,7 +173,7 @@ def design_quantities(system: RockingSystem) -> dict[str, Quantity]:
     add("c_r", "c_r", "coefficient of restitution", c_r, "-", c_r_eq)
     add("u_capacity", "u_B(θc)", "column-top displacement capacity (Polyakov's 2B)", displacement_capacity(c), "m",
         "Eqs 3.46/3.51, 3.83 at θc", "u_B = 2u_C(θc)", "",
-        "2B" if ext == "none" else ("2B'" if ext == "flat" else "generalized capacity (ours, SPEC §5)"))
+        "2B" if ext == "none" else ("2B'" if ext == "flat" else "generalized capacity (ours, docs/model.md §6)"))
     add("rocking_period", "T_R(α/2)", "linearized free-rocking period from θ0 = α/2", rocking_period(p, alpha, alpha / 2),
         "s", "Eq 2.8", "T_R = (4/p) acosh(1/(1 − θ0/α))", f"(4/{_f(p)}) acosh(2)")
     if system.kind == "podium":
@@ -219,6 +219,6 @@ def design_quantities(system: RockingSystem) -> dict[str, Quantity]:
         ratio = s.omega_s / p
         verdict = ("rigid superstructure adequate (Polyakov rule 1)" if ratio >= RIGID_SUPERSTRUCTURE_RATIO
                    else "superstructure flexibility matters: 2DOF podium model")
-        add("omega_s_over_p", "ω_s/p", "superstructure to rocking frequency ratio", ratio, "-", "Sec 4.2.4, SPEC §6",
+        add("omega_s_over_p", "ω_s/p", "superstructure to rocking frequency ratio", ratio, "-", "Sec 4.2.4, docs/model.md §7",
             "ω_s/p", f"{_f(s.omega_s)}/{_f(p)}", f"{verdict} (switch at {RIGID_SUPERSTRUCTURE_RATIO:g})")
     return q

@@ -41,15 +41,15 @@ def default_structure(system: RockingSystem, rigid_ratio: float = 10.0) -> tuple
     if s is None:
         return "frame", "no superstructure: rocking frame (SDOF, Eq 3.75)"
     if s.rigid:
-        return "rigid-superstructure", "superstructure declared rigid: frame with γ̂ = γ(1+η) (SPEC §3.3)"
+        return "rigid-superstructure", "superstructure declared rigid: frame with γ̂ = γ(1+η) (docs/model.md §4)"
     c = system.column
     p = frequency_parameter(math.hypot(c.half_width, c.half_height), c.mass_distribution, system.g)
     ratio = s.omega_s / p
     if ratio >= rigid_ratio:
         return "rigid-superstructure", (f"ω_s/p = {ratio:.3g} ≥ {rigid_ratio:g}: superstructure treated as rigid "
-                                        "(Polyakov rule 1; SPEC §6 measured −1…−2 % at ω_s/p = 30)")
+                                        "(Polyakov rule 1; docs/model.md §7: measured −1…−2 % at ω_s/p = 30)")
     return "podium-2dof", (f"ω_s/p = {ratio:.3g} < {rigid_ratio:g}: superstructure flexibility changes the "
-                           "overturning acceleration by up to −12 % (SPEC §6): 2DOF podium")
+                           "overturning acceleration by up to −12 % (docs/model.md §7): 2DOF podium")
 
 
 def resolve_structure(system: RockingSystem, structure: str, rigid_ratio: float = 10.0) -> str:

@@ -140,7 +140,8 @@ def load_suite(name_or_path, *, gravity: float = 9.81, records_dir=None) -> Suit
     records = data.get("records")
     if not isinstance(records, list) or not all(isinstance(r, dict) for r in records):
         raise MotionError("a suite needs [[records]] tables", file=file, key="records",
-                          expected="one or more [[records]] tables", found=repr(type(records).__name__))
+                          expected="one or more [[records]] tables",
+                          found="no 'records' key" if records is None else f"records = {records!r}"[:120])
     default_scale = None
     if "scale" in data:
         default_scale = parse_scale_rule(data["scale"], file=file, key="scale", gravity=gravity)

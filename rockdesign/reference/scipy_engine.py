@@ -149,7 +149,7 @@ class _Run:
         if t == self._last_event_t:
             self._same_t += 1
             if self._same_t > MAX_SAME_TIME_EVENTS:
-                raise RuntimeError(f"event chatter at t = {t!r} s ({kind}); SPEC §3.6")
+                raise RuntimeError(f"event chatter at t = {t!r} s ({kind}); docs/model.md §4")
         else:
             self._last_event_t, self._same_t = t, 0
         self.events.append(Event(kind, t, before, after, self.side, self.phase))

@@ -271,10 +271,10 @@ def _capacity_text(system) -> str:
     if c.extension == "curved":
         return ("For a column with curved extensions the capacity 2B of Polyakov's rule is replaced by the "
                 "column-top displacement at the rotation capacity θc, u_B(θc) (Eqs 3.46/3.51 with Eq 3.83). "
-                "This generalisation is ours (SPEC §5), not Polyakov's or the thesis's.")
+                "This generalisation is ours (docs/model.md §6), not Polyakov's or the thesis's.")
     if c.extension == "flat":
         return ("With flat extensions the base width is 2B', and the capacity u_B(θc) = 2B' (θc = α'); this "
-                "extension of Polyakov's 2B is ours (SPEC §5).")
+                "extension of Polyakov's 2B is ours (docs/model.md §6).")
     return "Without extensions the capacity is Polyakov's 2B = u_B(θc = α)."
 
 

@@ -32,7 +32,7 @@ def normalise(statement: dict) -> dict:
     if "theta_error" in statement:
         return dict(statement)
     out = {"case": statement.get("case", CASE), "rtol": statement.get("rtol"), "atol": statement.get("atol"),
-           "reference": statement.get("reference", "closed-form solution of the linearized equations (SPEC §3.8)"),
+           "reference": statement.get("reference", "closed-form solution of the linearized equations (docs/model.md §4)"),
            "source": statement.get("source", "rockdesign.bench.accuracy.engine_accuracy")}
     for theirs, ours in BENCH_KEYS.items():
         if theirs in statement:

@@ -75,11 +75,19 @@ def _period_axis(ax, ctx):
     sec.set_xlabel("T_p [s]")
 
 
-def _overlay_polyakov(ax, x, polyakov, y_hi, color="white"):
+def polyakov_label(u_capacity: float | None) -> str:
+    """Legend of Polyakov's line: SD_max equals the displacement capacity u_B(θc) (2B only for a flat
+    block; docs/model.md §6)."""
+    if u_capacity is None:
+        return "Polyakov: SD_max = u_B(θc)"
+    return f"Polyakov: SD_max = u_B(θc) = {u_capacity:.3g} m"
+
+
+def _overlay_polyakov(ax, x, polyakov, y_hi, color="white", u_capacity=None):
     if polyakov is None:
         return None
     py = np.where(np.asarray(polyakov) <= y_hi * 1.05, polyakov, np.nan)
-    (h,) = ax.plot(x, py, ls="--", color=color, lw=1.3, label="Polyakov: SD_max = 2B")
+    (h,) = ax.plot(x, py, ls="--", color=color, lw=1.3, label=polyakov_label(u_capacity))
     return h
 
 
@@ -112,7 +120,7 @@ def theta_max_figure(ctx: dict):
             label = f"{name}: θ_max = {level:g}α" if level is not None else "IV: overturning"
             handles.append(Line2D([], [], color=LS_COLORS[name] if name != "IV" else "0.6", lw=1.2,
                                   ls="-" if name != "IV" else ":", label=label))
-        h = _overlay_polyakov(ax, x, ctx.get("polyakov"), y[-1])
+        h = _overlay_polyakov(ax, x, ctx.get("polyakov"), y[-1], u_capacity=ctx.get("u_capacity"))
         if h is not None:
             handles.append(Line2D([], [], color="0.4", ls="--", label=h.get_label()))
         ax.legend(handles=handles, loc="upper right", fontsize=7, framealpha=0.8)
@@ -130,7 +138,8 @@ def overturning_figure(ctx: dict):
         norm = BoundaryNorm([-0.5, 0.5, 1.5, 2.5, 3.5], cmap.N)
         _image(ax, x, y, cls, cmap=cmap, norm=norm)
         ax.plot(x, ctx["min_overturn"], color="black", lw=1.0, label="minimum overturning acceleration")
-        h = _overlay_polyakov(ax, x, ctx.get("polyakov"), y[-1], color="#2166ac")
+        h = _overlay_polyakov(ax, x, ctx.get("polyakov"), y[-1], color="#2166ac",
+                          u_capacity=ctx.get("u_capacity"))
         counts = ctx["class_counts"]
         handles = [Patch(facecolor=OT_COLORS[0], edgecolor="0.5", label=f"safe ({counts['safe']})"),
                    Patch(facecolor=OT_COLORS[1], label=f"overturn, 0 impacts ({counts['0']})"),
@@ -156,7 +165,8 @@ def limit_states_figure(ctx: dict):
                 ax.plot(x, ctx["reference_limit_states"][name], color=LS_COLORS[name], lw=0.9, ls="--")
         if ctx.get("reference_limit_states") is not None:
             ax.plot([], [], color="0.4", ls="--", label=f"reference: {ctx['reference_title']}")
-        _overlay_polyakov(ax, x, ctx.get("polyakov"), y[-1], color="#2166ac")
+        _overlay_polyakov(ax, x, ctx.get("polyakov"), y[-1], color="#2166ac",
+                          u_capacity=ctx.get("u_capacity"))
         ax.legend(loc="upper left", fontsize=7)
         _finish(ax, ctx, ctx["title"] + " — limit-state lines (Table 3.5)")
         return fig

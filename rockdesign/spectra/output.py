@@ -214,7 +214,7 @@ def summary_json(prod: SpectrumProducts, *, project: dict | None = None, referen
     if prod.polyakov_ap is not None:
         out["polyakov"] = dict(prod.polyakov_settings, y=prod.polyakov_y, ap=prod.polyakov_ap,
                                sd_max_unit_pulse=prod.polyakov_sd_unit,
-                               rule="a_p such that SD_max(pulse) = u_capacity (Polyakov rule 2, SPEC §5)")
+                               rule="a_p such that SD_max(pulse) = u_capacity (Polyakov rule 2, thesis Sec 4.2.5)")
     if prod.reference is not None:
         ref = prod.reference
         ot_p, ot_r = s.overturned, ref.overturned
@@ -243,6 +243,7 @@ def _figure_context(prod: SpectrumProducts, title: str, reference_title: str | N
             "y_label": s.request.y.label, "p_axis": p_axis, "cap": prod.cap, "psi": s.theta_max_over_alpha,
             "overturned": ot, "classes": classes, "contours": prod.contours, "limit_states": prod.limit_states,
             "min_overturn": prod.min_overturn, "polyakov": prod.polyakov_y,
+            "u_capacity": (prod.polyakov_settings or {}).get("u_capacity"),
             "criterion": "θ_max ≥ θc" if s.request.overturn == "static" else "|θ| = π/2",
             "class_counts": {"safe": int((classes < 0).sum()), "0": int((classes == 0).sum()),
                              "1": int((classes == 1).sum()), "2+": int((classes == 2).sum())},
