@@ -1,0 +1,92 @@
+"""What users read cites what users have: the thesis and the repository's docs, never the team's
+internal SPEC/CONTRACT files; labels say what they mean (capacity u_B(θc), units in CSV headers)."""
+from __future__ import annotations
+
+import csv
+import json
+import re
+
+import pytest
+from typer.testing import CliRunner
+
+from rockdesign.cli import app
+from rockdesign.paths import REPO_ROOT
+
+runner = CliRunner()
+INTERNAL = re.compile(r"\b(SPEC|CONTRACT) §")
+COMMANDS = [[], ["init"], ["quantities"], ["simulate"], ["check"], ["spectrum"], ["bench"], ["records"],
+            ["records", "list"], ["records", "show"], ["records", "spectrum"], ["records", "synth"]]
+
+
+@pytest.mark.parametrize("command", COMMANDS, ids=lambda c: " ".join(c) or "root")
+def test_help_cites_no_internal_document(command):
+    r = runner.invoke(app, [*command, "--help"])
+    assert r.exit_code == 0
+    assert not INTERNAL.search(r.output), r.output
+
+
+def test_docs_and_templates_cite_no_internal_document():
+    offenders = []
+    for folder in ("docs", "templates"):
+        for path in (REPO_ROOT / folder).rglob("*"):
+            if path.suffix in (".md", ".j2", ".toml", ".html", ".css") and INTERNAL.search(path.read_text("utf-8")):
+                offenders.append(str(path.relative_to(REPO_ROOT)))
+    assert not offenders
+
+
+def test_model_doc_exists_and_cites_thesis_equations():
+    text = (REPO_ROOT / "docs" / "model.md").read_text("utf-8")
+    for eq in ("Eq 3.13", "Eq 3.14", "Eq 3.56", "Eq 4.8", "Eq 4.20", "Eq 2.8", "Eq 3.44", "Eq 6.5"):
+        assert eq in text, eq
+    assert "## 8. Verdict" in text and "29" in text           # the minimum suite for a 10 % bound
+
+
+def test_polyakov_line_is_labelled_with_the_capacity():
+    from rockdesign.spectra.figures import polyakov_label
+    assert polyakov_label(1.2) == "Polyakov: SD_max = u_B(θc) = 1.2 m"
+    assert "2B" not in polyakov_label(None)
+
+
+def test_results_csv_headers_carry_units():
+    from rockdesign.cli_check import CSV_COLUMNS, csv_header
+    headers = [csv_header(c) for c in CSV_COLUMNS]
+    assert "pga [m/s^2]" in headers and "sd_max [m]" in headers and "uplift_time [s]" in headers
+    assert "id" in headers and "impacts" in headers
+
+
+def test_unit_messages_use_the_right_article(tmp_path):
+    p = tmp_path / "p.toml"
+    p.write_text('[project]\nname = "x"\n[column]\nheight = "3 m"\nslenderness = 0.1\nmass = "1 t"\n'
+                 'mass_distribution = 0.3333\n[excitation]\ndesign_pga = "0.35 kg"\n', encoding="utf-8")
+    r = runner.invoke(app, ["quantities", str(p)])
+    assert r.exit_code == 2 and "a acceleration" not in r.output
+
+
+def test_suite_without_records_message(tmp_path):
+    manifest = tmp_path / "s.toml"
+    manifest.write_text('name = "s"\n', encoding="utf-8")
+    r = runner.invoke(app, ["records", "list", "--suite", str(manifest)])
+    assert r.exit_code == 2 and "NoneType" not in r.output and "no 'records' key" in " ".join(r.output.split())
+
+
+@pytest.mark.slow
+def test_mostly_missing_suite_is_named_and_cannot_pass(tmp_path):
+    """thesis-table-4.1 without records_dir: 9 of 13 records missing.  The 4 found are analysed, the 9
+    are named on the console, and 4 records cannot show P(overturn) ≤ 10 % (29 needed): FAIL."""
+    p = tmp_path / "p.toml"
+    p.write_text('[project]\nname = "stocky"\n[column]\nheight = "3 m"\nslenderness = 0.3\nmass = "1 t"\n'
+                 'mass_distribution = 0.3333\n[excitation]\nsuites = ["thesis-table-4.1"]\n'
+                 'scale = { method = "pga", target = "0.1 g" }\n', encoding="utf-8")
+    out = tmp_path / "out"
+    r = runner.invoke(app, ["check", str(p), "-o", str(out), "--no-pdf", "--no-margins"])
+    assert r.exit_code == 1, r.output
+    data = json.loads((out / "results.json").read_text(encoding="utf-8"))
+    missing = data["excitation"]["missing"]
+    assert len(missing) == 9 and data["summary"]["n_records"] == 4
+    flat = " ".join(r.output.split())
+    for m in missing:
+        assert f"record {m['id']} not analysed" in flat
+    assert data["verdict"] == "FAIL" and "needs ≥ 29 records" in data["verdict_reason"]
+    assert data["summary"]["min_records_for_bound"] == 29
+    with open(out / "results.csv", encoding="utf-8") as fh:
+        assert "pga [m/s^2]" in next(csv.reader(fh))
