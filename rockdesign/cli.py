@@ -72,7 +72,8 @@ def _version_callback(value: bool):
 
 
 @app.callback()
-def _root(version: bool = typer.Option(False, "--version", callback=_version_callback, is_eager=True, metavar=FLAG,
+def _root(version: bool = typer.Option(False, "--version", callback=_version_callback, is_eager=True,
+                                       metavar=FLAG,
                                        help="Print the version and exit.")):
     """rockdesign: uplift thresholds, capacities, time-history analysis and Polyakov checks."""
 
@@ -91,7 +92,7 @@ def init(kind: str = typer.Argument(..., help="podium | column"),
 @app.command()
 @handle_errors
 def quantities(project: Path = typer.Argument(..., help="Project file (TOML)"),
-               as_json: bool = typer.Option(False, "--json", metavar=FLAG, help="Print the results as JSON (SI units)."),
+               as_json: bool = typer.Option(False, "--json", metavar=FLAG, help="Print JSON (SI units)."),
                units: Optional[str] = typer.Option(None, "--units",
                                                    help="Display units, comma separated, e.g. 'mm,deg,kN,g'."),
                pushover: Optional[Path] = typer.Option(None, "--pushover", help="Write the pushover curve "
@@ -116,7 +117,7 @@ def simulate(project: Path = typer.Argument(..., help="Project file (TOML)"),
              motion: str = typer.Option(..., "--motion", "-m", help="e.g. 'ricker-anti:ap=0.38g,Tp=0.95s', "
                                         "'free:theta0=0.8alpha', 'record:p695-ff/11a,scale=1.5', 'file:X.AT2'"),
              model: str = typer.Option("auto", "--model", help="exact | linear | linear-exact | auto"),
-             as_json: bool = typer.Option(False, "--json", metavar=FLAG, help="Print the results as JSON (SI units)."),
+             as_json: bool = typer.Option(False, "--json", metavar=FLAG, help="Print JSON (SI units)."),
              plot: Optional[Path] = typer.Option(None, "--plot", help="Write a time-history figure (png/svg/pdf)."),
              csv: Optional[Path] = typer.Option(None, "--csv", help="Write the time history as CSV."),
              t_end: Optional[float] = typer.Option(None, "--t-end", help="End time [s] (default: motion + "

@@ -60,7 +60,7 @@ def register(app: typer.Typer, handle_errors) -> None:
         t_free: Optional[float] = typer.Option(None, "--t-free", help="Free vibration [s] after the pulse "
                                                "(default: the project's analysis.free_vibration, 10 s)."),
         rtol: Optional[float] = typer.Option(None, "--rtol", help="Relative tolerance (default: project)."),
-        tm_ratio: float = typer.Option(1.5, "--tm-ratio", help="Ricker centre t_m/T_p (1.5 reproduces thesis Table 3.4; docs/model.md §5)."),
+        tm_ratio: float = typer.Option(1.5, "--tm-ratio", help="Ricker centre t_m/T_p (1.5: thesis Table 3.4)."),
         chunk_rows: Optional[int] = typer.Option(None, "--chunk-rows", help="Grid rows per chunk (default: "
                                                  "about 48 chunks, or the interrupted run's)."),
         resume: bool = typer.Option(True, "--resume/--no-resume", help="Reuse the chunks of an interrupted run "
@@ -78,7 +78,7 @@ def register(app: typer.Typer, handle_errors) -> None:
         as_json: bool = typer.Option(False, "--json", help="Print summary.json to stdout."),
         quiet: bool = typer.Option(False, "--quiet", "-q", help="No progress bar."),
     ):
-        """Rocking spectra: θ_max/α, overturning by impacts, limit states, Polyakov's line (thesis Sec 3.3.2, 4.2.4; docs/spectra.md)."""
+        """Rocking spectra: θ_max/α, overturning by impacts, limit states, Polyakov's line (docs/spectra.md)."""
         from .errors import RockdesignError
         from .project import load_project
         from .spectra.axes import parse_axis

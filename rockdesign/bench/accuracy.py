@@ -18,7 +18,7 @@ from .problems import G, Problem
 from .reference import engine_history_at
 
 ACCURACY_CASE = ("thesis Table 3.4 B1 (2H = 3 m, tan α = 0.1, λ = 1/3) under the antisymmetric Ricker pulse "
-                 "(a_p = 0.38 g, T_p = 0.95 s, t_m = 1.5 T_p) sampled at T_p/200, linearized equations (Eq 3.15, docs/model.md §4), "
+                 "(a_p = 0.38 g, T_p = 0.95 s, t_m = 1.5 T_p) sampled at T_p/200, linearized equations (Eq 3.15), "
                  "10 s")
 
 

@@ -294,7 +294,8 @@ class RestitutionRobustness(Criterion):
             holds = upper <= limit
             worst = max(worst, upper / limit if limit > 0 else math.inf)
             perturbations.append((label, holds))
-            parts.append(f"{label}: {k} overturn" + (f" ({', '.join(run['records'])} change)" if run["records"] else ""))
+            changed = f" ({', '.join(run['records'])} change)" if run["records"] else ""
+            parts.append(f"{label}: {k} overturn{changed}")
         passed = all(h for _, h in perturbations)
         fails = [lab for lab, h in perturbations if not h]
         reason = ("P(overturn) criterion holds with c_r ± " + f"{100 * var:g} %" if passed
