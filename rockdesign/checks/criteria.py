@@ -421,6 +421,8 @@ def decide(items: list[CheckItem], skipped=()) -> Verdict:
         robust = not flips
         if flips:
             reason += "; not robust: passes with " + " and ".join(flips)
+        else:
+            reason += "".join(f"; also {i.verdict_reason}" for i in robustness if not i.passed)
     else:
         word = "PASS"
         fragile = [i.verdict_reason for i in robustness if not i.passed]

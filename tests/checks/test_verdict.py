@@ -92,6 +92,14 @@ def test_a_fragile_pass_is_flagged_not_robust():
     assert rob.perturbations == (("c_r − 2 %", False), ("c_r + 2 %", True))
 
 
+def test_a_fail_also_names_the_perturbations_that_fail():
+    outcomes = suite()
+    outcomes[7].margin = Margin(0.9172, [(0.9172, 1.58), (1.9, None)], 8.0, 30)
+    _, v = run(outcomes, sensitivity(44, minus=1, plus=2))
+    assert v.verdict == "FAIL" and v.robust
+    assert v.reason == "FAIL: overturning at 0.92× design (r7); also fails with c_r − 2 % and c_r + 2 %"
+
+
 def test_a_fail_that_a_perturbation_would_pass_is_not_robust():
     outcomes = suite()
     outcomes[0] = outcome(0, overturned=True, margin=Margin(1.0, [(1.0, None)], 8.0, 10))
@@ -179,6 +187,7 @@ def test_example_verdict_box_says_what_the_run_found(tmp_path):
     assert data["verdict"] == "FAIL" and data["verdict_robust"] is True     # FAIL with c_r ± 2 % too
     assert "overturning at 0.92× design (p695-ff/11a)" in data["verdict_reason"]
     assert "overturning at 0.92× design" in " ".join(res.output.split())
+    assert "also fails with c_r − 2 % and c_r + 2 %" in data["verdict_reason"]     # 19b, 11a flip
     assert data["excitation"]["design_pga"] == pytest.approx(0.2 * 9.81)
     assert "0.2 g" in data["excitation"]["intensity_analysed"]
     html = (out / "report.html").read_text(encoding="utf-8")
