@@ -138,6 +138,10 @@ def register(app: typer.Typer, handle_errors) -> None:
                                                   "workprecision.md and ../benchmarks/README.md."),
               verbose: bool = typer.Option(False, "--verbose", "-v", help="Print one line per measured point.")):
         """Work-precision charts (error vs wall time) and the solver stability study."""
+        from .cli_inputs import output_folder
+        output_folder(out, "--out")
+        if docs is not None:
+            output_folder(docs, "--docs")
         err = Console(stderr=True, highlight=False, soft_wrap=True)
         progress = (lambda line: err.print(line, markup=False)) if verbose else None
         study = run_bench(out, quick=quick, only=only, stability=not no_stability, progress=progress)

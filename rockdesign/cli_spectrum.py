@@ -71,7 +71,7 @@ def register(app: typer.Typer, handle_errors) -> None:
         stop_at_capacity: bool = typer.Option(False, "--stop-at-capacity", help="Static criterion: stop each "
                                               "analysis when θ reaches θc (verdict final; θ_max shown as θc)."),
         polyakov: bool = typer.Option(True, "--polyakov/--no-polyakov", help="Overlay Polyakov's overturning "
-                                      "line (SD_max of the pulse = 2B)."),
+                                      "line (SD_max of the pulse = u_B(θc))."),
         equivalent_at: Optional[List[float]] = typer.Option(None, "--equivalent-at", help="Ordinate(s) y for "
                                                             "the equivalent size of Eq 3.65 (repeatable)."),
         figures: bool = typer.Option(True, "--figures/--no-figures", help="Write PNG and SVG figures."),

@@ -137,6 +137,16 @@ def test_records_and_quantities_bad_options(args, key, found):
     assert_one_line_error(invoke(*args), f"key '{key}'", found)
 
 
+@pytest.mark.parametrize("args", [["bench", "--quick", "-o", "{file}"], ["spectrum", PIER, "--pulse", "ricker-anti",
+                                                                        "-o", "{file}"],
+                                  ["bench", "--quick", "-o", "{file}/sub"]])
+def test_output_folder_that_is_a_file(tmp_path, args):
+    target = write(tmp_path, "x", "taken.txt")
+    r = invoke(*[a.format(file=target) for a in args])
+    assert_one_line_error(r, str(target))
+    assert target.read_text() == "x"
+
+
 def test_synth_into_an_existing_file(tmp_path):
     target = write(tmp_path, "x", "taken.txt")
     assert_one_line_error(invoke("records", "synth", "--seed", "p695-ff/11a", "-n", "2", "-o", target),
