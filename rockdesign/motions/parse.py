@@ -110,6 +110,10 @@ def parse_motion(text: str, scales: SystemScales, *, records_dir: str | None = N
             raise MotionError("pulse period must be positive", key="--motion", expected="Tp > 0", found=f"'{text}'")
         t_m = _quantity(text, "tm", f["tm"], "time", scales, {}) if "tm" in f else None
         t_0 = _quantity(text, "t0", f["t0"], "time", scales, {}) if "t0" in f else 0.0
+        for name, value in (("tm", t_m), ("t0", t_0)):
+            if value is not None and not (math.isfinite(value) and value >= 0.0):
+                raise MotionError(f"'{name}' must be a time ≥ 0 s (the analysis starts at t = 0)", key="--motion",
+                                  expected=f"{name}=… ≥ 0 s", found=f"'{text}'")
         if "tm" in f and kind not in ("ricker-sym", "ricker-anti"):
             raise MotionError("'tm' (wavelet centre) applies to Ricker wavelets", key="--motion",
                               expected="t0=… for sine and cycloidal pulses", found=f"'{text}'")
@@ -129,6 +133,10 @@ def parse_motion(text: str, scales: SystemScales, *, records_dir: str | None = N
         thd0 = 0.0
         if "thetadot0" in f:
             thd0 = _quantity(text, "thetadot0", f["thetadot0"], "frequency", scales, {})
+        if not (math.isfinite(th0) and abs(th0) < math.pi / 2 and math.isfinite(thd0)):
+            raise MotionError("initial tilt out of range", key="--motion",
+                              expected="finite |theta0| < π/2 (the body lies flat at π/2) and finite thetadot0",
+                              found=f"'{text}'")
         return MotionSpec(no_motion(), th0, thd0, text)
     if kind in ("record", "file"):
         parts = body.split(",")
@@ -141,8 +149,9 @@ def parse_motion(text: str, scales: SystemScales, *, records_dir: str | None = N
             except ValueError:
                 raise MotionError("scale must be a number", key="--motion", expected="scale=1.5",
                                   found=f"'{text}'") from None
-            if scale <= 0:
-                raise MotionError("scale must be positive", key="--motion", expected="scale > 0", found=f"'{text}'")
+            if not (math.isfinite(scale) and scale > 0):
+                raise MotionError("scale must be positive", key="--motion", expected="a finite scale > 0",
+                                  found=f"'{text}'")
         try:
             if kind == "record":
                 from .library import load_record

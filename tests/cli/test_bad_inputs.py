@@ -80,6 +80,14 @@ def test_simulate_bad_options(extra, key, found):
     assert_one_line_error(r, f"key '{key}'", found)
 
 
+@pytest.mark.parametrize("motion", ["sine:ap=0.3g,Tp=1s,t0=-5s", "ricker-sym:ap=0.3g,Tp=1s,tm=-1s",
+                                    "free:theta0=5rad", "free:theta0=nan", "record:p695-ff/11a,scale=nan",
+                                    "record:p695-ff/11a,scale=inf", "ricker-anti:ap=nan,Tp=1s",
+                                    "ricker-anti:ap=0.3g,Tp=-1s", "ricker-anti:ap=0.3g,Tp=inf"])
+def test_simulate_bad_motions(motion):
+    assert_one_line_error(invoke("simulate", PIER, "--motion", motion), "key '--motion'")
+
+
 def test_simulate_csv_into_a_directory(tmp_path):
     assert_one_line_error(invoke("simulate", PIER, "--motion", PULSE, "--csv", tmp_path), "key '--csv'",
                           "a directory")
