@@ -291,11 +291,14 @@ class RestitutionRobustness(Criterion):
             label = f"c_r {'−' if f < 1 else '+'} {100 * abs(1 - f):g} %"
             k = run["n_overturned"]
             upper = probability_bound(k, run.get("n_records", n))
-            holds = upper <= limit
-            worst = max(worst, upper / limit if limit > 0 else math.inf)
+            failed = run.get("failed") or []
+            holds = upper <= limit and not failed       # a failed perturbed analysis proves nothing
+            worst = max(worst, upper / limit if limit > 0 else math.inf,
+                        1.0 + len(failed) / max(n, 1) if failed else 0.0)
             perturbations.append((label, holds))
             changed = f" ({', '.join(run['records'])} change)" if run["records"] else ""
-            parts.append(f"{label}: {k} overturn{changed}")
+            parts.append(f"{label}: {k} overturn{changed}" + (f", analyses failed: {', '.join(failed)}"
+                                                                 if failed else ""))
         passed = all(h for _, h in perturbations)
         fails = [lab for lab, h in perturbations if not h]
         reason = ("P(overturn) criterion holds with c_r ± " + f"{100 * var:g} %" if passed

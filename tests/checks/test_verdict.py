@@ -163,6 +163,15 @@ def test_adding_a_criterion_is_one_class():
     assert items[-1].as_json()["governs_verdict"] is True
 
 
+def test_a_failed_perturbed_analysis_is_not_robust():
+    sens = sensitivity(44)
+    sens["runs"]["1.02"]["failed"] = ["r9"]
+    items, v = run(suite(), sens)
+    assert v.verdict == "PASS" and not v.robust and "fails with c_r + 2 %" in v.reason
+    rob = next(i for i in items if i.role == ROBUSTNESS)
+    assert "analyses failed: r9" in rob.detail and rob.utilisation > 1.0
+
+
 def test_polyakov_rule_1_item():
     q = {"omega_s_over_p": SimpleNamespace(value=7.5)}
     items, v = run(suite(), q=q)
