@@ -19,6 +19,9 @@ from ..errors import ProjectError
 from ..motions.config import default_excitation, parse_excitation, resolve_motions
 from ..motions.spectra import sd_max
 from ..project import Project
+from .collapse_margin import collapse_margin, collapse_margin_criterion
+from .ensemble import ensemble_summary, record_fields, run_ensembles, verdict_basis
+from .fragility import check_fragility
 from .margins import SCAN_AFTER_FIRST, SCAN_RATIO, Margin, overturning_margins
 from .polyakov import CLASS_MEANING, CLASSES, PolyakovRule, classify
 from .runner import RunSummary, run_jobs
@@ -46,6 +49,7 @@ class RecordOutcome:
     klass: str
     margin: Margin | None
     sensitivity_flip: bool = False
+    ensemble: dict = field(default_factory=lambda: record_fields(None, 0))
 
     def as_json(self) -> dict:
         r = self.run
@@ -79,6 +83,7 @@ class RecordOutcome:
             "polyakov_scale": self.polyakov_scale,
             "verdict_flips_with_restitution": self.sensitivity_flip,
             "status": r.status,
+            **self.ensemble,
         }
 
 
@@ -101,6 +106,9 @@ class CheckResult:
     histories: dict = field(default_factory=dict)
     sensitivity: dict = field(default_factory=dict)
     settings: dict = field(default_factory=dict)
+    fragility: dict | None = None          # SPEC §11 (checks/fragility.py)
+    collapse_margin: dict | None = None    # checks/collapse_margin.py
+    ensemble: dict | None = None           # checks/ensemble.py
 
     def as_json(self) -> dict:
         p = self.project
@@ -130,6 +138,7 @@ class CheckResult:
             "verdict": self.verdict,
             "checks": self.checks,
             "settings": self.settings,
+            "fragility": self.fragility, "collapse_margin": self.collapse_margin, "ensemble": self.ensemble,
         }
 
 
@@ -221,15 +230,26 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     sensitivity = {"variation": a.restitution_variation, "runs": sens,
                    "verdict_flips": sum(flips), "note": "c_r ≤ 1 (capped)"}
 
+    ens = None
+    if a.ensemble_size:
+        ens = run_ensembles(system, chosen, motions, runs, size=a.ensemble_size, seed=a.seed,
+                            progress=stage(f"perturbation ensembles ({a.ensemble_size} runs per record)",
+                                           a.ensemble_size * n), **run_kw)
     outcomes = []
     for i, (rec, (sd, t_sd), run) in enumerate(zip(resolved.records, sds, runs)):
         ratio = rule.utilisation(sd)
         outcomes.append(RecordOutcome(rec.id, rec.suite, rec.meta, rec.scale, rec.motion, rec.motion.pga, sd, t_sd,
                                       ratio, rule.predicted_scale(sd), run,
                                       classify(ratio, run.u_B_max_over_capacity, run.overturned), margin_list[i],
-                                      flips[i]))
+                                      flips[i], record_fields(ens, i)))
     stats = _statistics(outcomes, a, margins)
+    ens_json = ens and ensemble_summary([o.id for o in outcomes], ens, size=a.ensemble_size, seed=a.seed,
+                                        rtol=a.rtol, atol=a.atol, nominal_overturned=stats["n_overturned"])
+    stats["p_overturn_ensemble"] = ens_json["p_overturn"] if ens_json else None
+    fragility = check_fragility(outcomes, a, empirical=(stats["n_overturned"], n), stripe_ratio=SCAN_RATIO)
+    margin_fema = collapse_margin(fragility, dict(a.quality))
     checks, verdict = _checks(outcomes, q, a, stats, sensitivity)
+    checks += [c for c in [collapse_margin_criterion(margin_fema)] if c]
     histories = {}
     from ..dynamics.simulate import simulate
     governing = sorted(outcomes, key=lambda o: -min(o.run.theta_max_over_theta_c, 2.0))[:GOVERNING_HISTORIES]
@@ -258,7 +278,7 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     settings["engine_accuracy"] = {k: v for k, v in acc.items() if k != "seconds"}
     return CheckResult(project, q, rule, selection, outcomes, resolved.missing, resolved.scale_description,
                        resolved.default_used or spec.default_used, resolved.suites, stats, checks, verdict, histories,
-                       sensitivity, settings)
+                       sensitivity, settings, fragility, margin_fema, ens_json)
 
 
 def _statistics(outcomes: list[RecordOutcome], a, with_margins: bool) -> dict:
@@ -328,7 +348,7 @@ def _checks(outcomes: list[RecordOutcome], q: dict, a, stats: dict, sensitivity:
          "utilisation": upper / limit if limit > 0 else math.inf,
          "passed": upper <= limit, "governs_verdict": True,
          "detail": f"{n_ot} of {n} records overturn; P = {stats['p_overturn']:.3g}, 90 % interval "
-                   f"[{stats['p_overturn_ci90'][0]:.3g}, {upper:.3g}]"},
+                   f"[{stats['p_overturn_ci90'][0]:.3g}, {upper:.3g}]; " + verdict_basis(stats)},
         {"name": "RHA: largest θ_max/θc of the suite",
          "utilisation": max(o.run.theta_max_over_theta_c for o in outcomes),
          "passed": n_ot == 0, "governs_verdict": False,
