@@ -110,8 +110,9 @@ def censored_normal_mle(y, censored, *, tol: float = 1e-11, max_iter: int = 5000
         if not active.any():
             break
         m, s = mu[active, None], sigma[active, None]
-        a = (y[active] - m) / s
-        h = np.exp(-0.5 * a * a - 0.5 * math.log(2 * math.pi) - log_ndtr(-a))
+        with np.errstate(divide="ignore", invalid="ignore"):    # σ = 0: a degenerate resample (dropped)
+            a = (y[active] - m) / s
+            h = np.exp(-0.5 * a * a - 0.5 * math.log(2 * math.pi) - log_ndtr(-a))
         ca = c[active]
         e1 = np.where(ca, m + s * h, 0.0).sum(axis=1)
         e2 = np.where(ca, m * m + s * s + s * h * (m + y[active]), 0.0).sum(axis=1)
@@ -120,7 +121,7 @@ def censored_normal_mle(y, censored, *, tol: float = 1e-11, max_iter: int = 5000
         change = np.abs(mu_new - mu[active]) + np.abs(sigma_new - sigma[active])
         mu[active], sigma[active] = mu_new, sigma_new
         idx = np.flatnonzero(active)
-        active[idx[change < tol * np.maximum(1.0, sigma_new)]] = False
+        active[idx[~(change >= tol * np.maximum(1.0, sigma_new))]] = False     # converged or NaN (σ = 0)
     return mu, sigma
 
 
