@@ -180,3 +180,26 @@ def test_zhang_makris_suite_gives_the_known_capacities(zhang_makris_suite):
         assert hi2 is None
         assert abs(math.log(hi1 * pga / (ZM_SAFE_AGAIN * ALPHA * G))) <= math.log(SCAN_RATIO) + 1e-9
         assert abs(math.log(lo2 * pga / (ZM_OVERTURN_AGAIN * ALPHA * G))) <= math.log(SCAN_RATIO) + 1e-9
+
+
+@pytest.mark.parametrize("im", ["pga", "sdmax", "sa"])
+def test_check_fragility_in_each_intensity_measure(im):
+    from types import SimpleNamespace
+
+    from rockdesign.checks.margins import Margin
+    from rockdesign.motions.spectra import motion_spectrum
+    motions = [pulse_motion("sine", a, 0.6) for a in (1.0, 1.5, 2.0, 2.5)]
+    scales = [2.0, 1.6, None, 1.1]
+    outcomes = [SimpleNamespace(id=f"r{i}", pga=m.pga, sd_max=0.01 * (i + 1), motion=m,
+                                margin=Margin(s, [] if s is None else [(s, None)], 8.0))
+                for i, (m, s) in enumerate(zip(motions, scales))]
+    analysis = SimpleNamespace(fragility_im=im, fragility_period=0.5 if im == "sa" else None, seed=1)
+    out = F.check_fragility(outcomes, analysis, empirical=(0, 4), stripe_ratio=SCAN_RATIO)
+    ims = {"pga": [m.pga for m in motions], "sdmax": [0.01, 0.02, 0.03, 0.04],
+           "sa": [motion_spectrum(m, np.array([0.5]), 0.05)[2][0] for m in motions]}[im]
+    assert out["unit"] == ("m" if im == "sdmax" else "m/s^2")
+    assert out["design_intensity"] == pytest.approx(np.median(ims))
+    for c, s, x in zip(out["capacities"], scales, ims):
+        assert c["capacity"] == pytest.approx((8.0 if s is None else s) * x) and c["censored"] == (s is None)
+    if im == "sa":       # a 0.6 s sine pulse amplifies a 0.5 s, 5 %-damped oscillator
+        assert all(x > 1.5 * m.pga for x, m in zip(ims, motions))
