@@ -38,6 +38,8 @@ SA_DAMPING = 0.05
 """Damping ratio of the Sa(T) intensity measure (the usual 5 %)."""
 BOOTSTRAP_SAMPLES = 1000
 CONFIDENCE = 0.90
+BETA_BOUNDS = (0.01, 3.0)
+"""Range of β searched by the stripe fit (dispersions outside it are not a lognormal fragility)."""
 
 
 @dataclass(frozen=True)
@@ -159,12 +161,14 @@ def fit_stripes(levels, n, z, start: LognormalFit | None = None) -> LognormalFit
         u = (lx - p[0]) / math.exp(p[1])
         return -np.sum(z * log_ndtr(u) + (n - z) * log_ndtr(-u))
 
-    if start is None:
-        frac = z / n
-        mid = lx[np.argmin(np.abs(frac - 0.5))]
-        start = LognormalFit(math.exp(mid), 0.4, "start")
-    res = optimize.minimize(nll, [math.log(start.median), math.log(max(start.beta, 0.05))], method="Nelder-Mead",
-                            options={"xatol": 1e-9, "fatol": 1e-12, "maxiter": 4000})
+    # non-monotonic stripe data (safe-again bands) make the likelihood multimodal with a ridge towards
+    # θ, β → ∞: bounded quasi-Newton from several starts, the best maximum kept
+    frac = z / n
+    theta_half = float(np.exp(lx[np.argmin(np.abs(frac - 0.5))]))
+    starts = [(theta_half, 0.3), (theta_half, 0.8)] + ([(start.median, max(start.beta, 0.05))] if start else [])
+    bounds = [(lx.min() - 3.0, lx.max() + 3.0), (math.log(BETA_BOUNDS[0]), math.log(BETA_BOUNDS[1]))]
+    res = min((optimize.minimize(nll, [math.log(t), math.log(b)], method="L-BFGS-B", bounds=bounds,
+                                 options={"ftol": 1e-14, "gtol": 1e-10}) for t, b in starts), key=lambda r: r.fun)
     return LognormalFit(float(math.exp(res.x[0])), float(math.exp(res.x[1])), "stripes-binomial-mle")
 
 

@@ -171,6 +171,17 @@ def test_zhang_makris_suite_gives_the_known_capacities(zhang_makris_suite):
         assert z == (n if expected else 0), (a, n, z)
         checked += 1
     assert checked >= 6
+    # the stripe fit of these non-lognormal outcomes (zeros above a band of ones) is still the maximum of
+    # the binomial likelihood: no grid point (θ over the stripes, β in 0.01–3) does better
+    lv, n_j, z_j = (np.array(st[k], dtype=float) for k in ("levels", "n", "overturned"))
+    lv, z_j, n_j = lv[n_j > 0], z_j[n_j > 0], n_j[n_j > 0]
+
+    def loglik(theta, beta):
+        p = stats.norm.cdf(np.log(lv / theta) / beta)
+        return stats.binom.logpmf(z_j, n_j, p).sum()
+    grid = max(loglik(t, b) for t in np.geomspace(lv.min(), lv.max(), 80) for b in np.geomspace(0.01, 3.0, 80))
+    assert math.isfinite(st["median"]) and F.BETA_BOUNDS[0] <= st["beta"] <= F.BETA_BOUNDS[1]
+    assert loglik(st["median"], st["beta"]) >= grid - 1e-6
     # the safe-again band (narrower than the scan ratio, so not every record's scan sees it) is found
     # by at least one record, with edges at the scan resolution
     seen = [(m, pga) for m, pga in zip(margins, pgas) if len(m.intervals) == 2]
