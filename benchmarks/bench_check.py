@@ -27,12 +27,21 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 
 
+CPU_SECONDS = {}
+"""CPU seconds (user + system) of the last timed check: on a machine shared with other jobs the wall time
+grows with the load, the CPU time much less; CPU/cores is the wall time of an idle machine at best."""
+
+
 def timed_check(project: str, out_dir: str, cache_dir: str) -> tuple[float, int]:
+    import resource
     env = dict(os.environ, NUMBA_CACHE_DIR=cache_dir)
     exe = str(Path(sys.executable).with_name("rockdesign"))
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
     proc = subprocess.run([exe, "check", project, "-o", out_dir], env=env, cwd=ROOT, capture_output=True, text=True)
     dt = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    CPU_SECONDS["last"] = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
     if proc.returncode not in (0, 1):
         raise SystemExit(f"check failed ({proc.returncode}):\n{proc.stderr[-3000:]}")
     return dt, proc.returncode
@@ -69,6 +78,17 @@ def suite_ratio(project: str, n_records: int = 3) -> dict:
         rows.append({"record": m.name, "ours_s": t_ours, "scipy_s": t_ref, "ratio": t_ref / t_ours,
                      "theta_max_ours": r.theta_max, "theta_max_scipy": ref.theta_max})
     return {"records": rows, "median_ratio": sorted(x["ratio"] for x in rows)[len(rows) // 2]}
+
+
+def without_ensembles(text: str) -> str:
+    """The project text with ``[analysis] ensemble_size = 0``."""
+    lines = text.splitlines()
+    if "[analysis]" in (line.strip() for line in lines):
+        k = next(i for i, line in enumerate(lines) if line.strip() == "[analysis]")
+        lines.insert(k + 1, "ensemble_size = 0")
+    else:
+        lines += ["", "[analysis]", "ensemble_size = 0"]
+    return "\n".join(lines) + "\n"
 
 
 def stage_times(project: str) -> dict:
@@ -117,7 +137,16 @@ def main():
         else:
             timed_check(args.project, str(Path(work) / "fill"), cache)
         warm, code = timed_check(args.project, str(Path(work) / "warm"), cache)
-        print(f"warm run: {warm:.1f} s  (budget 30 s with fragility and ensembles), verdict exit code {code}")
+        warm_cpu = CPU_SECONDS["last"]
+        print(f"warm run: {warm:.1f} s  (budget 30 s with fragility and ensembles), verdict exit code {code}; "
+              f"CPU {warm_cpu:.1f} s (÷ {os.cpu_count()} cores = {warm_cpu / os.cpu_count():.1f} s; load average "
+              f"{os.getloadavg()[0]:.1f})")
+        # the same warm check without the perturbation ensembles, under the same load
+        plain = Path(work) / "no_ensembles.toml"
+        plain.write_text(without_ensembles((ROOT / args.project).read_text()))
+        warm_plain, _ = timed_check(str(plain), str(Path(work) / "plain"), cache)
+        plain_cpu = CPU_SECONDS["last"]
+        print(f"warm run without ensembles: {warm_plain:.1f} s, CPU {plain_cpu:.1f} s")
     stages = stage_times(args.project)
     for name, sec in stages["stages_s"].items():
         print(f"  {sec:6.1f} s  {name}")
@@ -127,6 +156,8 @@ def main():
     print(f"suite RHA, ours vs scipy DOP853 (same equations/events, rtol 1e-10): median ratio "
           f"{ratio['median_ratio']:.0f}x")
     result = {"benchmark": "check", "project": args.project, "first_run_s": cold, "warm_run_s": warm,
+              "warm_run_cpu_s": warm_cpu, "warm_run_without_ensembles_s": warm_plain,
+              "warm_run_without_ensembles_cpu_s": plain_cpu,
               "budget_first_s": 90, "budget_warm_s": 30, "stages": stages, "suite_rha_vs_scipy": ratio,
               "load_average": os.getloadavg(),
               "date": datetime.now(timezone.utc).isoformat(timespec="seconds"),
