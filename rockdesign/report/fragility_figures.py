@@ -53,7 +53,8 @@ def fragility_figure(result):
                 label="fraction overturning at a stripe (raw outcomes)")
         if st["median"] is not None:
             ax.plot(grid, norm.cdf(np.log(grid / st["median"]) / st["beta"]), color="C1", lw=1.2, ls="--",
-                    label=f"lognormal, stripe binomial MLE: θ = {fmt(st['median'], f['unit'])}, β = {fmt(st['beta'])}")
+                    label=f"lognormal, stripe binomial MLE: θ = {fmt(st['median'], f['unit'])}, "
+                          f"β = {fmt(st['beta'])}")
         ax.axvline(design, color="k", lw=1.0, ls=":")
         p_fit = f["p_overturn_design"]
         text = f"design {fmt(design, f['unit'])}"
