@@ -59,6 +59,12 @@ class AnalysisSettings:
     rigid_superstructure_ratio: float = 10.0
     scan_rtol: float = 1e-6
     overturn_probability_limit: float = 0.10
+    # fragility, collapse margin and perturbation ensembles (SPEC §11; parsed by _parse_fragility)
+    fragility_im: str = "pga"
+    fragility_period: float | None = None
+    quality: tuple[tuple[str, str], ...] = (("design_requirements", "B"), ("test_data", "B"), ("modeling", "B"))
+    ensemble_size: int = 8
+    seed: int = 20090601
 
 
 @dataclass(frozen=True)
@@ -406,6 +412,7 @@ def _parse_analysis(data: dict, file: str) -> AnalysisSettings:
         overturn_probability_limit=t.quantity("overturn_probability_limit", "dimensionless", default=0.10)
         if isinstance(t.data.get("overturn_probability_limit"), str)
         else t.number("overturn_probability_limit", default=0.10, low=0.0, high=1.0),
+        **_parse_fragility(t),
     )
 
 
@@ -415,6 +422,27 @@ def _free_vibration(t: _Table) -> float:
         raise t.error("free_vibration", "out of range", expected="a time ≥ 0 s analysed after the motion ends "
                       "(e.g. \"10 s\")", found=t.data["free_vibration"])
     return value
+
+
+ANALYSIS_KEYS += ("fragility_im", "fragility_period", "quality", "ensemble_size", "seed")
+QUALITY_RATINGS = ("A", "B", "C", "D")
+
+
+def _parse_fragility(t: _Table) -> dict:
+    """The fragility, collapse-margin and ensemble keys of ``[analysis]`` (SPEC §11, docs/project-file.md)."""
+    im = t.choice("fragility_im", ("pga", "sa", "sdmax"), "pga")
+    period = t.quantity("fragility_period", "time")
+    if (im == "sa") != (period is not None):
+        raise t.error("fragility_period", "needed with fragility_im = \"sa\" and only then",
+                      expected="fragility_period = \"1.0 s\" together with fragility_im = \"sa\"",
+                      found=f"fragility_im = \"{im}\" and " + ("no fragility_period" if period is None else
+                                                            f"fragility_period = {t.data['fragility_period']!r}"))
+    raw = t.data.get("quality", {})
+    q = _Table(raw, "analysis.quality", ("design_requirements", "test_data", "modeling"), t.file, t.gravity)
+    quality = tuple((k, q.choice(k, QUALITY_RATINGS, "B")) for k in q.allowed)
+    return {"fragility_im": im, "fragility_period": period, "quality": quality,
+            "ensemble_size": t.number("ensemble_size", default=8, low=0, low_open=False, high=1000, integer=True),
+            "seed": t.number("seed", default=20090601, low=0, low_open=False, integer=True)}
 
 
 def _check_model_choice(analysis: AnalysisSettings, system: RockingSystem, file: str) -> None:

@@ -25,6 +25,9 @@ from ..motions.config import default_excitation, parse_excitation, resolve_motio
 from ..motions.spectra import sd_max
 from ..project import Project
 from .criteria import CheckContext, analysis_failed, decide, evaluate_criteria, minimum_records
+from .collapse_margin import collapse_margin, collapse_margin_criterion
+from .ensemble import ensemble_summary, record_fields, run_ensembles, verdict_basis
+from .fragility import check_fragility
 from .margins import SCAN_AFTER_FIRST, SCAN_RATIO, Margin, overturning_margins
 from .polyakov import CLASS_MEANING, CLASSES, PolyakovRule, classify
 from .runner import RunSummary, run_jobs
@@ -52,6 +55,7 @@ class RecordOutcome:
     klass: str
     margin: Margin | None
     sensitivity_flip: bool = False
+    ensemble: dict = field(default_factory=lambda: record_fields(None, 0))
 
     def as_json(self) -> dict:
         r = self.run
@@ -86,6 +90,7 @@ class RecordOutcome:
             "verdict_flips_with_restitution": self.sensitivity_flip,
             "status": r.status,
             "analysis_failed": analysis_failed(r.status),
+            **self.ensemble,
         }
 
 
@@ -116,6 +121,9 @@ class CheckResult:
     def failed_records(self) -> list[RecordOutcome]:
         """Records whose analysis failed (listed loudly; never counted as safe)."""
         return [o for o in self.records if analysis_failed(o.run.status)]
+    fragility: dict | None = None          # checks/fragility.py (docs/fragility.md)
+    collapse_margin: dict | None = None    # checks/collapse_margin.py
+    ensemble: dict | None = None           # checks/ensemble.py
 
     def as_json(self) -> dict:
         p = self.project
@@ -149,6 +157,7 @@ class CheckResult:
             "failed_records": [{"id": o.id, "status": o.run.status} for o in self.failed_records],
             "checks": self.checks,
             "settings": self.settings,
+            "fragility": self.fragility, "collapse_margin": self.collapse_margin, "ensemble": self.ensemble,
         }
 
 
@@ -246,18 +255,29 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     sensitivity = {"variation": a.restitution_variation, "runs": sens,
                    "verdict_flips": sum(flips), "note": "c_r ≤ 1 (capped)"}
 
+    ens = None
+    if a.ensemble_size:
+        ens = run_ensembles(system, chosen, motions, runs, size=a.ensemble_size, seed=a.seed,
+                            progress=stage(f"perturbation ensembles ({a.ensemble_size} runs per record)",
+                                           a.ensemble_size * n), **run_kw)
     outcomes = []
     for i, (rec, (sd, t_sd), run) in enumerate(zip(resolved.records, sds, runs)):
         ratio = rule.utilisation(sd)
         outcomes.append(RecordOutcome(rec.id, rec.suite, rec.meta, rec.scale, rec.motion, rec.motion.pga, sd, t_sd,
                                       ratio, rule.predicted_scale(sd), run,
                                       classify(ratio, run.u_B_max_over_capacity, run.overturned), margin_list[i],
-                                      flips[i]))
+                                      flips[i], record_fields(ens, i)))
     valid = [o for o in outcomes if not analysis_failed(o.run.status)]
     stats = _statistics(valid, a, margins)
     stats["n_failed"] = n - len(valid)
     stats["min_records_for_bound"] = minimum_records(a.overturn_probability_limit)
-    items, skipped = evaluate_criteria(CheckContext(outcomes, a, q, sensitivity, margins))
+    ens_json = ens and ensemble_summary([o.id for o in outcomes], ens, size=a.ensemble_size, seed=a.seed,
+                                        rtol=a.rtol, atol=a.atol, nominal_overturned=stats["n_overturned"])
+    stats["p_overturn_ensemble"] = ens_json["p_overturn"] if ens_json else None
+    fragility = check_fragility(valid, a, empirical=(stats["n_overturned"], len(valid)), stripe_ratio=SCAN_RATIO)
+    margin_fema = collapse_margin(fragility, dict(a.quality))
+    extra = {"ensemble": ens, "collapse_margin": margin_fema, "verdict_basis": verdict_basis(stats)}
+    items, skipped = evaluate_criteria(CheckContext(outcomes, a, q, sensitivity, margins, extra))
     decision = decide(items, skipped)
     checks = [i.as_json() for i in items]
     checks.sort(key=lambda c: (not c["governs_verdict"], -c["utilisation"]))
@@ -292,7 +312,8 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
                  "record_warnings": record_warnings}
     return CheckResult(project, q, rule, selection, outcomes, resolved.missing, resolved.scale_description,
                        resolved.default_used or spec.default_used, resolved.suites, stats, checks, verdict, histories,
-                       sensitivity, settings, decision.reason, decision.robust, intensity)
+                       sensitivity, settings, decision.reason, decision.robust, intensity, fragility, margin_fema,
+                       ens_json)
 
 
 def _statistics(outcomes: list[RecordOutcome], a, with_margins: bool) -> dict:

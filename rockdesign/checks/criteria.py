@@ -200,6 +200,8 @@ class OverturningProbability(Criterion):
         need = f"needs ≥ {n_min} records" if n_min else "no suite can show it"
         detail = (f"{k} of {n} records overturn at the design level; one-sided 95 % upper bound {upper:.3g} "
                   f"(= upper end of the two-sided 90 % interval); {need}")
+        if ctx.extra.get("verdict_basis"):
+            detail += "; " + ctx.extra["verdict_basis"]
         if passed:
             reason = f"{k} of {n} records overturn at the design level (P ≤ {upper:.3g} at 95 % confidence)"
         else:
@@ -366,8 +368,74 @@ class LargestRotation(Criterion):
         return self.item(min(worst, 1e300), passed, detail, f"largest θ_max/θc = {worst:.3g}")
 
 
+class EnsembleRobustness(Criterion):
+    """The design-level probability criterion still holds in every perturbation-ensemble run of the suite.
+
+    Each ensemble member re-analyses the whole suite with the amplitude × (1 ± 0.1 %) per record, c_r ×
+    (1 ± 2 %) and the tolerances one decade tighter (checks/ensemble.py): perturbations well inside the
+    input's own accuracy, so a verdict that changes under them is not a prediction.
+    """
+
+    key = "ensemble_robustness"
+    role = ROBUSTNESS
+    source = ("thesis Ch. 7 (rocking is chaotic; the statistics, not single histories, are predictable); "
+              "docs/fragility.md (perturbation ensembles)")
+
+    def applies(self, ctx):
+        ens = ctx.extra.get("ensemble")
+        return bool(ens) and len(ens["overturned"]) > 0
+
+    def evaluate(self, ctx):
+        ens = ctx.extra["ensemble"]
+        limit = ctx.analysis.overturn_probability_limit
+        ok = [not analysis_failed(o.run.status) for o in ctx.outcomes]
+        n = sum(ok)
+        perturbations, worst, counts = [], 0.0, []
+        for m, row in enumerate(ens["overturned"]):
+            k = int(sum(bool(x) for x, good in zip(row, ok) if good))
+            upper = probability_bound(k, n)
+            worst = max(worst, upper / limit if limit > 0 else math.inf)
+            counts.append(k)
+            perturbations.append((f"perturbed suite run {m + 1} (c_r × {float(ens['restitution'][m]):.4f})",
+                                  upper <= limit))
+        n_fail = sum(not h for _, h in perturbations)
+        size = len(perturbations)
+        detail = (f"{size} perturbed runs of the whole suite: overturning records per run "
+                  f"{', '.join(str(k) for k in counts)} of {n}; records whose outcome flips: "
+                  f"{int(sum(not r for r, good in zip(ens['robust'], ok) if good))}")
+        reason = (f"P(overturn) criterion holds in all {size} perturbed suite runs" if not n_fail else
+                  f"fails in {n_fail} of {size} perturbed suite runs (amplitude ± 0.1 %, c_r ± 2 %, rtol/10)")
+        return self.item(worst, n_fail == 0, detail, reason,
+                         name="Robustness: P(overturn) criterion in the perturbation ensembles",
+                         perturbations=tuple(perturbations))
+
+
+class CollapseMargin(Criterion):
+    """FEMA P695-style collapse margin adapted to overturning: ACMR ≥ ACMR10% (informative).
+
+    Informative, not governing: the verdict is the exact suite statistic at (and below) the design level;
+    the margin rests on a lognormal fragility and on uncertainty values written for conventional systems.
+    """
+
+    key = "collapse_margin"
+    role = INFORMATIVE
+    name = "Collapse margin (FEMA P695 adaptation): ACMR ≥ ACMR10%"
+    source = "FEMA P695 (2009) Ch. 7, adapted to overturning (docs/fragility.md)"
+
+    def applies(self, ctx):
+        return ctx.extra.get("collapse_margin") is not None
+
+    def evaluate(self, ctx):
+        from .collapse_margin import collapse_margin_criterion
+        m = ctx.extra["collapse_margin"]
+        legacy = collapse_margin_criterion(m)
+        return self.item(legacy["utilisation"], legacy["passed"], legacy["detail"],
+                         f"ACMR = {m['ACMR']:.3g} vs ACMR10% = {m['ACMR10']:.3g}")
+
+
 CRITERIA: list[type[Criterion]] = [AnalysesCompleted, OverturningProbability, IncrementalMargin,
-                                   RestitutionRobustness, PolyakovRule2, PolyakovRule1, LargestRotation]
+                                   RestitutionRobustness, EnsembleRobustness, PolyakovRule2, PolyakovRule1,
+                                   LargestRotation, CollapseMargin]
 """The criteria of ``rockdesign check`` in evaluation order."""
 
 
@@ -400,6 +468,7 @@ def evaluate_criteria(ctx: CheckContext, criteria=None) -> tuple[list[CheckItem]
 NOT_COVERED = {
     "incremental_margin": "intensities below the design level not analysed (--no-margins)",
     "restitution_robustness": "c_r sensitivity not analysed",
+    "ensemble_robustness": "perturbation ensembles not run (ensemble_size = 0)",
 }
 
 

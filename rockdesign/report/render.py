@@ -75,6 +75,9 @@ def render_figures(result) -> dict[str, str]:
         "ecdf": figures.svg(figures.ecdf_figure(result), "ecdf"),
         "margins": figures.svg(figures.margin_figure(result), "margins"),
     }
+    if getattr(result, "fragility", None) and result.fragility.get("capacities"):
+        from .fragility_figures import fragility_figure
+        out["fragility"] = figures.svg(fragility_figure(result), "fragility")
     for k, rid in enumerate(result.histories):
         out[f"history:{rid}"] = figures.svg(figures.history_figure(result, rid), f"history{k}")
     return out

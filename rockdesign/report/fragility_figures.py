@@ -1,0 +1,100 @@
+"""The fragility figure of the calculation report (SPEC §11): capacities, fits, stripes and the
+non-monotonic ("resurrection") overturning bands of every record, in the fragility's intensity measure."""
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker as ticker  # noqa: E402
+import numpy as np  # noqa: E402
+from scipy.stats import norm  # noqa: E402
+
+from .formatting import fmt  # noqa: E402
+from .plots import STYLE  # noqa: E402
+
+UNIT_LABELS = {"m/s^2": "m/s²", "m": "m"}
+
+
+def fragility_figure(result):
+    """Two panels sharing the IM axis (log): (a) P(overturn | IM) — empirical capacities (censored
+    ones as open triangles), the capacity fit, the stripe fractions and their binomial fit, the design
+    level; (b) per record, the intensities at which the record overturns (bands; gaps above the first
+    band are safe again)."""
+    f = result.fragility
+    unit = UNIT_LABELS.get(f["unit"], f["unit"])
+    caps = f["capacities"]
+    order = np.argsort([c["capacity"] for c in caps], kind="stable")
+    x = np.array([caps[i]["capacity"] for i in order])
+    cens = np.array([caps[i]["censored"] for i in order])
+    n = x.size
+    pos = (np.arange(n) + 0.5) / n
+    design = f["design_intensity"]
+    st = f["stripes"]
+    levels = np.array(st["levels"])
+    ims = {o.id: im for o, im in zip(result.records, _intensities(result, f))}
+    lo = min(x.min(), levels.min(), design) / 1.3
+    hi = max(x.max(), levels.max()) * 1.3
+    grid = np.geomspace(lo, hi, 300)
+    with plt.rc_context(STYLE):
+        fig, (ax, bx) = plt.subplots(2, 1, figsize=(6.6, 3.4 + 0.075 * n), sharex=True,
+                                     gridspec_kw={"height_ratios": [3.4, max(1.2, 0.075 * n)]})
+        ax.plot(x[~cens], pos[~cens], "o", color="C0", ms=3.5, label="capacity of a record (first overturning)")
+        if cens.any():
+            ax.plot(x[cens], pos[cens], ">", mfc="none", color="C0", ms=5,
+                    label=f"censored: no overturning up to the scan limit ({int(cens.sum())})")
+        if f["median"] is not None:
+            label = "censored MLE" if f["method"] == "censored-mle" else "method of moments"
+            ax.plot(grid, norm.cdf(np.log(grid / f["median"]) / f["beta"]), color="C0", lw=1.4,
+                    label=f"lognormal, {label}: θ = {fmt(f['median'], f['unit'])}, β = {fmt(f['beta'])}")
+        keep = np.array(st["n"]) > 0
+        frac = np.array(st["overturned"])[keep] / np.array(st["n"])[keep]
+        ax.plot(levels[keep], frac, "s", color="C1", ms=3.5, mfc="none",
+                label="fraction overturning at a stripe (raw outcomes)")
+        if st["median"] is not None:
+            ax.plot(grid, norm.cdf(np.log(grid / st["median"]) / st["beta"]), color="C1", lw=1.2, ls="--",
+                    label=f"lognormal, stripe binomial MLE: θ = {fmt(st['median'], f['unit'])}, "
+                          f"β = {fmt(st['beta'])}")
+        ax.axvline(design, color="k", lw=1.0, ls=":")
+        p_fit = f["p_overturn_design"]
+        text = f"design {fmt(design, f['unit'])}"
+        if p_fit is not None:
+            text += f"\nP(fit) = {fmt(p_fit)}"
+        text += f"\nP(RHA) = {fmt(f['p_overturn_empirical'])}"
+        ax.text(design * 1.03, 0.97, text, fontsize=7, va="top", ha="left")
+        ax.set_xscale("log")
+        ax.set_ylim(-0.02, 1.02)
+        ax.set_ylabel("P(overturn) [-]")
+        ax.legend(fontsize=6.5, loc="lower right")
+        by_id = {o.id: o for o in result.records}
+        for row, i in enumerate(order):
+            o = by_id[caps[i]["id"]]
+            m, im = o.margin, ims[o.id]
+            for lower, upper in m.intervals:
+                top = upper if upper is not None else m.scanned_up_to
+                bx.plot([lower * im, top * im], [row, row], color="C3", lw=2.0, alpha=0.55, solid_capstyle="butt")
+            bx.plot([m.scanned_up_to * im], [row], "|", color="0.5", ms=3)
+        bx.axvline(design, color="k", lw=1.0, ls=":")
+        bx.set_yticks([])
+        bx.set_ylim(-1, n)
+        bx.set_ylabel("records", fontsize=7)
+        bx.set_xlabel(f"{f['im_label']}" + (f" (T = {fmt(f['period'], 's')})" if f.get("period") else "")
+                      + f" [{unit}]")
+        bx.set_xlim(lo, hi)
+        bx.set_title("overturning bands per record (sorted by capacity); gaps above the first band: safe again; "
+                     "grey tick: scan limit", fontsize=7, loc="left")
+        for axis in (ax, bx):
+            axis.xaxis.set_major_formatter(ticker.FuncFormatter(lambda v, _: f"{v:g}"))
+            axis.xaxis.set_minor_formatter(ticker.FuncFormatter(
+                lambda v, _: f"{v:g}" if f"{v:.1e}"[0] in "25" else ""))
+        fig.tight_layout()
+        return fig
+
+
+def _intensities(result, f) -> list[float]:
+    """IM of each design-level record, recovered from capacity/overturn factor (or the censoring)."""
+    out = []
+    for o, c in zip(result.records, f["capacities"]):
+        s = o.margin.overturn_scale if o.margin.overturn_scale is not None else o.margin.scanned_up_to
+        out.append(c["capacity"] / s)
+    return out

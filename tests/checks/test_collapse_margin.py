@@ -1,0 +1,100 @@
+"""The FEMA P695-style collapse margin (SPEC §11, FEMA P695 2009 Ch. 7): β_TOT from the quality
+ratings, acceptable ACMRs against the check values of SPEC §11 (β_TOT 0.525 → ACMR10% 1.96,
+ACMR20% 1.56; 0.600 → 2.16, 1.66), and the [analysis] quality keys."""
+from __future__ import annotations
+
+import math
+
+import pytest
+from scipy.stats import norm
+
+from rockdesign.checks.collapse_margin import (acceptable_acmr, beta_total, collapse_margin,
+                                               collapse_margin_criterion, collapse_probability)
+from rockdesign.errors import ProjectError
+from rockdesign.project import parse_project
+
+B = {"design_requirements": "B", "test_data": "B", "modeling": "B"}
+
+
+@pytest.mark.parametrize("quality,expected", [
+    (("B", "B", "B"), 0.525),          # √(0.4² + 3·0.2²) = 0.529 → 0.525
+    (("B", "C", "B"), 0.600),          # √(0.4² + 0.2² + 0.35² + 0.2²) = 0.602 → 0.600
+    (("A", "A", "A"), 0.425),          # P695 Table 7-2a, superior/superior/superior
+    (("D", "D", "D"), 0.950),          # P695 Table 7-2, poor/poor/poor
+])
+def test_beta_total_rounded_to_0_025(quality, expected):
+    q = dict(zip(("design_requirements", "test_data", "modeling"), quality))
+    assert beta_total(q) == pytest.approx(expected, abs=1e-12)
+
+
+@pytest.mark.parametrize("beta_tot,acmr10,acmr20", [(0.525, 1.96, 1.56), (0.600, 2.16, 1.66)])
+def test_acceptable_acmr_matches_spec(beta_tot, acmr10, acmr20):
+    assert acceptable_acmr(beta_tot, 0.10) == pytest.approx(acmr10, abs=0.005)
+    assert acceptable_acmr(beta_tot, 0.20) == pytest.approx(acmr20, abs=0.005)
+    # at exactly the acceptable ACMR the collapse probability is the target
+    assert collapse_probability(acceptable_acmr(beta_tot, 0.10), beta_tot) == pytest.approx(0.10, abs=1e-12)
+
+
+def _fragility(median, design, censored=()):
+    return {"median": median, "beta": 0.5, "design_intensity": design, "im": "pga", "unit": "m/s^2",
+            "capacities": [{"id": "x", "capacity": c, "censored": True} for c in censored]}
+
+
+def test_collapse_margin_values_and_criterion():
+    m = collapse_margin(_fragility(4.8, 2.0), B)
+    assert m["CMR"] == pytest.approx(2.4) and m["SSF"] == 1.0 and m["ACMR"] == pytest.approx(2.4)
+    assert m["beta_tot"] == 0.525 and m["passed"]
+    assert m["p_collapse_design"] == pytest.approx(norm.cdf(-math.log(2.4) / 0.525))
+    assert "conventional" in m["note"] and "adaptation" in m["note"]
+    item = collapse_margin_criterion(m)
+    assert set(item) == {"name", "utilisation", "passed", "governs_verdict", "detail"}
+    assert item["utilisation"] == pytest.approx(m["ACMR10"] / 2.4) and not item["governs_verdict"]
+    low = collapse_margin(_fragility(3.6, 2.0), B)          # ACMR 1.8 < 1.96
+    assert not low["passed"] and not collapse_margin_criterion(low)["passed"]
+
+
+def test_without_a_fit_the_cmr_is_a_lower_bound():
+    m = collapse_margin(_fragility(None, 2.0, censored=(16.0, 18.0)), B)
+    assert m["CMR_is_lower_bound"] and m["CMR"] == pytest.approx(8.0) and m["passed"]
+
+
+PROJECT = """
+[project]
+name = "q"
+[column]
+height = "3 m"
+width = "0.6 m"
+mass = "2 t"
+mass_distribution = 0.3333
+[analysis]
+"""
+
+
+@pytest.mark.parametrize("line,key", [
+    ('quality = { design_requirements = "E" }', "analysis.quality.design_requirements"),
+    ('quality = { modelling = "B" }', "analysis.quality.modelling"),
+    ('quality = "B"', "analysis.quality"),
+    ('fragility_im = "pgv"', "analysis.fragility_im"),
+    ('fragility_im = "sa"', "analysis.fragility_period"),
+    ('fragility_period = "1 s"', "analysis.fragility_period"),
+    ('ensemble_size = -1', "analysis.ensemble_size"),
+    ('ensemble_size = 2.5', "analysis.ensemble_size"),
+    ('seed = "x"', "analysis.seed"),
+])
+def test_bad_analysis_keys_raise_project_errors(line, key):
+    import tomllib
+    with pytest.raises(ProjectError) as exc:
+        parse_project(tomllib.loads(PROJECT + line + "\n"), file="p.toml")
+    assert exc.value.key == key
+
+
+def test_analysis_keys_parse():
+    import tomllib
+    text = PROJECT + ('quality = { test_data = "C" }\nfragility_im = "sa"\nfragility_period = "0.8 s"\n'
+                      'ensemble_size = 0\nseed = 3\n')
+    a = parse_project(tomllib.loads(text), file="p.toml").analysis
+    assert dict(a.quality) == {"design_requirements": "B", "test_data": "C", "modeling": "B"}
+    assert a.fragility_im == "sa" and a.fragility_period == pytest.approx(0.8)
+    assert a.ensemble_size == 0 and a.seed == 3
+    default = parse_project(tomllib.loads(PROJECT), file="p.toml").analysis
+    assert default.fragility_im == "pga" and default.ensemble_size == 8 and dict(default.quality) == B
