@@ -141,6 +141,8 @@ class Criterion:
     name = "criterion"
     role = INFORMATIVE
     source = ""
+    optional = False
+    """True: when it does not apply (switched off by the user), the verdict does not list it as not covered."""
 
     def applies(self, ctx: CheckContext) -> bool:
         """False when the criterion cannot be evaluated for this check (it is then left out)."""
@@ -378,6 +380,7 @@ class EnsembleRobustness(Criterion):
 
     key = "ensemble_robustness"
     role = ROBUSTNESS
+    optional = True     # ensemble_size = 0 is the user's explicit choice (results.json "ensemble": null)
     source = ("thesis Ch. 7 (rocking is chaotic; the statistics, not single histories, are predictable); "
               "docs/fragility.md (perturbation ensembles)")
 
@@ -460,7 +463,7 @@ def evaluate_criteria(ctx: CheckContext, criteria=None) -> tuple[list[CheckItem]
         crit = cls()
         if crit.applies(ctx):
             items.append(crit.evaluate(ctx))
-        elif crit.role != INFORMATIVE:
+        elif crit.role != INFORMATIVE and not crit.optional:
             skipped.append(crit.key)
     return items, skipped
 
@@ -468,7 +471,6 @@ def evaluate_criteria(ctx: CheckContext, criteria=None) -> tuple[list[CheckItem]
 NOT_COVERED = {
     "incremental_margin": "intensities below the design level not analysed (--no-margins)",
     "restitution_robustness": "c_r sensitivity not analysed",
-    "ensemble_robustness": "perturbation ensembles not run (ensemble_size = 0)",
 }
 
 
