@@ -101,6 +101,8 @@ class CheckResult:
     histories: dict = field(default_factory=dict)
     sensitivity: dict = field(default_factory=dict)
     settings: dict = field(default_factory=dict)
+    fragility: object | None = None
+    """Fragility of the suite (CONTRACT §5.3); None until that analysis is computed."""
 
     def as_json(self) -> dict:
         p = self.project
