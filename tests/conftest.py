@@ -1,7 +1,6 @@
-"""Shared fixtures: validation cases from ../shared (skip cleanly when absent), standard systems."""
+"""Shared fixtures: validation cases (from the repository), ../shared (skip cleanly when absent), standard systems."""
 from __future__ import annotations
 
-import json
 import math
 
 import pytest
@@ -24,8 +23,9 @@ def shared():
 
 
 @pytest.fixture(scope="session")
-def cases(shared):
-    data = json.loads((shared / "validation" / "cases.json").read_text())
-    return {c["id"]: c for c in data}
+def cases():
+    """The validation cases by id, from the repository's tests/validation/data/cases.json (no ../shared)."""
+    from casedata import all_cases
+    return all_cases()
 
 
