@@ -29,3 +29,16 @@ def cases():
     return all_cases()
 
 
+@pytest.fixture(scope="session")
+def dask_cluster():
+    """One dask.distributed LocalCluster (2 worker processes, 1 thread each) for the whole session;
+    tests reach it through ``dask_cluster.scheduler_address`` (as ``--dask ADDRESS``)."""
+    distributed = pytest.importorskip("distributed")
+    import logging
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                           dashboard_address=None, silence_logs=logging.ERROR)
+    yield cluster
+    cluster.close()

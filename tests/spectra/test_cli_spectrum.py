@@ -115,11 +115,12 @@ def test_relative_spectrum_and_equivalent_size(projects):
             - np.where(d["reference_overturned"], cap, np.minimum(d["reference_theta_max_over_alpha"], cap)))
 
 
-def test_dask_local_cluster_is_identical_to_local(projects):
+@pytest.mark.slow
+def test_dask_cluster_is_identical_to_local(projects, dask_cluster):
     args = [projects / "b1.toml", "--pulse", "sine", "--x", "omega_p/p:1:9:9", "--y", "ap/up:0:9:7", "-q",
             "--no-figures", "--no-polyakov"]
     r1 = run(*args, "-o", projects / "local")
-    r2 = run(*args, "-o", projects / "dask", "--dask", "local:2")
+    r2 = run(*args, "-o", projects / "dask", "--dask", dask_cluster.scheduler_address)
     assert r1.exit_code == 0 and r2.exit_code == 0, r1.output + r2.output
     s2 = json.loads((projects / "dask" / "summary.json").read_text())
     assert s2["execution"]["executor"] == "dask" and s2["execution"]["workers"] == 2
