@@ -5,6 +5,8 @@ import json
 
 import numpy as np
 import pytest
+
+from casedata import expected
 from typer.testing import CliRunner
 
 from rockdesign.cli import app
@@ -83,14 +85,14 @@ def test_files_of_contract_section_4(projects):
 
 
 def test_json_to_stdout_and_example_3_5(projects):
-    # thesis Example 3.5 / Table 3.4: B1, antisymmetric Ricker a_p = 0.38 g, T_p = 0.95 s → θ_max = 1.19446 α
+    # thesis Example 3.5 / Table 3.4: B1, antisymmetric Ricker a_p = 0.38 g, T_p = 0.95 s → θ_max/α of case tab3.4_B1_thmax
     r = run(projects / "b1.toml", "--pulse", "ricker-anti", "--x", "Tp:0.95", "--y", "ap/g:0.38", "-o",
             projects / "o", "--json", "-q", "--no-figures", "--no-polyakov")
     assert r.exit_code == 0, r.output
     s = json.loads(r.stdout)
     assert s["results"]["n_analyses"] == 1 and s["polyakov"] is None
     with np.load(projects / "o" / "spectrum.npz") as d:
-        assert d["theta_max_over_alpha"][0, 0] == pytest.approx(1.19446, abs=2e-5)
+        assert d["theta_max_over_alpha"][0, 0] == pytest.approx(expected("tab3.4_B1_thmax"), abs=2e-5)
         assert d["Tp"][0] == 0.95 and d["ap"][0] == pytest.approx(0.38 * 9.81)
 
 
