@@ -30,6 +30,9 @@ from .errors import RockdesignError
 RUN_FILES = frozenset({"report.pdf", "report.html", "results.json", "results.csv"})
 """The files a design check writes (CONTRACT §4); a folder holding only these may be replaced."""
 
+OS_METADATA = frozenset({".DS_Store", "Thumbs.db", "desktop.ini"})
+"""Files a file browser leaves in any folder; they do not make a folder 'foreign'."""
+
 try:   # POSIX advisory locks; Windows falls back to msvcrt
     import fcntl
 except ImportError:  # pragma: no cover - Windows
@@ -52,7 +55,7 @@ class OutputFolder:
     def __init__(self, target, *, key: str = "out_dir", owned=RUN_FILES):
         self.target = Path(target).expanduser()
         self.key = key
-        self.owned = frozenset(owned)
+        self.owned = frozenset(owned) | OS_METADATA
         self._lock_fd: int | None = None
         self._lock_path: Path | None = None
 

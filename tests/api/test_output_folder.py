@@ -125,8 +125,9 @@ def test_interrupt_while_writing_leaves_the_old_folder(small_check, tmp_path, mo
 
 
 @pytest.mark.slow
-def test_ctrl_c_during_the_analyses_leaves_no_folder(tmp_path):
-    # a real SIGINT to `rockdesign check` while the suite is analysed: no output folder, no temporary files
+def test_second_process_and_ctrl_c_during_the_analyses(tmp_path, small_project_file):
+    # run A (a real process) analyses the example; run B into the same folder stops at once (exit 2);
+    # a real SIGINT to A while the suite is analysed leaves no output folder and no temporary files
     target = tmp_path / "out"
     env = dict(os.environ, PYTHONPATH=str(REPO))
     proc = subprocess.Popen([sys.executable, "-m", "rockdesign.cli", "check", str(REPO / "examples" / "podium_flat.toml"),
@@ -135,7 +136,12 @@ def test_ctrl_c_during_the_analyses_leaves_no_folder(tmp_path):
     deadline = time.monotonic() + 300
     while not lock.exists() and proc.poll() is None and time.monotonic() < deadline:   # the run has started
         time.sleep(0.1)
-    time.sleep(3.0)
+    assert lock.exists(), proc.stderr.read().decode()
+    t0 = time.monotonic()
+    second = runner.invoke(app, ["check", str(small_project_file), "-o", str(target), "--no-pdf"])
+    _one_line_exit_2(second, "in use by another rockdesign run")
+    assert time.monotonic() - t0 < 30
+    time.sleep(2.0)
     assert proc.poll() is None, proc.stderr.read().decode()
     proc.send_signal(signal.SIGINT)
     proc.communicate(timeout=120)

@@ -5,6 +5,7 @@ notes) — the engine is compared with the reference solution."""
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 
 from casedata import case_tests
 from rockdesign.design.frequencies import rocking_period
@@ -13,6 +14,7 @@ from rockdesign.dynamics.simulate import simulate
 from support import block_from_p
 
 
+@lru_cache(maxsize=None)   # one analysis per model for all cases of the module
 def _free(model="exact", t_end=4.0):
     return simulate(block_from_p(2.2, 0.1), None, theta0=0.08, t_end=t_end, model=model)
 
