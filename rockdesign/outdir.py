@@ -76,6 +76,10 @@ class OutputFolder:
             raise self._error("cannot write beside the output folder", f"a writable folder to hold '{t.name}'",
                               f"'{parent}' is read-only")
         if t.is_dir():
+            cwd = Path.cwd().resolve()
+            if cwd == t.resolve() or t.resolve() in cwd.parents:
+                raise self._error("output folder holds the working directory (it replaces the folder)",
+                                  "a folder beside or below the working directory", f"'{t}'")
             if not _writable(t):
                 raise self._error("output folder is read-only", "a writable folder", f"'{t}'")
             foreign = sorted(p.name for p in t.iterdir() if p.name not in self.owned)

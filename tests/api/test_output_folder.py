@@ -79,6 +79,15 @@ def test_folder_with_foreign_files_is_not_taken_over(small_project_file, tmp_pat
     assert (tmp_path / "notes.md").read_text() == "my notes"
 
 
+def test_working_directory_is_not_replaced(small_project_file, tmp_path, monkeypatch, no_analysis):
+    empty = tmp_path / "here"
+    empty.mkdir()
+    monkeypatch.chdir(empty)
+    result = runner.invoke(app, ["check", str(small_project_file), "-o", ".", "--no-pdf"])
+    _one_line_exit_2(result, "working directory")
+    assert empty.is_dir() and Path.cwd() == empty
+
+
 def test_busy_folder_is_refused(small_project_file, tmp_path, no_analysis):
     target = tmp_path / "out"
     with OutputFolder(target).locked():   # another run holds the folder
