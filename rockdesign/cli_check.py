@@ -1,46 +1,12 @@
 """``rockdesign check``: the design check and its calculation report (CONTRACT §2, §4)."""
 from __future__ import annotations
 
-import csv
-import json
 import sys
 from pathlib import Path
 from typing import Optional
 
 import typer
 from rich.console import Console
-from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
-
-CSV_COLUMNS = ["id", "suite", "event", "station", "rsn", "component", "scale", "pga", "sd_max", "sd_max_period",
-               "polyakov_ratio", "theta_max_over_alpha", "theta_max_over_theta_c", "u_B_max", "u_B_max_over_2B",
-               "impacts", "uplift_time", "overturned", "overturn_mode", "class", "overturn_scale", "polyakov_scale"]
-
-
-CSV_UNITS = {"scale": "-", "pga": "m/s^2", "sd_max": "m", "sd_max_period": "s", "polyakov_ratio": "-",
-             "theta_max_over_alpha": "-", "theta_max_over_theta_c": "-", "u_B_max": "m", "u_B_max_over_2B": "-",
-             "uplift_time": "s", "overturn_scale": "-", "polyakov_scale": "-"}
-"""Units of the results.csv columns (header "pga [m/s^2]"); the others are counts, ids or words."""
-
-
-def csv_header(column: str) -> str:
-    """results.csv header of a column, with its unit in brackets when it has one."""
-    return f"{column} [{CSV_UNITS[column]}]" if column in CSV_UNITS else column
-
-
-def write_results(result, out_dir: Path, *, pdf: bool = True, html: bool = True) -> dict:
-    """Write results.json, results.csv and (optionally) report.html / report.pdf into ``out_dir``."""
-    out_dir.mkdir(parents=True, exist_ok=True)
-    data = result.as_json()
-    (out_dir / "results.json").write_text(json.dumps(data, indent=2, ensure_ascii=False) + "\n", encoding="utf-8")
-    with open(out_dir / "results.csv", "w", newline="", encoding="utf-8") as fh:
-        w = csv.writer(fh)
-        w.writerow([csv_header(c) for c in CSV_COLUMNS])
-        for row in data["records"]:
-            w.writerow(["" if row.get(c) is None else row.get(c) for c in CSV_COLUMNS])
-    if pdf or html:
-        from .report.render import write_report
-        write_report(result, out_dir, pdf=pdf, html=True)
-    return data
 
 
 def register(app: typer.Typer, handle_errors) -> None:
@@ -57,38 +23,31 @@ def register(app: typer.Typer, handle_errors) -> None:
                                                  "'local:N' (a local cluster of N workers) or a scheduler address.")):
         """Polyakov design check over record suites, with a PDF calculation report (exit 0 = PASS,
         1 = FAIL, 2 = input error or failed analyses, 130 = interrupted)."""
-        from .checks.check import run_check
+        from .library import check as run_check
+        from .library import write_report
+        from .outdir import OutputFolder
         from .project import load_project
-        err = Console(stderr=True)
+        from .report.results import json_text
         proj = load_project(project)
-        with Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
-                      console=err, transient=False, disable=as_json and not err.is_terminal) as bar:
-            tasks = {}
-
-            def progress(stage, done, total):
-                if stage not in tasks:
-                    tasks[stage] = bar.add_task(stage, total=total)
-                bar.update(tasks[stage], completed=min(done, total), total=total)
-
+        folder = OutputFolder(out if out is not None else Path(f"{Path(project).stem}_check"), key="-o/--out")
+        with folder.locked():   # before the analyses: a file, a read-only or busy folder stops here (exit 2)
             executor = None
             if dask:
                 from .spectra.executor import make_executor
                 executor = make_executor(dask)
                 executor.start()
             try:
-                result = run_check(proj, records_dir=str(records_dir) if records_dir else None,
-                                   margins=not no_margins, progress=progress, executor=executor)
+                result = run_check(proj, records_dir=records_dir, margins=not no_margins,
+                                   progress=not as_json or Console(stderr=True).is_terminal, executor=executor)
             finally:
                 if executor is not None:
                     executor.close()
-            for t in tasks.values():
-                bar.update(t, completed=bar.tasks[t].total)
-        out_dir = out if out is not None else Path(f"{Path(project).stem}_check")
-        data = write_results(result, out_dir, pdf=not no_pdf, html=html or not no_pdf)
+            write_report(result, folder, pdf=not no_pdf, html=html or not no_pdf)
+        data = result.as_json()
         if as_json:
-            sys.stdout.write(json.dumps(data, indent=2, ensure_ascii=False) + "\n")
+            sys.stdout.write(json_text(data))
         else:
             from .display import check_summary
-            check_summary(data, out_dir, Console())
+            check_summary(data, folder.target, Console())
         # failed analyses: the check is incomplete (exit 2), whatever the other records say
         raise typer.Exit(2 if data.get("failed_records") else 0 if data["verdict"] == "PASS" else 1)

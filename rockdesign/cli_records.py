@@ -165,9 +165,7 @@ def show_command(
 
 
 def _plot_history(motion, path: Path) -> None:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from . import mplfig as plt
 
     from .motions.measures import velocity_displacement
     t, accel = motion.sampled()
@@ -232,9 +230,7 @@ def spectrum_command(
 
 
 def _plot_spectrum(result: dict, path: Path, gravity: float) -> None:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from . import mplfig as plt
 
     fig, (ax_sd, ax_psa) = plt.subplots(1, 2, figsize=(10, 4))
     ax_sd.plot(result["periods"], result["SD"], lw=1)

@@ -1,4 +1,4 @@
-"""``rockdesign init``: commented template project files (from the repo's templates/ folder)."""
+"""``rockdesign init``: commented template project files (package data ``rockdesign/data/templates``)."""
 from __future__ import annotations
 
 from pathlib import Path

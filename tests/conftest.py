@@ -1,7 +1,6 @@
-"""Shared fixtures: validation cases from ../shared (skip cleanly when absent), standard systems."""
+"""Shared fixtures: validation cases (from the repository), ../shared (skip cleanly when absent), standard systems."""
 from __future__ import annotations
 
-import json
 import math
 
 import pytest
@@ -24,8 +23,22 @@ def shared():
 
 
 @pytest.fixture(scope="session")
-def cases(shared):
-    data = json.loads((shared / "validation" / "cases.json").read_text())
-    return {c["id"]: c for c in data}
+def cases():
+    """The validation cases by id, from the repository's tests/validation/data/cases.json (no ../shared)."""
+    from casedata import all_cases
+    return all_cases()
 
 
+@pytest.fixture(scope="session")
+def dask_cluster():
+    """One dask.distributed LocalCluster (2 worker processes, 1 thread each) for the whole session;
+    tests reach it through ``dask_cluster.scheduler_address`` (as ``--dask ADDRESS``)."""
+    distributed = pytest.importorskip("distributed")
+    import logging
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                           dashboard_address=None, silence_logs=logging.ERROR)
+    yield cluster
+    cluster.close()

@@ -9,10 +9,8 @@ from __future__ import annotations
 import math
 import time
 
-import matplotlib
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+from .. import mplfig as plt  # noqa: E402  (pyplot-free Figures: importing never switches the backend)
 import numpy as np  # noqa: E402
 
 from ..dynamics.simulate import simulate  # noqa: E402

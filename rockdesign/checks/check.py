@@ -39,7 +39,13 @@ GOVERNING_HISTORIES = 3
 
 @dataclass
 class RecordOutcome:
-    """One record of the suite: input, Polyakov's prediction, RHA response, class and margin."""
+    """One record of the suite: input, Polyakov's prediction, RHA response, class and margin.
+
+    Units: ``scale`` [-] (factor on the record as recorded), ``pga`` [m/s²] (scaled), ``sd_max`` [m] and
+    ``sd_period`` [s] (peak elastic displacement spectrum in the rule's band), ``polyakov_ratio`` [-]
+    (SD_max/capacity), ``polyakov_scale`` [-]; ``run`` holds θ_max/α, θ_max/θc, u_B,max [m], impacts,
+    overturned; ``klass`` is the Fig 4.9 class; ``margin`` the overturning scales found (or None).
+    """
 
     id: str
     suite: str | None
@@ -96,7 +102,15 @@ class RecordOutcome:
 
 @dataclass
 class CheckResult:
-    """Everything the report and results.json need."""
+    """A design check: everything the report and results.json need (SI units throughout).
+
+    ``verdict`` "PASS" | "FAIL"; ``records`` one :class:`RecordOutcome` per record; ``checks`` the
+    criteria with utilisation [-] and result; ``statistics`` the suite summary (P(overturn) with its
+    bound, classes, margins); ``quantities`` the design quantities (value + unit); ``as_json()`` is
+    results.json (= ``rockdesign check --json``).
+    """
+
+    fragility = None   # the suite's fragility (CONTRACT §5.3) once computed; a class default until then
 
     project: Project
     quantities: dict

@@ -11,10 +11,8 @@ import io
 import math
 import re
 
-import matplotlib
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+from .. import mplfig as plt  # noqa: E402  (pyplot-free Figures: importing never switches the backend)
 import numpy as np  # noqa: E402
 
 from ..checks.polyakov import CLASS_MEANING, CLASSES  # noqa: E402

@@ -1,10 +1,8 @@
 """Matplotlib figures shared by the CLI and the report (Agg backend, no screen needed)."""
 from __future__ import annotations
 
-import matplotlib
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+from .. import mplfig as plt  # noqa: E402  (pyplot-free Figures: importing never switches the backend)
 import numpy as np  # noqa: E402
 
 STYLE = {"figure.dpi": 110, "font.size": 9, "axes.grid": True, "grid.alpha": 0.3, "axes.spines.top": False,

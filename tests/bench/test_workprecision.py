@@ -94,6 +94,7 @@ def test_quick_study_on_a_reduced_set_gives_contract_json():
     assert data["machine"]["nproc"] >= 1 and data["machine"]["date"]
 
 
+@pytest.mark.slow
 def test_cli_bench_quick_writes_json_and_figures(tmp_path):
     out = tmp_path / "bench"
     only = "free-vibration/curved-block,free-vibration-linearized/curved-block"

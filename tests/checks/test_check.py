@@ -150,10 +150,11 @@ def test_check_without_excitation_needs_design_pga(tmp_path):
     assert "design_pga" in result.output
 
 
-def test_check_on_dask_equals_local(tmp_path):
+@pytest.mark.slow
+def test_check_on_dask_equals_local(tmp_path, dask_cluster):
     # the same executor as rocking spectra (dask.distributed LocalCluster): identical results.json
     path = _write(tmp_path, PROJECT.format(pga="0.35 g"))
     local = runner.invoke(app, ["check", str(path), "-o", str(tmp_path / "a"), "--no-pdf", "--json"])
-    dask = runner.invoke(app, ["check", str(path), "-o", str(tmp_path / "b"), "--no-pdf", "--json", "--dask", "local:2"])
+    dask = runner.invoke(app, ["check", str(path), "-o", str(tmp_path / "b"), "--no-pdf", "--json", "--dask", dask_cluster.scheduler_address])
     assert local.exit_code in (0, 1) and dask.exit_code == local.exit_code, dask.output
     assert json.loads(dask.stdout) == json.loads(local.stdout)

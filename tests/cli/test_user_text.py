@@ -48,7 +48,7 @@ def test_polyakov_line_is_labelled_with_the_capacity():
 
 
 def test_results_csv_headers_carry_units():
-    from rockdesign.cli_check import CSV_COLUMNS, csv_header
+    from rockdesign.report.results import CSV_COLUMNS, csv_header
     headers = [csv_header(c) for c in CSV_COLUMNS]
     assert "pga [m/s^2]" in headers and "sd_max [m]" in headers and "uplift_time [s]" in headers
     assert "id" in headers and "impacts" in headers

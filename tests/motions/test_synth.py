@@ -28,6 +28,7 @@ def model(seed):
     return fit_model(seed)
 
 
+@pytest.mark.slow   # synthetic ensembles: ~25 s
 def test_reproducible_ensembles(seed, model):
     first = simulate_ensemble(seed, 3, seed_value=5, model=model)
     again = simulate_ensemble(seed, 3, seed_value=5, model=model)

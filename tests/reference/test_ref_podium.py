@@ -9,6 +9,8 @@ import math
 import numpy as np
 import pytest
 
+from casedata import case, expected
+
 from rockdesign.motions.motion import pulse_motion
 from rockdesign.reference import simulate_scipy
 from rockdesign.reference.parameters import uplift_thresholds, model_parameters
@@ -39,16 +41,16 @@ def test_podium_rha_reference():
     Impacts: the case gives 17 without t_end; our run has 14 impacts by 10 s and 17 by 11 s
     (17th at 10.625 s, 18th at 11.221 s), so the case presumably ran ~11 s."""
     res = simulate_scipy(RHA_SYSTEM, RHA_MOTION, t_end=11.0)
-    assert res.theta_max_over_alpha == pytest.approx(0.48547, abs=1e-5)
-    assert res.uplift_time == pytest.approx(1.08516, abs=5e-6)
+    assert res.theta_max_over_alpha == pytest.approx(expected("podium_rha_ref")[0], abs=1e-5)
+    assert res.uplift_time == pytest.approx(float(case("podium_rha_ref")["notes"].split("t=")[1].rstrip("s")), abs=5e-6)
     assert res.n_impacts == 17
     assert sum(e.t <= 10.0 for e in res.events_of("impact")) == 14
-    assert res.c_r == pytest.approx(0.914034, abs=1e-6)                # eq4.20_podium_cr
+    assert res.c_r == pytest.approx(expected("eq4.20_podium_cr"), abs=1e-6)                # eq4.20_podium_cr
     for e in res.events_of("impact"):                                  # Eq 4.21: u̇_T unchanged
         assert e.after[3] == e.before[3] and e.after[2] == e.before[2]
         assert e.after[1] == pytest.approx(math.sqrt(res.c_r) * e.before[1], rel=1e-14)
     lin = simulate_scipy(RHA_SYSTEM, RHA_MOTION, t_end=10.0, linear=True)
-    assert lin.theta_max_over_alpha == pytest.approx(0.47884, abs=1e-5)
+    assert lin.theta_max_over_alpha == pytest.approx(expected("podium_rha_ref")[3], abs=1e-5)
 
 
 def test_podium_relative_top_displacement_sampled_and_continuous():
@@ -57,7 +59,7 @@ def test_podium_relative_top_displacement_sampled_and_continuous():
     res = simulate_scipy(RHA_SYSTEM, RHA_MOTION, t_end=10.0, record_every_step=True, max_step=1e-3)
     rel = np.abs(res.u_T - res.u_B)
     grid = np.arange(0.0, 10.0, 0.01)
-    assert np.max(np.interp(grid, res.t, rel)) == pytest.approx(0.03576, abs=1e-4)
+    assert np.max(np.interp(grid, res.t, rel)) == pytest.approx(expected("podium_rha_ref")[2], abs=1e-4)
     assert res.relative_top_max == pytest.approx(0.035937, abs=2e-6)
     assert np.all(np.diff(res.t) >= 0.0)
 
@@ -74,7 +76,7 @@ def test_podium_uplift_follows_eq_4_7():
     a = RHA_MOTION.acceleration(up.t)[0]
     assert a == pytest.approx(lower if up.side == 1 else upper, rel=1e-9)
     assert up.side == -int(math.copysign(1, a))
-    assert params.zeta == pytest.approx(0.01 / 2.29714, rel=1e-5)     # eq4.25_Sr_eta5
+    assert params.zeta == pytest.approx(0.01 / expected("eq4.25_Sr_eta5"), rel=1e-5)     # eq4.25_Sr_eta5
 
 
 def test_rigid_limit_of_the_podium():
@@ -86,9 +88,9 @@ def test_rigid_limit_of_the_podium():
     frame = RockingSystem("frame", "podium", COLUMN, N, M_B + ETA * M_B)       # γ̂ = γ(1+η)
     same = simulate_scipy(frame, motion, t_end=4.0)
     assert rigid.theta_max == same.theta_max and rigid.n_impacts == same.n_impacts
-    assert rigid.events_of("impact")[0].t == pytest.approx(1.40914, abs=5e-6)
-    assert rigid.theta_max_over_alpha == pytest.approx(0.3704, abs=5e-5)
+    assert rigid.events_of("impact")[0].t == pytest.approx(expected("podium_rigid_limit")[0], abs=5e-6)
+    assert rigid.theta_max_over_alpha == pytest.approx(expected("podium_rigid_limit")[2], abs=5e-5)
     stiff = simulate_scipy(podium(300 * P, 0.0, False), motion, t_end=4.0, rtol=1e-9)
-    assert stiff.events_of("impact")[0].t == pytest.approx(1.40919, abs=5e-6)
-    assert stiff.theta_max_over_alpha == pytest.approx(0.4098, abs=5e-5)
+    assert stiff.events_of("impact")[0].t == pytest.approx(expected("podium_rigid_limit")[1], abs=5e-6)
+    assert stiff.theta_max_over_alpha == pytest.approx(expected("podium_rigid_limit")[3], abs=5e-5)
     assert stiff.uplift_time == pytest.approx(rigid.uplift_time, abs=2e-5)

@@ -1,7 +1,7 @@
 """Session fixtures of the report tests: each example is checked once and its report written once.
 
 - ``podium_out``: examples/podium_flat.toml (2DOF podium, flat columns), without the margin
-  analysis (the slowest part), report written by the CLI's ``write_results`` (results.json + PDF).
+  analysis (the slowest part), report written by ``rockdesign.write_report`` (results.json + PDF).
 - ``curved_out``: examples/bridge_pier.toml (solitary column on curved extensions), with margins.
 - ``default_result``: a small curved column whose project gives only ``design_pga`` (the default
   FEMA P695 far-field suite), without margins; HTML only.
@@ -52,11 +52,9 @@ def pdf_text(path: Path) -> tuple[str, int]:
 
 
 def _write(project_path: Path, out: Path, *, margins: bool, pdf: bool) -> Written:
-    from rockdesign.checks.check import run_check
-    from rockdesign.cli_check import write_results
-    from rockdesign.project import load_project
-    result = run_check(load_project(project_path), margins=margins)
-    write_results(result, out, pdf=pdf, html=True)
+    import rockdesign as rd
+    result = rd.check(rd.load_project(project_path), margins=margins)
+    rd.write_report(result, out, pdf=pdf, html=True)
     data = json.loads((out / "results.json").read_text(encoding="utf-8"))
     html = (out / "report.html").read_text(encoding="utf-8")
     text, pages = pdf_text(out / "report.pdf") if pdf else (None, None)

@@ -9,6 +9,8 @@ import pytest
 
 from rockdesign.report.formatting import fmt
 
+pytestmark = pytest.mark.slow   # full design checks with their PDF reports (session fixtures)
+
 SECTIONS = [
     "Verdict",
     "Basis of design and assumptions",

@@ -5,6 +5,8 @@ import json
 
 import numpy as np
 import pytest
+
+from casedata import expected
 from typer.testing import CliRunner
 
 from rockdesign.cli import app
@@ -83,14 +85,14 @@ def test_files_of_contract_section_4(projects):
 
 
 def test_json_to_stdout_and_example_3_5(projects):
-    # thesis Example 3.5 / Table 3.4: B1, antisymmetric Ricker a_p = 0.38 g, T_p = 0.95 s → θ_max = 1.19446 α
+    # thesis Example 3.5 / Table 3.4: B1, antisymmetric Ricker a_p = 0.38 g, T_p = 0.95 s → θ_max/α of case tab3.4_B1_thmax
     r = run(projects / "b1.toml", "--pulse", "ricker-anti", "--x", "Tp:0.95", "--y", "ap/g:0.38", "-o",
             projects / "o", "--json", "-q", "--no-figures", "--no-polyakov")
     assert r.exit_code == 0, r.output
     s = json.loads(r.stdout)
     assert s["results"]["n_analyses"] == 1 and s["polyakov"] is None
     with np.load(projects / "o" / "spectrum.npz") as d:
-        assert d["theta_max_over_alpha"][0, 0] == pytest.approx(1.19446, abs=2e-5)
+        assert d["theta_max_over_alpha"][0, 0] == pytest.approx(expected("tab3.4_B1_thmax"), abs=2e-5)
         assert d["Tp"][0] == 0.95 and d["ap"][0] == pytest.approx(0.38 * 9.81)
 
 
@@ -115,11 +117,12 @@ def test_relative_spectrum_and_equivalent_size(projects):
             - np.where(d["reference_overturned"], cap, np.minimum(d["reference_theta_max_over_alpha"], cap)))
 
 
-def test_dask_local_cluster_is_identical_to_local(projects):
+@pytest.mark.slow
+def test_dask_cluster_is_identical_to_local(projects, dask_cluster):
     args = [projects / "b1.toml", "--pulse", "sine", "--x", "omega_p/p:1:9:9", "--y", "ap/up:0:9:7", "-q",
             "--no-figures", "--no-polyakov"]
     r1 = run(*args, "-o", projects / "local")
-    r2 = run(*args, "-o", projects / "dask", "--dask", "local:2")
+    r2 = run(*args, "-o", projects / "dask", "--dask", dask_cluster.scheduler_address)
     assert r1.exit_code == 0 and r2.exit_code == 0, r1.output + r2.output
     s2 = json.loads((projects / "dask" / "summary.json").read_text())
     assert s2["execution"]["executor"] == "dask" and s2["execution"]["workers"] == 2

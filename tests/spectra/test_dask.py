@@ -1,8 +1,8 @@
 """Distributed runs on dask.distributed give the local arrays bit for bit.
 
-A LocalCluster of two worker processes (one thread each) is reached through its scheduler address —
-the path a real cluster takes (``--dask local:2`` is exercised through the CLI in
-test_cli_spectrum.py); runs must reproduce the in-process arrays exactly, also when an interrupted
+The session's LocalCluster of two worker processes (one thread each, tests/conftest.py) is reached
+through its scheduler address — the path a real cluster takes (``--dask ADDRESS`` is exercised
+through the CLI in test_cli_spectrum.py and tests/checks/test_check.py, ``local:N`` parsing below); runs must reproduce the in-process arrays exactly, also when an interrupted
 distributed run is resumed.
 """
 from __future__ import annotations
@@ -20,16 +20,12 @@ distributed = pytest.importorskip("distributed")
 REQ = SpectrumRequest("ricker-sym", parse_axis("omega_p/p:0.8:9:31", "x"), parse_axis("ap/up:0:9:19", "y"))
 
 
+pytestmark = pytest.mark.slow
+
+
 @pytest.fixture(scope="module")
-def cluster():
-    import logging
-    import warnings
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        c = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
-                                     silence_logs=logging.ERROR)
-    yield c
-    c.close()
+def cluster(dask_cluster):
+    return dask_cluster   # the session's cluster (tests/conftest.py)
 
 
 def test_scheduler_address_run_is_identical_to_local(cluster, tmp_path):

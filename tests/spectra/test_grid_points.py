@@ -13,6 +13,8 @@ import math
 import numpy as np
 import pytest
 
+from casedata import expected
+
 from support import block_from_p, reference_podium, table34_column
 from rockdesign.dynamics.simulate import simulate
 from rockdesign.motions.motion import pulse_motion
@@ -93,12 +95,12 @@ def test_pulses_of_the_grid_follow_the_axes():
 
 
 def test_table_3_4_point_read_from_a_spectrum():
-    # Example 3.5: B1 under the antisymmetric Ricker a_p = 0.38 g, T_p = 0.95 s: θ_max = 1.19446 α
+    # Example 3.5: B1 under the antisymmetric Ricker a_p = 0.38 g, T_p = 0.95 s: θ_max/α of case tab3.4_B1_thmax
     # (SPEC §7, exact EOMs; thesis reads 1.10–1.20 α off Fig 3.19a)
     s = table34_column("B1")
     spec = compute_spectrum(s, SpectrumRequest("ricker-anti", parse_axis("Tp:0.95", "x"),
                                                parse_axis("ap/g:0.38", "y")))
-    assert spec.theta_max_over_alpha[0, 0] == pytest.approx(1.19446, abs=2e-5)
+    assert spec.theta_max_over_alpha[0, 0] == pytest.approx(expected("tab3.4_B1_thmax"), abs=2e-5)
 
 
 def test_stop_at_capacity_keeps_the_static_verdict():

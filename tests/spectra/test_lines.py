@@ -7,6 +7,8 @@ import math
 import numpy as np
 import pytest
 
+from casedata import case, expected
+
 from support import table34_column
 from rockdesign.motions.motion import pulse_motion
 from rockdesign.motions.spectra import sd_max
@@ -110,15 +112,16 @@ def test_polyakov_amplitude_reaches_the_capacity():
 
 def test_equivalent_size_of_b2_from_two_spectra():
     # Sec 3.3.2 / Eq 3.65: at a_p/(g tan α) = 5 the overturning lines of B1 and B2ec (antisymmetric
-    # Ricker) read x1 = 4.53, x2 = 3.21 → R̂ = (4.53/3.21)² R = 1.99 R (cases.json eq3.65)
+    # Ricker) read x1, x2 → R̂ = (x1/x2)² R (tests/validation/data/cases.json eq3.65)
     req = SpectrumRequest("ricker-anti", parse_axis("omega_p/p:2.5:5.5:121", "x"), parse_axis("ap/up:4.8:5.2:3", "y"))
     b1 = compute_spectrum(table34_column("B1"), req)
     b2 = compute_spectrum(table34_column("B2ec"), req)
     prod = analyse(b2, b1, polyakov=False, ordinates=[5.0])
     eq = prod.equivalent
-    assert eq["x_reference"][0] == pytest.approx(4.53, abs=0.04)
-    assert eq["x_project"][0] == pytest.approx(3.21, abs=0.04)
-    assert eq["R_hat_over_R"][0] == pytest.approx(1.99, abs=0.06)
+    read = case("eq3.65")["inputs"]     # the abscissae read from the thesis figure
+    assert eq["x_reference"][0] == pytest.approx(read["x1"], abs=0.04)
+    assert eq["x_project"][0] == pytest.approx(read["x2"], abs=0.04)
+    assert eq["R_hat_over_R"][0] == pytest.approx(expected("eq3.65"), abs=0.06)
     # B2ec is the more stable column: no point overturns it that leaves B1 standing
     assert not np.any(b2.overturned & ~b1.overturned)
     assert prod.delta.min() < -0.4 and np.mean(prod.delta > 0.05) < 0.05

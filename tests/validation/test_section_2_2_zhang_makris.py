@@ -1,10 +1,10 @@
 """The Zhang–Makris thresholds of thesis Sec 2.2 appear in a sine-pulse rocking spectrum.
 
-Sec 2.2 / Fig 2.4 (cases.json sec2.2_ZM_*): free-standing block p = 2.14 1/s, α = 0.25, c_r = 0.81,
-one-sine pulse (Eq 2.20) at ω_p/p = 5, linearized EOM (uplift at g α), overturning at |θ| = π/2.
-Along a_p/(α g): safe up to 3.0186, overturning with one impact up to 6.3181, safe again (with
-θ_max > α) up to 7.1681, overturning without impact above. Published brackets (reference DOP853
-bisection): [3.01857, 3.01863], [6.31805, 6.31811], [7.16811, 7.16816].
+Source: thesis Sec 2.2 / Fig 2.4 (Zhang & Makris): free-standing block p = 2.14 1/s, α = 0.25,
+c_r = 0.81, one-sine pulse (Eq 2.20) at ω_p/p = 5, linearized EOM (uplift at g α), overturning at
+|θ| = π/2.  Along a_p/(α g): safe, overturning with one impact, safe again (with θ_max > α),
+overturning without impact.  The brackets of the three boundaries (reference DOP853 bisection) and
+ω_p, T_p are read from tests/validation/data/cases.json (sec2.2_ZM_*).
 
 The spectrum's y axis is a_p/(g tan α) (CONTRACT §2), so a_p/(α g) = y · tan α / α.
 """
@@ -15,21 +15,29 @@ import math
 import numpy as np
 import pytest
 
-from support import block_from_p
+from casedata import assert_case, case, expected
 from rockdesign.spectra import Axis, SpectrumRequest, compute_spectrum, parse_axis
+from support import block_from_p
 
-ALPHA = 0.25
+INPUTS = case("sec2.2_ZM_safe_upper")["inputs"]
+ALPHA = INPUTS["alpha_rad"]
 TO_ZM = math.tan(ALPHA) / ALPHA          # y (a_p/(g tan α)) → a_p/(α g)
-THRESHOLDS = {"safe→1": (3.01857, 3.01863), "1→safe": (6.31805, 6.31811), "safe→0": (7.16811, 7.16816)}
+THRESHOLDS = {"safe→1": tuple(expected("sec2.2_ZM_safe_upper")), "1→safe": tuple(expected("sec2.2_ZM_ot1_upper")),
+              "safe→0": tuple(expected("sec2.2_ZM_safe2_upper"))}
 
 
 @pytest.fixture(scope="module")
 def system():
-    return block_from_p(2.14, math.tan(ALPHA)).with_restitution(0.81)
+    return block_from_p(INPUTS["p_per_s"], math.tan(ALPHA)).with_restitution(INPUTS["c_r"])
+
+
+def test_pulse_frequency_and_period():
+    omega_p = INPUTS["omega_p_over_p"] * INPUTS["p_per_s"]
+    assert_case("sec2.2_ZM_omega_p", [omega_p, 2 * math.pi / omega_p])
 
 
 def _column(system, y_axis: Axis):
-    req = SpectrumRequest("sine", parse_axis("omega_p/p:5", "x"), y_axis, equations="linear", overturn="dynamic")
+    req = SpectrumRequest("sine", parse_axis(f"omega_p/p:{INPUTS['omega_p_over_p']:g}", "x"), y_axis, equations="linear", overturn="dynamic")
     spec = compute_spectrum(system, req)
     labels = np.where(spec.overturned[:, 0], np.minimum(spec.impacts_before_overturn[:, 0], 2).astype(str), "safe")
     return spec.y * TO_ZM, labels, spec.theta_max_over_alpha[:, 0]

@@ -1,0 +1,215 @@
+"""An output folder written completely or not at all, by one run at a time.
+
+``check -o DIR`` (and :func:`rockdesign.write_report`) never leave a folder that mixes two runs or
+holds half a run:
+
+* :meth:`OutputFolder.validate` refuses, before any analysis, a target that is a file, a folder or
+  parent that cannot be written, or a folder holding files rockdesign did not write (it replaces
+  the whole folder, so it will not take over a folder with other content such as ``.`` or ``~``);
+* :meth:`OutputFolder.locked` takes an exclusive lock (``.DIR.lock`` beside the folder, an OS file
+  lock released even if the process is killed) for the whole run, so a second run into the same
+  folder stops at once with a clear error;
+* :meth:`OutputFolder.staging` yields a temporary folder beside the target; when the block
+  completes, the old folder is swapped out and the new one moved into place with two renames
+  (interrupts deferred meanwhile) — files a run does not rewrite (a previous run's ``report.pdf``
+  next to a new ``--no-pdf`` results.json) disappear with the old folder.  On an error or Ctrl-C
+  the temporary folder is removed and the target is left as it was.
+"""
+from __future__ import annotations
+
+import contextlib
+import os
+import shutil
+import signal
+import tempfile
+import threading
+from pathlib import Path
+
+from .errors import RockdesignError
+
+RUN_FILES = frozenset({"report.pdf", "report.html", "results.json", "results.csv"})
+"""The files a design check writes (CONTRACT §4); a folder holding only these may be replaced."""
+
+OS_METADATA = frozenset({".DS_Store", "Thumbs.db", "desktop.ini"})
+"""Files a file browser leaves in any folder; they do not make a folder 'foreign'."""
+
+try:   # POSIX advisory locks; Windows falls back to msvcrt
+    import fcntl
+except ImportError:  # pragma: no cover - Windows
+    fcntl = None
+
+
+class OutputError(RockdesignError):
+    """An output folder that cannot be written (a file, read-only, foreign content, in use)."""
+
+
+class OutputFolder:
+    """The folder a run writes into; ``key`` names the parameter in error messages.
+
+    Args:
+        target: the folder to create or replace.
+        key: how the caller names it (``out_dir`` for the library, ``-o/--out`` for the CLI).
+        owned: file names a previous run may have left there (replaced without asking).
+    """
+
+    def __init__(self, target, *, key: str = "out_dir", owned=RUN_FILES):
+        self.target = Path(target).expanduser()
+        self.key = key
+        self.owned = frozenset(owned) | OS_METADATA
+        self._lock_fd: int | None = None
+        self._lock_path: Path | None = None
+
+    # --- checks before the work -------------------------------------------------------------
+    def _error(self, detail: str, expected: str, found: str) -> OutputError:
+        return OutputError(detail, key=self.key, expected=expected, found=found)
+
+    def validate(self) -> None:
+        """Raise :class:`OutputError` unless the run can write the folder (call before analysing)."""
+        t = self.target
+        if t.exists() and not t.is_dir():
+            raise self._error("output folder is a file", "a folder (new or from an earlier run)", f"file '{t}'")
+        parent = self._parent()
+        if not parent.is_dir():
+            raise self._error("cannot create the output folder", "a folder whose parent exists or can be created",
+                              f"'{parent}' is not a folder")
+        if not _writable(parent):
+            raise self._error("cannot write beside the output folder", f"a writable folder to hold '{t.name}'",
+                              f"'{parent}' is read-only")
+        if t.is_dir():
+            cwd = Path.cwd().resolve()
+            if cwd == t.resolve() or t.resolve() in cwd.parents:
+                raise self._error("output folder holds the working directory (it replaces the folder)",
+                                  "a folder beside or below the working directory", f"'{t}'")
+            if not _writable(t):
+                raise self._error("output folder is read-only", "a writable folder", f"'{t}'")
+            foreign = sorted(p.name for p in t.iterdir() if p.name not in self.owned)
+            if foreign:
+                shown = ", ".join(foreign[:4]) + (f" and {len(foreign) - 4} more" if len(foreign) > 4 else "")
+                raise self._error("output folder holds files rockdesign did not write (it replaces the folder)",
+                                  "a new folder or one from an earlier check", f"{shown} in '{t}'")
+
+    def _parent(self) -> Path:
+        """The nearest existing ancestor of the target (the folders between are created on commit)."""
+        p = self.target.absolute().parent
+        while not p.exists() and p != p.parent:
+            p = p.parent
+        return p
+
+    # --- one run at a time ------------------------------------------------------------------
+    @property
+    def held(self) -> bool:
+        """True while this object holds the folder's lock."""
+        return self._lock_fd is not None
+
+    @contextlib.contextmanager
+    def locked(self):
+        """Hold the folder's exclusive lock for the block (validates first)."""
+        if self.held:
+            yield self
+            return
+        self.validate()
+        self.target.absolute().parent.mkdir(parents=True, exist_ok=True)
+        self._acquire()
+        try:
+            yield self
+        finally:
+            self._release()
+
+    def _acquire(self) -> None:
+        path = self.target.absolute().parent / f".{self.target.name}.lock"
+        while True:
+            fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
+            try:
+                _lock(fd)
+            except OSError:
+                os.close(fd)
+                raise self._error("output folder is in use by another rockdesign run",
+                                  "one run at a time per output folder (wait, or choose another folder)",
+                                  f"lock '{path}' held") from None
+            try:   # the previous holder may have removed the lock file between our open and lock
+                same = os.fstat(fd).st_ino == os.stat(path).st_ino
+            except FileNotFoundError:
+                same = False
+            if same:
+                break
+            os.close(fd)
+        self._lock_fd, self._lock_path = fd, path
+
+    def _release(self) -> None:
+        fd, path = self._lock_fd, self._lock_path
+        self._lock_fd = self._lock_path = None
+        if fd is None:
+            return
+        with contextlib.suppress(OSError):
+            path.unlink()
+        os.close(fd)   # closing releases the lock
+
+    # --- all or nothing ---------------------------------------------------------------------
+    @contextlib.contextmanager
+    def staging(self):
+        """Yield a temporary folder beside the target; move it into place when the block completes."""
+        with self.locked():
+            parent = self.target.absolute().parent
+            tmp = Path(tempfile.mkdtemp(prefix=f".{self.target.name}.tmp-", dir=parent))
+            try:
+                yield tmp
+                self._commit(tmp)
+            except BaseException:
+                shutil.rmtree(tmp, ignore_errors=True)
+                raise
+
+    def _commit(self, tmp: Path) -> None:
+        target = self.target.absolute()
+        os.chmod(tmp, 0o777 & ~_umask())   # mkdtemp makes 0700; a finished folder gets the usual mode
+        with _interrupts_deferred():
+            if target.exists():
+                old = Path(tempfile.mkdtemp(prefix=f".{target.name}.old-", dir=target.parent))
+                os.rmdir(old)
+                os.rename(target, old)
+                try:
+                    os.rename(tmp, target)
+                except BaseException:
+                    os.rename(old, target)
+                    raise
+                shutil.rmtree(old, ignore_errors=True)
+            else:
+                os.rename(tmp, target)
+
+
+def _writable(folder: Path) -> bool:
+    """True if a file can be created in ``folder`` (tried: permissions, ACLs, read-only mounts, immutable flags)."""
+    try:
+        with tempfile.TemporaryFile(dir=folder):
+            return True
+    except OSError:
+        return False
+
+
+def _lock(fd: int) -> None:
+    if fcntl is not None:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    else:  # pragma: no cover - Windows
+        import msvcrt
+        msvcrt.locking(fd, msvcrt.LK_NBLCK, 1)
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+@contextlib.contextmanager
+def _interrupts_deferred():
+    """Hold back SIGINT during the two renames of a commit (re-raised right after)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    received = []
+    previous = signal.signal(signal.SIGINT, lambda signum, frame: received.append(signum))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    if received:
+        raise KeyboardInterrupt

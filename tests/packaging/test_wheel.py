@@ -1,0 +1,106 @@
+"""rockdesign as a user installs it: ``python -m build`` makes an sdist and a wheel that both carry the
+built-in records, suites and templates; the wheel, installed into a fresh virtualenv (no editable
+path, no access to the checkout), runs ``init``, ``quantities``, ``simulate`` with a built-in record
+and a full ``check`` to a PDF from a temporary directory.
+
+How the clean install is made (honest and reasonably fast): ``python -m venv`` without
+``--system-site-packages``; ``pip install <wheel>`` resolves every dependency itself from the package
+index pip is configured with (PyPI, or a local mirror/wheel cache through pip's own configuration) —
+nothing is borrowed from the development virtualenv.  The first run in the new venv compiles the
+numba kernels, so the test takes a few minutes; it is marked ``slow``.
+"""
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import tarfile
+import zipfile
+from pathlib import Path
+
+import pytest
+
+pytestmark = pytest.mark.slow
+
+REPO = Path(__file__).resolve().parents[2]
+DATA = ["rockdesign/data/ground_motions/p695_records.csv", "rockdesign/data/ground_motions/p695_farfield.npz",
+        "rockdesign/data/ground_motions/p695-farfield.toml", "rockdesign/data/templates/report.html.j2",
+        "rockdesign/data/templates/report.css", "rockdesign/data/templates/project_podium.toml"]
+
+
+def _run(cmd, cwd, env, timeout=900):
+    out = subprocess.run([str(c) for c in cmd], cwd=cwd, env=env, capture_output=True, text=True, timeout=timeout)
+    assert out.returncode in (0, 1), f"{cmd}\n{out.stdout[-3000:]}\n{out.stderr[-3000:]}"
+    return out
+
+
+@pytest.fixture(scope="module")
+def dist(tmp_path_factory):
+    pytest.importorskip("build")
+    out = tmp_path_factory.mktemp("dist")
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    result = subprocess.run([sys.executable, "-m", "build", "--outdir", str(out), str(REPO)], env=env,
+                            capture_output=True, text=True, timeout=900)
+    assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-3000:]
+    return out
+
+
+def test_sdist_and_wheel_carry_the_data(dist):
+    (wheel,) = dist.glob("rockdesign-*.whl")
+    (sdist,) = dist.glob("rockdesign-*.tar.gz")
+    names = set(zipfile.ZipFile(wheel).namelist())
+    assert set(DATA) <= names
+    assert sum(n.endswith(".npz") for n in names) == 3
+    with tarfile.open(sdist) as tar:
+        members = {m.name.split("/", 1)[1] for m in tar.getmembers() if "/" in m.name}
+    assert set(DATA) <= members
+
+
+@pytest.fixture(scope="module")
+def venv(dist, tmp_path_factory):
+    """A fresh virtualenv with the wheel installed the normal way (dependencies from the index)."""
+    home = tmp_path_factory.mktemp("venv")
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME", "VIRTUAL_ENV")}
+    subprocess.run([sys.executable, "-m", "venv", str(home / "venv")], check=True, env=env, timeout=300)
+    bin_dir = home / "venv" / ("Scripts" if os.name == "nt" else "bin")
+    (wheel,) = dist.glob("rockdesign-*.whl")
+    result = subprocess.run([bin_dir / "python", "-m", "pip", "install", "-q", str(wheel)], env=env,
+                            capture_output=True, text=True, timeout=1800)
+    assert result.returncode == 0, result.stderr[-3000:]
+    env = {k: v for k, v in env.items() if not k.startswith("ROCKDESIGN_")}
+    env["PATH"] = f"{bin_dir}{os.pathsep}{env.get('PATH', '')}"
+    return bin_dir, env
+
+
+def test_installed_wheel_runs_every_command_from_a_temporary_directory(venv, tmp_path):
+    bin_dir, env = venv
+    work = tmp_path / "work"
+    work.mkdir()
+    # the imported package is the installed one; nothing of the checkout is importable
+    probe = _run([bin_dir / "python", "-c", "import json, sys, rockdesign, rockdesign.paths as p; print(json.dumps("
+                  "{'file': rockdesign.__file__, 'path': sys.path, 'data': str(p.ground_motions_dir()), "
+                  "'meta': [type(f).__name__ for f in sys.meta_path]}))"], work, env)
+    info = json.loads(probe.stdout)
+    venv_root = bin_dir.parent.resolve()
+    assert Path(info["file"]).resolve().is_relative_to(venv_root)
+    assert Path(info["data"]).resolve().is_relative_to(venv_root)
+    assert not any(p and Path(p).resolve().is_relative_to(REPO) for p in info["path"])
+    assert not any("Editable" in name for name in info["meta"])
+
+    rockdesign = bin_dir / "rockdesign"
+    _run([rockdesign, "init", "podium", "podium.toml"], work, env)
+    q = json.loads(_run([rockdesign, "quantities", "podium.toml", "--json"], work, env).stdout)
+    assert q["quantities"]["theta_c"]["unit"] == "rad"
+    s = json.loads(_run([rockdesign, "simulate", "podium.toml", "--motion", "record:p695-ff/11a,scale=0.5", "--json"],
+                        work, env).stdout)
+    assert s["t_end"] > 20 and s["theta_max"] >= 0   # the Landers record is read from the installed package
+    listing = _run([rockdesign, "records", "list", "--json"], work, env)
+    assert len(json.loads(listing.stdout)) == 100
+    check = _run([rockdesign, "check", "podium.toml", "-o", "out"], work, env, timeout=1800)
+    assert check.returncode in (0, 1)
+    assert sorted(p.name for p in (work / "out").iterdir()) == ["report.html", "report.pdf", "results.csv",
+                                                               "results.json"]
+    assert (work / "out" / "report.pdf").read_bytes()[:5] == b"%PDF-"
+    data = json.loads((work / "out" / "results.json").read_text(encoding="utf-8"))
+    assert data["summary"]["n_records"] == 44 and not data["excitation"]["missing"]
