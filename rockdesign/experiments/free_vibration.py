@@ -220,11 +220,25 @@ def _arc_fit(t: np.ndarray, y: np.ndarray, segments, alpha: float, p: float, lev
         c, pp, th0, tpk = (level if fixed_level else x[0]), x[1], x[2:2 + n], x[2 + n:]
         return yy - c - side_of * (alpha - (alpha - th0[k_of]) * np.cosh(pp * (tt - tpk[k_of])))
 
+    rows = np.arange(tt.size)
+
+    def jacobian(x):
+        pp, th0, tpk = x[1], x[2:2 + n], x[2 + n:]
+        u = tt - tpk[k_of]
+        amp = alpha - th0[k_of]
+        sh = np.sinh(pp * u)
+        jac = np.zeros((tt.size, x.size))
+        jac[:, 0] = 0.0 if fixed_level else -1.0
+        jac[:, 1] = side_of * amp * u * sh
+        jac[rows, 2 + k_of] = -side_of * np.cosh(pp * u)
+        jac[rows, 2 + n + k_of] = -side_of * amp * pp * sh
+        return jac
+
     x0 = np.concatenate([[level, p], [seg[4] for seg in segments], [seg[3] for seg in segments]])
     lower = np.concatenate([[-np.inf, 0.2 * p], np.full(n, 1e-9), [seg[0] for seg in segments]])
     upper = np.concatenate([[np.inf, 5.0 * p], np.full(n, alpha * (1 - 1e-9)), [seg[1] for seg in segments]])
     x0 = np.clip(x0, lower + 1e-12, upper - 1e-12)
-    fit = least_squares(residual, x0, bounds=(lower, upper), x_scale="jac", xtol=1e-12, ftol=1e-12)
+    fit = least_squares(residual, x0, jac=jacobian, bounds=(lower, upper), x_scale="jac", xtol=1e-12, ftol=1e-12)
     return (level if fixed_level else float(fit.x[0])), float(fit.x[1]), fit.x[2:2 + n], fit.x[2 + n:]
 
 
@@ -303,7 +317,7 @@ def find_half_cycles(history: TiltHistory, alpha: float, p: float, *, min_amplit
     t, theta = history.t, history.theta
     rest = rest_level(history, sigma)
     level = 0.0 if rest is None else rest
-    for _ in range(2):   # segment at the current level, fit the arcs for the offset, segment again
+    for _ in range(1 if rest is not None else 2):   # segment, fit the arcs for the offset, segment again
         coarse = _crossings(tg, smooth, level, max(4.0 * sigma, 0.5 * threshold))
         if not coarse:
             raise ExperimentError("no rocking found in the measurement", file=history.source,
