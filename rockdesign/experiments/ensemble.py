@@ -48,7 +48,8 @@ class EnsembleRun:
 
 def run_ensemble(project, suite: str, *, scale: float = 1.0, restitution: float | None = None,
                  records_dir=None, progress=None) -> EnsembleRun:
-    """Analyse ``project`` under every motion of ``suite`` (name or manifest path) × ``scale``.
+    """Analyse ``project`` under every motion of ``suite`` (name or manifest path) × ``scale`` (× the
+    manifest's own factor, if it has one).
 
     ``restitution`` replaces the project's c_r (e.g. the value measured by ``rockdesign calibrate``).
     ``progress(done, total)`` is called as chunks finish.
@@ -66,6 +67,13 @@ def run_ensemble(project, suite: str, *, scale: float = 1.0, restitution: float 
     if not loaded.records:
         raise ProjectError("the ensemble has no available record", key="--suite", expected="a suite with records",
                            found="; ".join(f"{i}: {r}" for i, r in loaded.missing) or "an empty suite")
+    rule = loaded.default_scale
+    if rule is not None and rule.method != "factor":
+        raise ProjectError("the ensemble's scale rule is not applied by 'ensemble'", file=str(loaded.path),
+                           key="scale", expected="method = \"factor\" (or scale the motions with --scale)",
+                           found=f"method = \"{rule.method}\"")
+    if rule is not None:
+        scale *= rule.value
     structure = default_structure(system, a.rigid_superstructure_ratio)[0] if a.model == "auto" else \
         resolve_structure(system, a.model)
     if system.has_elastic_superstructure and a.model == "auto":

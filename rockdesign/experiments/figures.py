@@ -67,7 +67,7 @@ def validation_figure(result, title: str = ""):
                     f"p_o = {sample.p_overturn:.2f})")
         ax.axvline(result.overturn_at, color="0.5", ls=":", lw=0.8)
         ax.text(result.overturn_at, 0.02, " overturned", fontsize=7, color="0.4")
-        ax.set_xlim(0, x_max)
+        ax.set_xlim(0, 1.06 * x_max)
         ax.set_ylim(0, 1.01)
         ax.set_xlabel("θ_max/α [-]")
         ax.set_ylabel("F(θ_max/α) [-]")

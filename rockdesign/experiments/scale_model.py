@@ -143,10 +143,13 @@ def write_at2(record: ScaledRecord, path, gravity: float = 9.81, meta: dict | No
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     values = record.acceleration / gravity
-    station = ", ".join(str(meta.get(k) or "") for k in ("event", "date", "station", "component"))
+    when = meta.get("date") or meta.get("year")
+    fields = [meta.get("event") or record.name] + ([str(when)] if when else []) + \
+        [meta.get("station") or "", meta.get("component") or ""]
+    station = ", ".join(str(f) for f in fields)
     lines = [f"PEER NGA STRONG MOTION DATABASE RECORD (rockdesign scale-model of {record.name}: "
              f"dt x {record.time_factor:.6g}, band-pass {record.corners[0]:.4g}-{record.corners[1]:.4g} Hz)",
-             station if station.strip(", ") else f"{record.name}, , , ",
+             station,
              "ACCELERATION TIME SERIES IN UNITS OF G",
              f"NPTS= {values.size:7d}, DT= {record.dt:.8E} SEC"]
     for start in range(0, values.size, 5):

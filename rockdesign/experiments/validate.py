@@ -92,7 +92,7 @@ class MixedSample:
         return dkw_epsilon(self.n, a)
 
     def step_points(self, x_max: float) -> tuple[np.ndarray, np.ndarray]:
-        """(x, F) of the step CDF for plotting, with the overturning mass placed at ``x_max``·0.97."""
+        """(x, F) of the step CDF for plotting, with the overturning mass placed at ``x_max``."""
         finite = np.sort(self.conditional)
         x = np.concatenate([[0.0], finite, [0.97 * x_max, x_max]])
         return x, np.concatenate([[0.0], self.cdf(finite), [1.0 - self.p_overturn, 1.0]])
@@ -218,7 +218,8 @@ class Validation:
 
     @property
     def overturn_at(self) -> float:
-        return 0.97 * self.plot_limit
+        """Where the figure draws the overturning mass (right of every non-overturned θ_max/α)."""
+        return self.plot_limit
 
     @property
     def plot_limit(self) -> float:
