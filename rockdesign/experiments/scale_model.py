@@ -5,7 +5,9 @@
   (scipy.signal ``butter`` as second-order sections, ``sosfiltfilt``); the default corners are the
   usual prototype corners 0.1 Hz and 25 Hz moved by the time scale (f_m = f_p/√(R_m/R_p)), the
   upper one kept below 0.8 × Nyquist.
-* Velocity and displacement by the trapezoidal rule (scipy.integrate ``cumulative_trapezoid``).
+* Velocity and displacement by the trapezoidal rule (scipy.integrate ``cumulative_trapezoid``); a
+  polynomial displacement baseline (degree 2–6, v = d = 0 imposed at the end) is removed so the
+  table ends at rest at its origin (the acceleration is corrected consistently, by p'').
 * Peaks against the table's limits (thesis Fig 6.2b: stroke 250 mm, velocity 220 mm/s).
 * The scaled, corrected record written as a PEER AT2 file (units of g) that
   :func:`rockdesign.motions.records.read_record_file` reads back.
@@ -123,6 +125,29 @@ def band_pass(accel: np.ndarray, dt: float, corners: tuple[float, float], order:
     return signal.sosfiltfilt(sos, padded)[pad:pad + a.size]
 
 
+def end_at_rest(accel: np.ndarray, dt: float, degree: int = 6) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(a, v, d) with a polynomial baseline p(t) = Σ_{k=2..degree} c_k t^k removed from the displacement so
+    that the table starts and ends at rest at its origin: least squares of d − p with v(T) = d(T) = 0
+    imposed; a − p'' and v − p' stay consistent with d − p. Integration: ``cumulative_trapezoid``."""
+    t = np.arange(accel.size) * dt
+    v = cumulative_trapezoid(accel, dx=dt, initial=0.0)
+    d = cumulative_trapezoid(v, dx=dt, initial=0.0)
+    if accel.size < 3 * degree:
+        return accel, v, d
+    T = t[-1]
+    tau = t / T
+    powers = np.arange(2, degree + 1)
+    basis = tau[:, None] ** powers                       # d-basis, in units of T^k
+    weight = 1e3 * math.sqrt(accel.size)
+    rows = np.vstack([basis, weight * np.ones(powers.size), weight * powers / T])
+    rhs = np.concatenate([d, [weight * d[-1], weight * v[-1]]])
+    coef, *_ = np.linalg.lstsq(rows, rhs, rcond=None)
+    p = basis @ coef
+    dp = (tau[:, None] ** (powers - 1) * powers) @ coef / T
+    ddp = (tau[:, None] ** (powers - 2) * powers * (powers - 1)) @ coef / T ** 2
+    return accel - ddp, v - dp, d - p
+
+
 def scale_record(motion, length_ratio: float, *, corners: tuple[float, float] | None = None,
                  limits: dict | None = None) -> ScaledRecord:
     """The record ``motion`` prepared for a model of length ratio R_m/R_p (Eq 6.5), corrected and integrated."""
@@ -130,9 +155,7 @@ def scale_record(motion, length_ratio: float, *, corners: tuple[float, float] | 
     dt_m = time_scaled_dt(motion.dt, length_ratio)
     factor = math.sqrt(length_ratio)
     corners = corners or default_corners(factor, dt_m)
-    corrected = band_pass(accel, dt_m, corners)
-    velocity = cumulative_trapezoid(corrected, dx=dt_m, initial=0.0)
-    displacement = cumulative_trapezoid(velocity, dx=dt_m, initial=0.0)
+    corrected, velocity, displacement = end_at_rest(band_pass(accel, dt_m, corners), dt_m)
     return ScaledRecord(motion.name, dt_m, factor, tuple(float(c) for c in corners), corrected, velocity,
                         displacement, float(np.max(np.abs(accel))), dict(limits or {}))
 

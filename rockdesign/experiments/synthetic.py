@@ -13,6 +13,8 @@ import math
 import numpy as np
 from scipy.interpolate import CubicSpline
 
+from ..design.geometry import rocking_geometry
+from ..design.quantities import system_frequency_parameter
 from ..dynamics.simulate import simulate
 from ..systems import RockingSystem
 
@@ -30,10 +32,21 @@ def free_rocking_history(system: RockingSystem, theta0: float, *, c_r_left: floa
     fine = 2e-4
     pieces_t, pieces_y = [], []
     t0, th0, thd0 = 0.0, float(theta0), 0.0
+    geo = rocking_geometry(system.column)
+    p = system_frequency_parameter(system)[0]
     while t0 < duration:
-        r = simulate(elastic, None, theta0=th0, thetadot0=thd0, t_end=min(duration - t0, 60.0) + fine,
-                     output_dt=fine, rtol=1e-12, atol=1e-14)
-        impact = next((e for e in r.events if e.kind == "impact" and e.time > 1e-9), None)
+        # the half-cycle's length from Eq 2.8 (θ0 from the energy, Eq 2.10), with a margin
+        cos_peak = math.cos(geo.alpha - abs(th0)) + thd0 ** 2 / (2.0 * p ** 2)
+        theta_peak = max(1e-9, geo.alpha - math.acos(min(1.0, cos_peak)))
+        span = 2.0 / p * math.acosh(1.0 / max(1e-12, 1.0 - min(theta_peak, 0.999 * geo.alpha) / geo.alpha))
+        impact, horizon = None, 1.5 * span + 0.05
+        while impact is None:
+            r = simulate(elastic, None, theta0=th0, thetadot0=thd0, t_end=min(duration - t0, horizon) + fine,
+                         output_dt=fine, rtol=1e-12, atol=1e-14)
+            impact = next((e for e in r.events if e.kind == "impact" and e.time > 1e-9), None)
+            if horizon >= duration - t0:
+                break
+            horizon *= 2.0
         end = impact.time if impact is not None else r.t[-1]
         keep = r.t <= end
         pieces_t.append(t0 + r.t[keep])
