@@ -181,7 +181,8 @@ def register(app: typer.Typer, handle_errors) -> None:
                  as_json: bool = typer.Option(False, "--json", help="Print JSON."),
                  out: Optional[Path] = typer.Option(None, "-o", "--out", help="Folder for validation.json, "
                                                     "figure, report.html/pdf."),
-                 no_pdf: bool = typer.Option(False, "--no-pdf", help="With -o: HTML report only.")):
+                 no_pdf: bool = typer.Option(False, "--no-pdf", help="With -o: HTML report only."),
+                 plot: Optional[Path] = typer.Option(None, "--plot", help="Write the CDF figure (png/svg/pdf).")):
         """Compare test and model statistics of θ_max/α (thesis Ch. 7: Eq 7.1, Tables 7.2, 7.3)."""
         from .experiments.validate import read_results_csv, validate as run
         result = run(read_results_csv(tests, "tests"), read_results_csv(analyses, "analyses"),
@@ -192,6 +193,9 @@ def register(app: typer.Typer, handle_errors) -> None:
             files = {"tests": str(tests), "analyses": str(analyses),
                      "analyses_measured_cr": str(measured) if measured else None}
             write_validation(result, out, files, title=f"{tests.name} vs {analyses.name}", pdf=not no_pdf)
+        if plot is not None:
+            from .experiments.figures import validation_figure
+            _save(validation_figure(result, f"{tests.name} vs {analyses.name}"), plot)
         if as_json:
             sys.stdout.write(json.dumps(data, indent=2) + "\n")
             return

@@ -68,7 +68,8 @@ class Calibration:
                 "alpha": self.alpha, "p_sd": self.p_sd, "p_theory": self.p_theory,
                 "c_r_theory_equation": self.c_r_theory_equation,
                 "energy_loss_per_impact": 1.0 - self.c_r, "energy_loss_per_impact_theory": 1.0 - self.c_r_theory,
-                "offset": self.offset, "offset_source": self.offset_source, "noise": self.noise, "warnings": list(self.warnings)}
+                "offset": self.offset, "offset_source": self.offset_source, "noise": self.noise,
+                "warnings": list(self.warnings)}
 
 
 def frequency_parameter_from_period(half_period: float, theta0: float, alpha: float) -> float:
@@ -94,10 +95,9 @@ def mass_distribution_from_p(system: RockingSystem, p: float) -> float:
         return system_frequency_parameter(with_mass_distribution(system, lam))[0] - p
     lo, hi = -0.95, 1e3
     if f(lo) * f(hi) > 0:
-        raise ExperimentError("the measured frequency parameter does not fit the geometry",
-                              key="p", expected=f"p between {system_frequency_parameter(with_mass_distribution(system, hi))[0]:.4g} "
-                                                f"and {system_frequency_parameter(with_mass_distribution(system, lo))[0]:.4g} 1/s",
-                              found=f"{p:.4g} 1/s")
+        p_lo, p_hi = f(hi) + p, f(lo) + p
+        raise ExperimentError("the measured frequency parameter does not fit the geometry", key="p",
+                              expected=f"p between {p_lo:.4g} and {p_hi:.4g} 1/s", found=f"{p:.4g} 1/s")
     return float(brentq(f, lo, hi, xtol=1e-12))
 
 
@@ -157,7 +157,8 @@ def calibrate(system: RockingSystem, history: TiltHistory, *, max_half_cycles: i
     return Calibration(p=p, p_sd=float(np.std(p_each, ddof=1)) if p_each.size > 1 else 0.0, lam=lam,
                        c_r=float(np.mean(c_each)), c_r_left=c_left, c_r_right=c_right,
                        c_r_theory=c_th, c_r_theory_equation=eq, p_theory=system_frequency_parameter(system)[0],
-                       alpha=alpha, offset=seg.offset, offset_source=seg.offset_source, noise=seg.noise, half_cycles=half_cycles, theta0_fit=theta0_fit,
+                       alpha=alpha, offset=seg.offset, offset_source=seg.offset_source, noise=seg.noise,
+                       half_cycles=half_cycles, theta0_fit=theta0_fit,
                        p_per_half_cycle=p_each, c_r_per_impact=c_each, impacts=impacts, warnings=warnings)
 
 

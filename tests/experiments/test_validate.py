@@ -133,7 +133,8 @@ def test_cli_json_and_report(tmp_path):
     m = _write(tmp_path / "analyses.csv", MODEL)
     runner = CliRunner()
     res = runner.invoke(app, ["validate", "--tests", str(t), "--analyses", str(m), "--analyses-measured-cr", str(m),
-                              "--seed", "4", "--json", "-o", str(tmp_path / "out"), "--no-pdf"])
+                              "--seed", "4", "--json", "-o", str(tmp_path / "out"), "--no-pdf",
+                              "--plot", str(tmp_path / "cdf.svg")])
     assert res.exit_code == 0, res.output
     data = json.loads(res.stdout)
     assert {"n_tests", "n_analyses", "p_overturn_tests", "p_overturn_analyses", "kolmogorov_distance",
@@ -141,6 +142,6 @@ def test_cli_json_and_report(tmp_path):
     assert [r["stage"][0] for r in data["ks"]] == ["1", "2", "3"]
     html = (tmp_path / "out" / "report.html").read_text()
     assert "Table 7.2" in html and "Kolmogorov" in html and "data:image/svg+xml" in html
-    assert (tmp_path / "out" / "validation.png").exists()
+    assert (tmp_path / "out" / "validation.png").exists() and (tmp_path / "cdf.svg").exists()
     res = runner.invoke(app, ["validate", "--tests", str(tmp_path / "missing.csv"), "--analyses", str(m)])
     assert res.exit_code == 2 and "Traceback" not in res.output
