@@ -43,6 +43,16 @@ def test_recovers_p_and_left_right_restitution(specimen, tmp_path, seed):
     assert len(cal.half_cycles) == 20
 
 
+@pytest.mark.parametrize("rate", [100.0, 1000.0])
+def test_sampling_rates(specimen, rate):
+    t, theta = free_rocking_history(specimen, 0.7 * ALPHA, c_r_left=C_R_LEFT, c_r_right=C_R_RIGHT, duration=40.0,
+                                    rate=rate, noise=NOISE, offset=-0.006, seed=1)
+    cal = calibrate(specimen, TiltHistory(t, theta, f"{rate:g} Hz"))
+    assert cal.p == pytest.approx(system_frequency_parameter(specimen)[0], rel=0.005)
+    assert cal.c_r_left == pytest.approx(C_R_LEFT, abs=0.005)
+    assert cal.c_r_right == pytest.approx(C_R_RIGHT, abs=0.005)
+
+
 @pytest.mark.parametrize("seed", [4, 5])
 def test_offset_without_rest_tail(specimen, seed):
     """A record that ends while the body still rocks: the offset comes from the arc fit (less precise)."""

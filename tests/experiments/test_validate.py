@@ -145,3 +145,13 @@ def test_cli_json_and_report(tmp_path):
     assert (tmp_path / "out" / "validation.png").exists() and (tmp_path / "cdf.svg").exists()
     res = runner.invoke(app, ["validate", "--tests", str(tmp_path / "missing.csv"), "--analyses", str(m)])
     assert res.exit_code == 2 and "Traceback" not in res.output
+
+
+def test_pdf_report(tmp_path):
+    pypdf = pytest.importorskip("pypdf")
+    from rockdesign.experiments.validate_report import write_validation
+    result = validate(MixedSample("tests", TESTS), MixedSample("analyses", MODEL), seed=2)
+    written = write_validation(result, tmp_path, {"tests": "t.csv", "analyses": "m.csv"}, title="fixed samples")
+    text = "".join(page.extract_text() for page in pypdf.PdfReader(written["pdf"]).pages)
+    assert "Kolmogorov" in text and "Table 7.2" in text and "small or none" in text
+    assert json.loads((tmp_path / "validation.json").read_text()) == json.loads(json.dumps(result.as_json()))
