@@ -156,12 +156,12 @@ def simulate(project: Path = typer.Argument(..., help="Project file (TOML)"),
 
 def _mount_command_modules():
     """Mount the commands that live in their own modules (records, check, spectrum, bench)."""
-    from . import cli_bench, cli_check, cli_spectrum
+    from . import cli_bench, cli_check, cli_experiments, cli_spectrum
     from .cli_records import app as records_app
     for command in records_app.registered_commands:
         command.callback = handle_errors(command.callback)
     app.add_typer(records_app, name="records", help="Ground-motion tools: list, show, spectrum, synth.")
-    for module in (cli_check, cli_spectrum, cli_bench):
+    for module in (cli_check, cli_spectrum, cli_bench, cli_experiments):
         module.register(app, handle_errors)
 
 

@@ -274,3 +274,23 @@ def synth_command(
     console.print(f"wrote {n} records to {path} (+ {path.with_suffix('.npz').name}, model.json, match.json)")
     console.print(match.describe())
     console.print(f"use it with [excitation] suites = [\"{path}\"]")
+
+
+@app.command("scale-model")
+def scale_model_command(
+    record_id: str = typer.Argument(..., metavar="ID", help="Record id, file:path or a path."),
+    length_ratio: float = typer.Option(..., "--length-ratio", help="R_m/R_p, e.g. 0.025 (Eq 6.5)."),
+    table: Optional[str] = typer.Option(None, "--table", help="Table limits, e.g. 'd=0.125m,v=0.22m/s,a=1.5g'."),
+    out: Optional[Path] = typer.Option(None, "-o", "--out", help="Write the scaled record (AT2, units of g)."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Plot a, v, d (PNG, SVG, PDF)."),
+    band: Optional[str] = typer.Option(None, "--band", help="Band-pass corners low:high [Hz, model time]."),
+    as_json: bool = typer.Option(False, "--json", help="JSON on stdout (SI)."),
+    records_dir: Optional[Path] = typer.Option(None, "--records-dir", help=RECORDS_DIR_HELP),
+    gravity: float = typer.Option(9.81, "--gravity", help=GRAVITY_HELP),
+) -> None:
+    """Time-scale a record for a small-scale model (Eq 6.5), correct it and check the shake table's limits
+    (exit 1 when a limit is exceeded)."""
+    from .cli_experiments import scale_model_command as run
+    code = run(_record_id(record_id), length_ratio, table, out, plot, band, as_json, gravity,
+               _load(record_id, gravity, records_dir))
+    raise typer.Exit(code)

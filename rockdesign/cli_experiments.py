@@ -1,0 +1,237 @@
+"""``rockdesign calibrate | validate | ensemble``: experiments (thesis Ch. 6–7, docs/experiments.md).
+
+``records scale-model`` lives in :mod:`rockdesign.cli_records` and calls
+:func:`scale_model_command` here.
+"""
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+from typing import Optional
+
+import typer
+from rich.console import Console
+from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+from rich.table import Table
+
+
+def _console() -> Console:
+    console = Console(highlight=False, markup=False, soft_wrap=True)
+    if not console.is_terminal:
+        console.width = 160
+    return console
+
+
+def _fmt(value, digits: int = 4) -> str:
+    return "–" if value is None else f"{value:.{digits}g}"
+
+
+def _save(fig, path: Path) -> None:
+    from .report.plots import save
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    save(fig, path)
+
+
+def calibration_table(cal, console: Console) -> None:
+    table = Table(title="free-vibration calibration (thesis Sec 6.3.5, 6.4.3)")
+    for col in ("quantity", "measured", "theory", "equation"):
+        table.add_column(col)
+    table.add_row("p [1/s]", f"{cal.p:.5g} (SD {cal.p_sd:.2g})", f"{cal.p_theory:.5g}", "Eq 2.8 inverted; Eq 3.13/3.76")
+    table.add_row("λ [-]", f"{cal.lam:.4g}", "", "from p (Eq 3.13/3.76)")
+    table.add_row("c_r, all impacts [-]", f"{cal.c_r:.4f}", f"{cal.c_r_theory:.4f}",
+                  f"Eq 6.19 with Eq 2.10; theory {cal.c_r_theory_equation}")
+    table.add_row("c_r, left impacts (θ < 0 before) [-]", _fmt(cal.c_r_left), "", "Eq 6.19")
+    table.add_row("c_r, right impacts (θ > 0 before) [-]", _fmt(cal.c_r_right), "", "Eq 6.19")
+    table.add_row("energy loss per impact 1 − c_r [%]", f"{100 * (1 - cal.c_r):.3g}",
+                  f"{100 * (1 - cal.c_r_theory):.3g}", "")
+    table.add_row("half-cycles used", str(len(cal.half_cycles)), "", "")
+    table.add_row("α [rad]", f"{cal.alpha:.5g}", "", "")
+    table.add_row("offset (θ = 0 of the body) [rad]", f"{cal.offset:.3g} ({cal.offset_source})", "", "")
+    table.add_row("noise SD [rad]", f"{cal.noise:.2g}", "", "")
+    console.print(table)
+    for w in cal.warnings:
+        console.print(f"warning: {w}")
+
+
+def validation_tables(data: dict, console: Console) -> None:
+    names = list(data["percentiles"])
+    table = Table(title="θ_max/α: percentiles and conditional moments (thesis Table 7.2 layout; OT = overturned)")
+    table.add_column("")
+    for name in names:
+        table.add_column(name)
+        if name != "tests":
+            table.add_column("Δθ/θ_exp")
+    for key, label in (("25", "25th percentile"), ("50", "50th percentile"), ("75", "75th percentile"),
+                       ("conditional_mean", "conditional mean"), ("conditional_sd", "conditional SD")):
+        cells = [label]
+        for name in names:
+            v = data["percentiles"][name][key]
+            cells.append(("OT" if key in ("25", "50", "75") else "–") if v is None else f"{v:.3f}")
+            if name != "tests":
+                e = data["relative_errors"][name].get(key)
+                cells.append("–" if e is None else f"{e:+.3f}")
+        table.add_row(*cells)
+    console.print(table)
+    console.print(f"tests: n = {data['n_tests']}, p_o = {data['p_overturn_tests']:.3f}; model: n = {data['n_analyses']}, "
+                  f"p_o = {data['p_overturn_analyses']:.3f}; Kolmogorov distance {data['kolmogorov_distance']:.3f}"
+                  + (f" (measured c_r: {data['kolmogorov_distance_measured_cr']:.3f})"
+                     if "kolmogorov_distance_measured_cr" in data else ""))
+    console.print(f"DKW band half-width on the test CDF: {data['dkw_epsilon']['90%']:.3f} (90 %), "
+                  f"{data['dkw_epsilon']['95%']:.3f} (95 %)")
+    for key, title, stat in (("proportions", "test of equal proportions of overturning (Sec 7.2.1)", "p_D1 − p_other"),
+                             ("ks", "two-sample Kolmogorov–Smirnov test of F̄ (Sec 7.2.2)", "D")):
+        table = Table(title=f"{title}; split seed {data['seed']}")
+        for col in ("stage", stat, "p-value", "evidence (Table 7.3)"):
+            table.add_column(col)
+        for row in data[key]:
+            table.add_row(row["stage"], _fmt(row["statistic"], 3), _fmt(row["p_value"], 3), row["evidence"])
+        console.print(table)
+
+
+def scale_model_command(record_id: str, length_ratio: float, table: Optional[str], out: Optional[Path],
+                        plot: Optional[Path], band: Optional[str], as_json: bool, gravity: float, motion) -> int:
+    """Body of ``records scale-model`` (the motion already loaded): returns the exit code (1 = a limit exceeded)."""
+    from .errors import MotionError
+    from .experiments.scale_model import parse_limits, scale_record, write_at2
+    limits = parse_limits(table, gravity)
+    corners = None
+    if band:
+        try:
+            lo, hi = (float(x) for x in band.split(":"))
+        except ValueError:
+            raise MotionError("invalid filter corners", key="--band", expected="low:high in Hz, e.g. 0.6:150",
+                              found=repr(band)) from None
+        corners = (lo, hi)
+    scaled = scale_record(motion, length_ratio, corners=corners, limits=limits)
+    if out is not None:
+        write_at2(scaled, out, gravity, motion.meta)
+    if plot is not None:
+        from .experiments.figures import scale_model_figure
+        _save(scale_model_figure(scaled, gravity, limits, f"{record_id} for R_m/R_p = {length_ratio:g} (Eq 6.5)"),
+              plot)
+    data = scaled.as_json()
+    if as_json:
+        sys.stdout.write(json.dumps(data) + "\n")
+        return 1 if scaled.exceeded else 0
+    console = _console()
+    console.print(f"{record_id}: time scale √(R_m/R_p) = {scaled.time_factor:.5g} (Eq 6.5): dt {motion.dt:g} s → "
+                  f"{scaled.dt:.6g} s, duration {scaled.duration:.4g} s; accelerations unchanged")
+    console.print(f"baseline correction and zero-phase Butterworth band-pass (order 4, sosfiltfilt): "
+                  f"{scaled.corners[0]:.4g}–{scaled.corners[1]:.4g} Hz")
+    t = Table(title="peaks after correction vs table limits")
+    for col in ("quantity", "peak", "limit", "utilisation", ""):
+        t.add_column(col)
+    peaks = scaled.peaks
+    for key, label, unit, factor in (("a", "acceleration", "g", 1.0 / gravity), ("v", "velocity", "m/s", 1.0),
+                                     ("d", "displacement", "m", 1.0)):
+        limit = limits.get(key)
+        t.add_row(label, f"{peaks[key] * factor:.4g} {unit}", "–" if limit is None else f"{limit * factor:.4g} {unit}",
+                  "–" if limit is None else f"{peaks[key] / limit:.3g}",
+                  "" if limit is None else ("EXCEEDED" if key in scaled.exceeded else "ok"))
+    console.print(t)
+    if out is not None:
+        console.print(f"wrote {out} (AT2, units of g)")
+    if plot is not None:
+        console.print(f"plot written to {plot}")
+    return 1 if scaled.exceeded else 0
+
+
+def register(app: typer.Typer, handle_errors) -> None:
+    @app.command()
+    @handle_errors
+    def calibrate(project: Path = typer.Argument(..., help="Project file (TOML) of the specimen."),
+                  free_vibration: Path = typer.Option(..., "--free-vibration", help="Measured tilt history CSV: "
+                                                      "columns t [s] and theta [rad] (or theta_deg)."),
+                  as_json: bool = typer.Option(False, "--json", help="Print JSON (SI units)."),
+                  plot: Optional[Path] = typer.Option(None, "--plot", help="Measured vs simulated θ/α (png/svg/pdf)."),
+                  half_cycles: int = typer.Option(20, "--half-cycles", min=2, help="Use at most this many half-cycles."),
+                  min_amplitude: float = typer.Option(0.05, "--min-amplitude", help="Ignore half-cycles with "
+                                                      "θ0 below this fraction of α.")):
+        """Back-calculate p, λ and c_r (left/right) from a free-vibration test (thesis Sec 6.3.5, 6.4.3)."""
+        from .experiments.calibrate import calibrate as run, simulated_history
+        from .experiments.free_vibration import read_tilt_csv
+        from .project import load_project
+        proj = load_project(project)
+        history = read_tilt_csv(free_vibration)
+        cal = run(proj.system, history, max_half_cycles=half_cycles, min_amplitude=min_amplitude)
+        if plot is not None:
+            from .experiments.figures import calibration_figure
+            sim = simulated_history(proj.system, cal, history)
+            _save(calibration_figure(history, cal, sim, f"{proj.name}: {free_vibration.name}"), plot)
+        if as_json:
+            sys.stdout.write(json.dumps(cal.as_json(), indent=2) + "\n")
+            return
+        console = _console()
+        if history.dropped_rows:
+            console.print(f"{history.dropped_rows} row(s) with missing values skipped")
+        calibration_table(cal, console)
+        console.print(f"use it: restitution = {cal.c_r:.4f} and mass_distribution = {cal.lam:.4f} in the project file")
+        if plot is not None:
+            console.print(f"plot written to {plot}")
+
+    @app.command()
+    @handle_errors
+    def validate(tests: Path = typer.Option(..., "--tests", help="Test results CSV (theta_max_over_alpha, "
+                                            "overturned, id)."),
+                 analyses: Path = typer.Option(..., "--analyses", help="Model results CSV (theoretical c_r)."),
+                 measured: Optional[Path] = typer.Option(None, "--analyses-measured-cr",
+                                                         help="Model results CSV with the measured c_r."),
+                 seed: int = typer.Option(1, "--seed", help="Seed of the random D1/D2 split of the tests."),
+                 as_json: bool = typer.Option(False, "--json", help="Print JSON."),
+                 out: Optional[Path] = typer.Option(None, "-o", "--out", help="Folder for validation.json, "
+                                                    "figure, report.html/pdf."),
+                 no_pdf: bool = typer.Option(False, "--no-pdf", help="With -o: HTML report only."),
+                 plot: Optional[Path] = typer.Option(None, "--plot", help="Write the CDF figure (png/svg/pdf).")):
+        """Compare test and model statistics of θ_max/α (thesis Ch. 7: Eq 7.1, Tables 7.2, 7.3)."""
+        from .experiments.validate import read_results_csv, validate as run
+        result = run(read_results_csv(tests, "tests"), read_results_csv(analyses, "analyses"),
+                     read_results_csv(measured, "analyses_measured_cr") if measured else None, seed=seed)
+        data = result.as_json()
+        if out is not None:
+            from .experiments.validate_report import write_validation
+            files = {"tests": str(tests), "analyses": str(analyses),
+                     "analyses_measured_cr": str(measured) if measured else None}
+            write_validation(result, out, files, title=f"{tests.name} vs {analyses.name}", pdf=not no_pdf)
+        if plot is not None:
+            from .experiments.figures import validation_figure
+            _save(validation_figure(result, f"{tests.name} vs {analyses.name}"), plot)
+        if as_json:
+            sys.stdout.write(json.dumps(data, indent=2) + "\n")
+            return
+        console = _console()
+        validation_tables(data, console)
+        if out is not None:
+            console.print(f"wrote {out}/validation.json, validation.png/.svg, report.html"
+                          + ("" if no_pdf else ", report.pdf"))
+
+    @app.command()
+    @handle_errors
+    def ensemble(project: Path = typer.Argument(..., help="Project file (TOML)."),
+                 suite: str = typer.Option(..., "--suite", help="Ensemble: suite name or manifest path (e.g. the "
+                                           "ensemble.toml written by 'records synth')."),
+                 out: Path = typer.Option(..., "-o", "--out", help="analyses.csv to write."),
+                 scale: float = typer.Option(1.0, "--scale", help="Factor on every motion."),
+                 restitution: Optional[float] = typer.Option(None, "--restitution", help="c_r to use instead "
+                                                             "of the project's (e.g. measured)."),
+                 records_dir: Optional[Path] = typer.Option(None, "--records-dir", help="Folder of PEER AT2 files."),
+                 as_json: bool = typer.Option(False, "--json", help="Print the results as JSON.")):
+        """Run a project over a ground-motion ensemble and write the analyses.csv that 'validate' reads."""
+        from .experiments.ensemble import run_ensemble, write_analyses_csv
+        from .project import load_project
+        proj = load_project(project)
+        err = Console(stderr=True)
+        with Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
+                      console=err, disable=as_json and not err.is_terminal) as bar:
+            task = bar.add_task("ensemble analyses", total=None)
+            result = run_ensemble(proj, suite, scale=scale, restitution=restitution,
+                                  records_dir=str(records_dir) if records_dir else None,
+                                  progress=lambda done, total: bar.update(task, completed=done, total=total))
+        write_analyses_csv(result, out)
+        data = result.as_json()
+        if as_json:
+            sys.stdout.write(json.dumps(data, indent=2) + "\n")
+            return
+        _console().print(f"{data['n']} analyses of {proj.name} over {result.suite} ({result.model}, c_r = "
+                         f"{result.c_r:.4f}): {data['n_overturned']} overturned (p_o = {data['p_overturn']:.3f}); "
+                         f"wrote {out}")
