@@ -2,13 +2,11 @@
 non-monotonic ("resurrection") overturning bands of every record, in the fragility's intensity measure."""
 from __future__ import annotations
 
-import matplotlib
+import matplotlib.ticker as ticker
+import numpy as np
+from scipy.stats import norm
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import matplotlib.ticker as ticker  # noqa: E402
-import numpy as np  # noqa: E402
-from scipy.stats import norm  # noqa: E402
+from .. import mplfig as plt  # pyplot-free Figures: importing never switches the backend
 
 from .formatting import fmt  # noqa: E402
 from .plots import STYLE  # noqa: E402
