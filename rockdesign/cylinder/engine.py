@@ -157,7 +157,8 @@ def simulate_cylinder(cyl: Cylinder, pair: MotionPair | None = None, *, t_end: f
                       free_vibration: float = 10.0, theta0: float = 0.0, thetadot0: float = 0.0, phi0: float = 0.0,
                       phidot0: float = 0.0, rtol: float = DEFAULT_RTOL, atol: float = DEFAULT_ATOL,
                       rest_velocity: float = DEFAULT_REST_VELOCITY, theta_seed: float = THETA_SEED,
-                      quasi_impact_tilt: float = QUASI_IMPACT_TILT, max_steps: int = MAX_STEPS) -> CylinderResponse:
+                      quasi_impact_tilt: float = QUASI_IMPACT_TILT, max_steps: int = MAX_STEPS,
+                      output_dt: float = 0.0) -> CylinderResponse:
     """Integrate the cylinder's Eqs 5.22–5.23 (rigid contact) or 5.23, 5.36–5.37 (spring–dashpot).
 
     Args:
@@ -170,6 +171,8 @@ def simulate_cylinder(cyl: Cylinder, pair: MotionPair | None = None, *, t_end: f
         theta_seed: tilt [rad] at which an uplift starts.
         quasi_impact_tilt: minima of θ below this fraction of α count as quasi-impacts.
         max_steps: bound on the number of steps (status "step limit reached").
+        output_dt: > 0 adds the 7th-order dense output on the grid k·output_dt [s] to the history
+            (besides every step and event).
     """
     pair = pair if pair is not None else no_pair()
     if theta0 < 0.0:
@@ -189,7 +192,7 @@ def simulate_cylinder(cyl: Cylinder, pair: MotionPair | None = None, *, t_end: f
                                     np.ascontiguousarray(pair.params, dtype=np.float64), sx, sy, float(dirx), float(diry),
                                     float(rtol), float(atol), float(theta_seed), float(cyl.theta_overturn),
                                     float(quasi_impact_tilt * cyl.alpha), float(rest_energy), float(restitution),
-                                    float(up), int(max_steps))
+                                    float(up), int(max_steps), float(output_dt))
     t = hist[:, 0]
     ax, ay = pair.acceleration(t)
     ax = np.where(t > pair.duration, 0.0, ax)

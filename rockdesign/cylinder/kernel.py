@@ -236,9 +236,10 @@ def _event(events, ne, code, t, theta, value, ev):
 
 @njit(cache=True)
 def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, rtol, atol, theta_seed,
-              theta_ot, quasi_tilt, rest_energy, planar_restitution, up, max_steps):
+              theta_ot, quasi_tilt, rest_energy, planar_restitution, up, max_steps, out_dt):
     """Integrate one cylinder from (t0, y0) to t_end (module docstring).
 
+    ``out_dt`` > 0 adds dense-output rows on the grid k·out_dt to the history.
     Returns (history rows [t, θ, θ̇, φ, φ̇, w_T, ẇ_T, N/(mg)] at every accepted step and event,
     events rows [code, t, θ, value], stats [steps, rejected, rhs evaluations, dense outputs, status,
     t_stop]).
@@ -248,6 +249,9 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
     y_new = np.zeros(6)
     ytmp = np.zeros(6)
     f = np.zeros(6)
+    fg = np.zeros(6)
+    yg = np.zeros(6)
+    k_out = 1
     K = np.zeros((16, 6))
     F = np.zeros((7, 6))
     row = np.zeros(HISTORY_COLUMNS)
@@ -390,6 +394,22 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
                 xa = xb
                 va = vb
                 ta_ = tb_
+        if out_dt > 0.0:
+            t_hi = t + stop_at * hh if stop_at >= 0.0 else t_new
+            while k_out * out_dt <= t_hi - 1e-12 * max(1.0, t_hi):
+                tg = k_out * out_dt
+                k_out += 1
+                if tg <= t:
+                    continue
+                if not have_dense:
+                    _dense(t, y, y_new, K, hh, F, ytmp, n, par, active, kind, params, sx, sy, dirx, diry)
+                    nfev += 3
+                    ndense += 1
+                    have_dense = True
+                for i in range(6):
+                    yg[i] = _dense_at(F, y, (tg - t) / hh, i) if i < n else 0.0
+                rhs(tg, yg, fg, par, active, kind, params, sx, sy, dirx, diry)
+                hist, nh = _record(hist, nh, tg, yg, fg, par, row)
         if stop_at >= 0.0:
             tt = t + stop_at * hh
             for i in range(n):
