@@ -168,7 +168,8 @@ def simulate_cylinder(cyl: Cylinder, pair: MotionPair | None = None, *, t_end: f
         theta0, thetadot0, phi0, phidot0: initial state [rad, rad/s] (free vibration).
         rtol, atol: tolerances of the DOP853 step control (rad, rad/s, m, m/s).
         rest_velocity: v_rest [rad/s] of the damped model's rest rule (docs/cylinder.md).
-        theta_seed: tilt [rad] at which an uplift starts.
+        theta_seed: tilt [rad] at which an uplift starts (0 for a planar motion, whose equation is
+            regular at θ = 0).
         quasi_impact_tilt: minima of θ below this fraction of α count as quasi-impacts.
         max_steps: bound on the number of steps (status "step limit reached").
         output_dt: > 0 adds the 7th-order dense output on the grid k·output_dt [s] to the history
@@ -190,7 +191,7 @@ def simulate_cylinder(cyl: Cylinder, pair: MotionPair | None = None, *, t_end: f
     restitution = restitution_root(cyl.alpha) if cyl.damped else 1.0
     hist, events, stats = integrate(y0, 0.0, float(end), float(pair.duration), par, int(pair.kind),
                                     np.ascontiguousarray(pair.params, dtype=np.float64), sx, sy, float(dirx), float(diry),
-                                    float(rtol), float(atol), float(theta_seed), float(cyl.theta_overturn),
+                                    float(rtol), float(atol), 0.0 if planar else float(theta_seed), float(cyl.theta_overturn),
                                     float(quasi_impact_tilt * cyl.alpha), float(rest_energy), float(restitution),
                                     float(up), int(max_steps), float(output_dt))
     t = hist[:, 0]

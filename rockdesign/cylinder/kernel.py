@@ -278,6 +278,12 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
     while t < t_end:
         if resting:
             tu = _uplift_time(t, min(t_end, t_exc_end), up * (1.0 + 1e-12), kind, params, sx, sy, dirx, diry)
+            if out_dt > 0.0:                      # grid rows while at rest
+                t_hi = min(tu, t_end)
+                while k_out * out_dt < t_hi - 1e-12 * max(1.0, t_hi):
+                    if k_out * out_dt > t:
+                        hist, nh = _record(hist, nh, k_out * out_dt, y, f, par, row)
+                    k_out += 1
             if tu == math.inf or tu >= t_end:
                 t = t_end
                 hist, nh = _record(hist, nh, t, y, f, par, row)
