@@ -73,6 +73,9 @@ def quantities(project: Path = typer.Argument(..., help="Project file (TOML)"),
     from .api import quantities_json, quantities_table, write_pushover
     from .project import load_project
     proj = load_project(project)
+    if proj.system.kind == "cylinder":                      # the 3D cylinder (thesis Ch. 5)
+        from .cylinder.cli import quantities_command
+        return quantities_command(proj, console, as_json, units, pushover)
     if pushover is not None:
         write_pushover(proj.system, pushover)
     if as_json:
@@ -98,6 +101,9 @@ def simulate(project: Path = typer.Argument(..., help="Project file (TOML)"),
     from .api import simulate_project
     from .project import load_project
     proj = load_project(project)
+    if proj.system.kind == "cylinder":                      # the 3D cylinder (thesis Ch. 5)
+        from .cylinder.cli import simulate_command
+        return simulate_command(proj, motion, model, as_json, plot, csv, t_end, rtol, records_dir, console)
     result = simulate_project(proj, motion, model=model, t_end=t_end, rtol=rtol,
                               records_dir=str(records_dir) if records_dir else None)
     if csv:
