@@ -57,7 +57,6 @@ def ground_xy(t, active, kind, params, sx, sy, dirx, diry):
 def rhs(t, y, out, par, active, kind, params, sx, sy, dirx, diry):
     """Right-hand side dy/dt of Eqs 5.22–5.23 (undamped) or 5.23, 5.36–5.37 (damped) into ``out``."""
     R = par[P_R]
-    alpha = par[P_ALPHA]
     g = par[P_G]
     s2 = par[P_S2]
     c2 = par[P_C2]
@@ -68,16 +67,19 @@ def rhs(t, y, out, par, active, kind, params, sx, sy, dirx, diry):
     ph = y[2]
     phd = y[3]
     ax, ay = ground_xy(t, active, kind, params, sx, sy, dirx, diry)
-    sth = math.sin(th)
-    cth = math.cos(th)
-    sh = math.sin(0.5 * th)
-    omc = 2.0 * sh * sh                                  # 1 − cosθ
+    sa = par[P_SA]
+    ca = par[P_CA]
+    sh = math.sin(0.5 * th)                              # four transcendental calls, the rest by identities
+    ch = math.cos(0.5 * th)
     cph = math.cos(ph)
     sph = math.sin(ph)
-    sam = math.sin(alpha - th)
-    cam = math.cos(alpha - th)
+    sth = 2.0 * sh * ch
+    omc = 2.0 * sh * sh                                  # 1 − cosθ
+    cth = 1.0 - omc
+    sam = sa * cth - ca * sth                            # sin(α−θ)
+    cam = ca * cth + sa * sth                            # cos(α−θ)
     X = (sth * cth * (1.25 * s2 - 4.0 / 3.0 * c2) - 1.5 * sth * s2
-         - par[P_SA] * par[P_CA] * 2.0 * math.sin(1.5 * th) * sh)
+         - sa * ca * 2.0 * (sth * ch + cth * sh) * sh)   # cos2θ − cosθ = −2 sin(3θ/2) sin(θ/2)
     F = ax * cph + ay * sph
     if par[P_DAMPED] > 0.5:
         om = par[P_OMEGA]
@@ -92,7 +94,7 @@ def rhs(t, y, out, par, active, kind, params, sx, sy, dirx, diry):
         thdd = (-phd * phd * R * X - g * sam - cam * F) / (R * M)
     J = (16.0 + 5.0 * s2) / 12.0 * sth * sth + omc * (sin2a * sth - 3.0 * s2 * cth)
     K = sin2a * (cth * omc + sth * sth) + sth * (3.0 * s2 + (8.0 / 3.0 * c2 - 2.5 * s2) * cth)
-    lever = 2.0 * math.cos(alpha - 0.5 * th) * sh           # sinα − sin(α−θ)
+    lever = 2.0 * (ca * ch + sa * sh) * sh                   # sinα − sin(α−θ) = 2 cos(α − θ/2) sin(θ/2)
     if par[P_PLANAR] > 0.5:
         phdd = 0.0
     elif J > 0.0:
