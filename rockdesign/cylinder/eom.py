@@ -27,7 +27,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..motions.excitation import ground_acceleration
+from ..motions.excitation import EXC_SAMPLES, ground_acceleration
 
 # parameter vector layout (see :func:`parameters`)
 P_R, P_ALPHA, P_G, P_OMEGA, P_ZETA, P_DAMPED, P_SA, P_CA, P_S2, P_C2, P_SIN2A, P_M, P_PLANAR = range(13)
@@ -50,6 +50,18 @@ def ground_xy(t, active, kind, params, sx, sy, dirx, diry):
     zero once the excitation has ended (``active`` false)."""
     if not active:
         return 0.0, 0.0
+    if kind == EXC_SAMPLES:                  # both components share the time step: one index, two lerps
+        n = sx.shape[0]
+        x = t / params[1]
+        if x < 0.0 or n == 0:
+            return 0.0, 0.0
+        i = int(math.floor(x))
+        if i >= n - 1:
+            if i == n - 1 and x - i <= 1e-12:
+                return params[0] * sx[n - 1], params[0] * sy[n - 1]
+            return 0.0, 0.0
+        f = x - i
+        return (params[0] * (sx[i] + f * (sx[i + 1] - sx[i])), params[0] * (sy[i] + f * (sy[i + 1] - sy[i])))
     return dirx * ground_acceleration(t, kind, params, sx), diry * ground_acceleration(t, kind, params, sy)
 
 
