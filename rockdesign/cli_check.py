@@ -49,6 +49,9 @@ def register(app: typer.Typer, handle_errors) -> None:
         from .project import load_project
         err = Console(stderr=True)
         proj = load_project(project)
+        if proj.system.kind == "cylinder":                  # the 3D cylinder (thesis Ch. 5)
+            from .checks.cylinder_cli import cylinder_check_command
+            return cylinder_check_command(proj, project, out, as_json, err)
         with Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
                       console=err, transient=False, disable=as_json and not err.is_terminal) as bar:
             tasks = {}
