@@ -28,6 +28,9 @@ def cylinder_check_command(project, project_path, out, as_json: bool, err: Conso
         data = run_cylinder_check(project, progress=progress)
     out_dir = out if out is not None else Path(f"{Path(project_path).stem}_check")
     write_cylinder_results(data, out_dir)
+    from ..cylinder.figures import wobbling_figure
+    from ..report.plots import save
+    save(wobbling_figure(project.system), Path(out_dir) / "wobbling_period.png")   # Fig 5.2 for this cylinder
     if as_json:
         sys.stdout.write(json.dumps(data, indent=2, ensure_ascii=False) + "\n")
     else:

@@ -30,6 +30,7 @@ def result(tmp_path_factory):
     data = json.loads(r.stdout)
     assert r.exit_code == (0 if data["verdict"] == "PASS" else 1)
     assert (d / "out" / "results.csv").exists() and (d / "out" / "cylinder_vs_planar.png").exists()
+    assert (d / "out" / "wobbling_period.png").exists()
     return data
 
 
