@@ -133,6 +133,20 @@ def contact_force_ratio(y, f, par):
 
 
 @njit(cache=True)
+def rocking_energy(y, par):
+    """Energy per unit mass [J/kg] of the rocking and wobbling alone (no contact spring):
+    ½(M R² θ̇² + R² J φ̇²) + g R (cos(α−θ) − cos α) — the measure of the damped model's rest rule."""
+    R = par[P_R]
+    th = y[0]
+    sth = math.sin(th)
+    sh = math.sin(0.5 * th)
+    omc = 2.0 * sh * sh
+    J = (16.0 + 5.0 * par[P_S2]) / 12.0 * sth * sth + omc * (par[P_SIN2A] * sth - 3.0 * par[P_S2] * math.cos(th))
+    return (0.5 * R * R * (par[P_M] * y[1] * y[1] + J * y[3] * y[3])
+            + par[P_G] * R * 2.0 * math.sin(par[P_ALPHA] - 0.5 * th) * sh)
+
+
+@njit(cache=True)
 def energy(y, par):
     """Mechanical energy per unit mass [J/kg] above the upright rest position (undamped: conserved in
     free vibration): ½(M R² θ̇² + R² J φ̇²) + g R (cos(α−θ) − cos α)

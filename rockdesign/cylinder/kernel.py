@@ -19,8 +19,9 @@ One run (:func:`integrate`):
   θ (θ̇: − → +; a minimum below ``quasi_tilt`` is a quasi-impact), maxima of θ, and — only for an
   exactly planar motion (φ̇ ≡ 0, a one-directional excitation) — θ = 0, where the body switches to the
   opposite rim point: θ → −θ, θ̇ → −r θ̇, φ → φ + π (r = 1 rigid, √c_r of Eq 5.41 damped);
-* rest rule (damped model): at a quasi-impact or planar crossing whose mechanical energy is at most
-  ½ M R² v_rest² while |ü_g| < g tan α, the cylinder rests (θ = θ̇ = φ̇ = w_T = ẇ_T = 0, φ kept).
+* rest rule (damped model): at a quasi-impact or planar crossing whose rocking energy (the contact
+  spring excluded: its deflection under the rocking body's own acceleration is no motion to end) is at
+  most ½ M R² v_rest² while |ü_g| < g tan α, the cylinder rests (θ = θ̇ = φ̇ = w_T = ẇ_T = 0, φ kept).
 """
 from __future__ import annotations
 
@@ -31,7 +32,7 @@ from numba import njit
 from scipy.integrate._ivp import dop853_coefficients as _dop
 
 from ..motions.excitation import EXC_NONE, EXC_SAMPLES, ground_acceleration, next_breakpoint
-from .eom import contact_force_ratio, energy, ground_xy, rhs
+from .eom import contact_force_ratio, ground_xy, rhs, rocking_energy
 
 A = np.ascontiguousarray(_dop.A)
 B = np.ascontiguousarray(_dop.B)
@@ -391,7 +392,7 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
                             for i in range(6):
                                 ytmp[i] = _dense_at(F, y, x, i) if i < n else 0.0
                             ax, ay = ground_xy(tt, tt < t_exc_end, kind, params, sx, sy, dirx, diry)
-                            if energy(ytmp, par) <= rest_energy and ax * ax + ay * ay < up * up:
+                            if rocking_energy(ytmp, par) <= rest_energy and ax * ax + ay * ay < up * up:
                                 stop_at = x
                                 break
                 elif va > 0.0 >= vb:
@@ -437,7 +438,7 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
                 for i in range(n):
                     y[i] = y_new[i]
                 ax, ay = ground_xy(t_new, t_new < t_exc_end, kind, params, sx, sy, dirx, diry)
-                if rest_energy > 0.0 and energy(y, par) <= rest_energy and ax * ax + ay * ay < up * up:
+                if rest_energy > 0.0 and rocking_energy(y, par) <= rest_energy and ax * ax + ay * ay < up * up:
                     resting = True
                 else:
                     t = t_new

@@ -126,3 +126,26 @@ def test_uplift_seed_does_not_matter():
     b = simulate_cylinder(RIGID, spec.pair, theta_seed=1e-9)
     assert a.theta_max == pytest.approx(b.theta_max, rel=1e-5)
     assert a.uplift_time == b.uplift_time
+
+
+def test_damped_planar_rocking_comes_to_rest_in_bounded_time():
+    # no spin: Housner's planar cylinder with Eq 5.41's restitution; the rest rule ends the Zeno sequence
+    # of crossings once |θ̇| ≤ v_rest at a crossing (the planar rule)
+    r = simulate_cylinder(DAMPED, None, t_end=20.0, theta0=0.05)
+    assert r.planar and r.status == "completed"
+    rest = r.times_of("rest")
+    assert rest.size == 1 and r.theta[-1] == 0.0
+    crossings = [e for e in r.events if e[0] == "planar-crossing"]
+    # θ̇ before each crossing falls by √c_r (Eq 5.41) per crossing in the free rocking
+    rates = np.abs([e[2] for e in crossings])
+    np.testing.assert_allclose(rates[1:6] / rates[:5], restitution_root(DAMPED.alpha), rtol=2e-3)
+    assert rates[-1] * restitution_root(DAMPED.alpha) <= 5e-4 < rates[-2] * restitution_root(DAMPED.alpha)
+    assert r.solver["steps"] < 100_000
+
+
+def test_damped_wobbling_with_spin_never_rests():
+    # the vertical dashpot cannot remove the angular momentum about the vertical: steady wobbling
+    r = simulate_cylinder(DAMPED, None, t_end=30.0, theta0=0.05, phidot0=1e-3)
+    assert r.status == "completed" and r.times_of("rest").size == 0
+    late = r.theta_min_at_quasi_impacts[-5:]
+    np.testing.assert_allclose(late, late[-1], rtol=1e-3)
