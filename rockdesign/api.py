@@ -14,6 +14,9 @@ __all__ = ["load_project", "design_quantities", "quantities_json", "quantities_t
 
 def quantities_json(project: Project) -> dict:
     """The ``quantities --json`` object of CONTRACT §3 (SI values)."""
+    if project.system.kind == "cylinder":                   # the 3D cylinder (thesis Ch. 5)
+        from .cylinder.commands import quantities_json as cylinder_json
+        return cylinder_json(project)
     q = design_quantities(project.system)
     return {"quantities": {name: x.as_json() for name, x in q.items()}, "warnings": list(project.warnings)}
 
@@ -99,6 +102,9 @@ def model_for_project(project: Project, model: str = "auto") -> tuple[str, str]:
 def simulate_project(project: Project, motion: str, *, model: str = "auto", t_end: float | None = None,
                      rtol: float | None = None, records_dir: str | None = None) -> SimulationResult:
     """Run ``simulate`` for a project and a CONTRACT §2 motion string."""
+    if project.system.kind == "cylinder":                   # the 3D cylinder (thesis Ch. 5)
+        from .cylinder.commands import simulate_project as simulate_cylinder_project
+        return simulate_cylinder_project(project, motion, model=model, t_end=t_end, rtol=rtol, records_dir=records_dir)
     from .motions.parse import parse_motion, system_scales
     system = project.system
     if records_dir is None and project.excitation_raw and "records_dir" in project.excitation_raw:

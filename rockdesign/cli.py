@@ -103,6 +103,9 @@ def quantities(project: Path = typer.Argument(..., help="Project file (TOML)"),
     from .project import load_project
     cli_inputs.output_file(pushover, "--pushover", (".csv",) + cli_inputs.FIGURE_SUFFIXES)
     proj = load_project(project)
+    if proj.system.kind == "cylinder":                      # the 3D cylinder (thesis Ch. 5)
+        from .cylinder.cli import quantities_command
+        return quantities_command(proj, console, as_json, units, pushover)
     if pushover is not None:
         write_pushover(proj.system, pushover)
     if as_json:
@@ -133,6 +136,9 @@ def simulate(project: Path = typer.Argument(..., help="Project file (TOML)"),
     cli_inputs.output_file(plot, "--plot", cli_inputs.FIGURE_SUFFIXES)
     cli_inputs.output_file(csv, "--csv")
     proj = load_project(project)
+    if proj.system.kind == "cylinder":                      # the 3D cylinder (thesis Ch. 5)
+        from .cylinder.cli import simulate_command
+        return simulate_command(proj, motion, model, as_json, plot, csv, t_end, rtol, records_dir, console)
     result = simulate_project(proj, motion, model=model, t_end=t_end, rtol=rtol,
                               records_dir=str(records_dir) if records_dir else None)
     if csv:

@@ -29,6 +29,9 @@ def register(app: typer.Typer, handle_errors) -> None:
         from .project import load_project
         from .report.results import json_text
         proj = load_project(project)
+        if proj.system.kind == "cylinder":                  # the 3D cylinder (thesis Ch. 5)
+            from .checks.cylinder_cli import cylinder_check_command
+            return cylinder_check_command(proj, project, out, as_json, Console(stderr=True))
         folder = OutputFolder(out if out is not None else Path(f"{Path(project).stem}_check"), key="-o/--out")
         with folder.locked():   # before the analyses: a file, a read-only or busy folder stops here (exit 2)
             executor = None

@@ -39,7 +39,9 @@ def register(app: typer.Typer, handle_errors) -> None:
     @handle_errors
     def spectrum(
         project: Path = typer.Argument(..., help="Project file (TOML)"),
-        pulse: str = typer.Option(..., "--pulse", "-p", help=HELP_PULSE),
+        pulse: Optional[str] = typer.Option(None, "--pulse", "-p", help=HELP_PULSE),
+        record: Optional[str] = typer.Option(None, "--record", help="Cylinders: the record pair, e.g. p695-ff/11 "
+                                             "(axes R:lo:hi:n and pga/up:lo:hi:n; thesis Figs 5.16-5.17)."),
         x: str = typer.Option("omega_p/p:0.5:12:801", "--x",
                               help="x axis AXIS:lo:hi:n, AXIS = omega_p/p | omega_p/p_hat | Tp (seconds)."),
         y: str = typer.Option("ap/up:0:12:401", "--y", help="y axis AXIS:lo:hi:n, AXIS = ap/up (a_p over g tan α) "
@@ -90,6 +92,12 @@ def register(app: typer.Typer, handle_errors) -> None:
         t_start = time.perf_counter()
         console = Console(stderr=True, highlight=False)
         proj = load_project(project)
+        if proj.system.kind == "cylinder":                  # the 3D cylinder (thesis Ch. 5)
+            from .cylinder.spectrum_cli import cylinder_spectrum_command
+            return cylinder_spectrum_command(proj, project, record, x, y, relative, out, as_json, figures, console)
+        if pulse is None:
+            raise RockdesignError("missing pulse", key="--pulse", expected="--pulse ricker-anti (or another pulse)",
+                                  found="none")
         x_axis = parse_axis(x, "x")
         y_axis = parse_axis(y, "y")
         if model not in ("auto", "exact", "linear"):

@@ -191,6 +191,9 @@ def load_project(path: str | Path) -> Project:
 
 def parse_project(raw: dict, *, file: str = "<project>", text: str = "") -> Project:
     """Validate an already-parsed TOML document (see :func:`load_project`)."""
+    if "cylinder" in raw or "overturn_tilt" in (raw.get("analysis") if isinstance(raw.get("analysis"), dict) else {}):
+        from .cylinder.project import parse_cylinder_project   # the 3D cylinder (thesis Ch. 5)
+        return parse_cylinder_project(raw, file=file, text=text)
     for section in raw:
         if section not in SECTIONS_TOP:
             close = difflib.get_close_matches(section, SECTIONS_TOP, n=1, cutoff=0.5)

@@ -1,0 +1,127 @@
+"""The CLI/API face of the cylinder: ``quantities`` and ``simulate`` for a ``[cylinder]`` project."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import ModelError
+from .engine import CylinderResponse, simulate_cylinder
+from .quantities import cylinder_quantities, frequency_parameter
+
+CYLINDER_MODELS = ("auto", "undamped", "damped")
+
+
+def quantities_json(project) -> dict:
+    """``quantities --json`` of a cylinder: alpha, R, p, c_r, uplift_acceleration, angle_of_turn (+ extras)."""
+    q = cylinder_quantities(project.system)
+    return {"quantities": {name: x.as_json() for name, x in q.items()}, "warnings": list(project.warnings)}
+
+
+def quantities_table(project, console, units: str | None = None) -> None:
+    """Print the cylinder's quantities with their thesis equations."""
+    from ..display import quantities_table as table
+    table(cylinder_quantities(project.system), console, units, project.system.g,
+          f"{project.name} — design quantities (cylinder, {project.system.contact} contact)", project.warnings)
+
+
+def write_wobbling(project, path) -> None:
+    """The wobbling-period curve (Fig 5.2): CSV (theta_over_alpha, Tw_p, T_housner_p) or a figure."""
+    from pathlib import Path
+
+    from ..errors import RockdesignError
+    from .figures import wobbling_figure
+    from .quantities import wobbling_curve
+    path = Path(path)
+    if path.suffix.lower() == ".csv":
+        ratio, tw, th = wobbling_curve(project.system)
+        np.savetxt(path, np.column_stack([ratio, tw, th]), delimiter=",", fmt="%.12g",
+                   header="theta_over_alpha,Tw_p,T_housner_p", comments="")
+    elif path.suffix.lower() in (".png", ".svg", ".pdf"):
+        from ..report.plots import save
+        save(wobbling_figure(project.system), path)
+    else:
+        raise RockdesignError("unknown file type", key="--pushover", expected=".csv, .png, .svg or .pdf",
+                              found=f"'{path.name}'")
+
+
+@dataclass(frozen=True)
+class CylinderSimulation:
+    """A cylinder project's response to one motion string."""
+
+    project: object
+    motion_text: str
+    response: CylinderResponse
+    pair: object = None
+
+    def as_json(self) -> dict:
+        out = self.response.as_json()
+        out.update(motion=self.motion_text, project=self.project.name, warnings=list(self.project.warnings))
+        return out
+
+
+def simulate_project(project, motion: str, *, model: str = "auto", t_end: float | None = None,
+                     rtol: float | None = None, records_dir: str | None = None) -> CylinderSimulation:
+    """``simulate`` for a cylinder: parse the bidirectional motion string, integrate, return the result.
+
+    ``model``: ``auto`` (the project's contact), ``undamped`` (rigid contact) or ``damped``
+    (spring–dashpot with the project's ω_n, ζ)."""
+    from dataclasses import replace
+
+    from ..motions.pairs import parse_pair
+    cyl = project.system
+    if model not in CYLINDER_MODELS:
+        raise ModelError("model does not apply to a cylinder", key="--model", expected=" | ".join(CYLINDER_MODELS),
+                         found=f"'{model}'")
+    if model != "auto":
+        cyl = replace(cyl, contact="spring-dashpot" if model == "damped" else "rigid")
+    if records_dir is None and project.excitation_raw and "records_dir" in project.excitation_raw:
+        records_dir = str(project.excitation_raw["records_dir"])
+    spec = parse_pair(motion, gravity=cyl.g, alpha=cyl.alpha, uplift_acceleration=cyl.g * cyl.tan_alpha,
+                      p=frequency_parameter(cyl.R, cyl.alpha, cyl.g), records_dir=records_dir)
+    a = project.analysis
+    response = simulate_cylinder(cyl, spec.pair, t_end=t_end, free_vibration=a.free_vibration,
+                                 theta0=spec.theta0, thetadot0=spec.thetadot0, phi0=spec.phi0, phidot0=spec.phidot0,
+                                 rtol=rtol or a.rtol, atol=a.atol, rest_velocity=a.rest_velocity,
+                                 output_dt=0.0 if spec.pair.is_record else 0.01)
+    return CylinderSimulation(project, motion, response, spec.pair)
+
+
+def write_history_csv(response: CylinderResponse, path) -> None:
+    """CSV: t [s], ü_gx, ü_gy [m/s²], θ [rad], θ̇ [rad/s], φ [rad], φ̇ [rad/s] (, w_T [m]), N/(mg) [-]."""
+    cols = [response.t, response.ground_x, response.ground_y, response.theta, response.thetadot, response.phi,
+            response.phidot]
+    header = "t_s,ground_x_m_s2,ground_y_m_s2,theta_rad,thetadot_rad_s,phi_rad,phidot_rad_s"
+    if response.damped:
+        cols.append(response.w_T)
+        header += ",w_T_m"
+    cols.append(response.contact_force)
+    header += ",contact_force_over_weight"
+    np.savetxt(path, np.column_stack(cols), delimiter=",", header=header, comments="", fmt="%.12g")
+
+
+def response_table(result: CylinderSimulation, console) -> None:
+    """Print the summary of one cylinder analysis."""
+    from rich.table import Table
+
+    from ..display import format_value
+    r = result.response
+    table = Table(title=f"{result.project.name} — {result.motion_text}", title_justify="left")
+    for col in ("quantity", "value", "unit"):
+        table.add_column(col, justify="right" if col == "value" else "left")
+    j = r.as_json()
+    rows = [("model", j["model"], ""), ("θ_max", format_value(r.theta_max), "rad"),
+            ("θ_max/α", format_value(r.theta_max / r.alpha), "-"),
+            ("first uplift", "none" if r.uplift_time is None else format_value(r.uplift_time), "s"),
+            ("quasi-impacts", str(r.quasi_impacts), ""), ("max |φ̇|", format_value(j["phidot_max"]), "rad/s"),
+            ("φ at the end", format_value(j["phi_end"]), "rad"),
+            (f"overturned (θ ≥ θ_ot = {r.theta_overturn:.4g} rad)", "YES" if r.overturned else "no", ""),
+            ("analysed until", format_value(float(r.t[-1])), "s")]
+    if r.damped:
+        rows.append(("min contact force N/(m g)", format_value(r.min_contact_force_over_weight), "-"))
+    s = r.solver
+    rows.append(("solver", f"{s['steps']} steps, {s['rejected_steps']} rejected, {s['rhs_evaluations']} evaluations"
+                           f" — {r.status}", ""))
+    for row in rows:
+        table.add_row(*row)
+    console.print(table)

@@ -1,0 +1,74 @@
+"""Figures of the cylinder: the time history with the plan-view orbit (thesis Figs 5.9–5.15) and the
+wobbling period against the tilt (Fig 5.2)."""
+from __future__ import annotations
+
+import numpy as np
+
+from ..report.plots import STYLE, plt
+
+
+def cylinder_history_figure(response, g: float, title: str = "", pair=None):
+    """Panels against t: ground accelerations [g] (of ``pair`` when given, else at the history's times),
+    θ/α (with θ_ot/α), φ̇ [rad/s] (symmetric log scale), contact force N/(mg); and the plan view of the
+    centre of mass's orbit [m] (Figs 5.9–5.15)."""
+    r = response
+    with plt.rc_context(STYLE):
+        fig = plt.figure(figsize=(10.0, 7.0))
+        grid = fig.add_gridspec(4, 2, width_ratios=(1.7, 1.0))
+        axes = [fig.add_subplot(grid[i, 0]) for i in range(4)]
+        for ax in axes[1:]:
+            ax.sharex(axes[0])
+        t = r.t
+        tg, gx, gy = (t, r.ground_x, r.ground_y) if pair is None else pair.sampled()
+        keep = tg <= t[-1]
+        axes[0].plot(tg[keep], gx[keep] / g, lw=0.7, color="0.2", label="ü_gx")
+        axes[0].plot(tg[keep], gy[keep] / g, lw=0.7, color="C1", alpha=0.8, label="ü_gy")
+        axes[0].set_ylabel("ü_g [g]")
+        axes[0].legend(loc="upper right", fontsize=7, ncol=2)
+        axes[1].plot(t, r.theta / r.alpha, lw=0.9, color="C0")
+        axes[1].axhline(1.0, color="0.5", lw=0.7, ls=":", label="θ = α")
+        axes[1].axhline(r.theta_overturn / r.alpha, color="C3", lw=0.8, ls="--", label="θ_ot")
+        qi = r.quasi_impact_times
+        if qi.size:
+            axes[1].plot(qi, np.zeros(qi.size), "k|", ms=6, label=f"quasi-impacts ({qi.size})")
+        axes[1].set_ylabel("θ/α [-]")
+        axes[1].legend(loc="upper right", fontsize=7, ncol=3)
+        axes[2].plot(t, r.phidot, lw=0.8, color="C2")
+        axes[2].set_yscale("symlog", linthresh=1.0)
+        axes[2].set_ylabel("φ̇ [rad/s]")
+        axes[3].plot(t, r.contact_force, lw=0.8, color="C4")
+        axes[3].axhline(0.0, color="C3", lw=0.7, ls="--")
+        axes[3].set_ylabel("N/(m g) [-]")
+        axes[3].set_xlabel("t [s]")
+        orbit = fig.add_subplot(grid[:, 1])
+        x, y = r.orbit
+        orbit.plot(x, y, lw=0.6, color="C0")
+        lim = r.R * (np.sin(r.alpha) - np.sin(r.alpha - r.theta_overturn))
+        circle = np.linspace(0, 2 * np.pi, 200)
+        orbit.plot(lim * np.cos(circle), lim * np.sin(circle), color="C3", lw=0.8, ls="--", label="θ_ot")
+        rim = r.base_radius
+        orbit.plot(rim * np.cos(circle), rim * np.sin(circle), color="0.5", lw=0.8, label="footprint")
+        orbit.set_aspect("equal")
+        orbit.set_xlabel("x [m]")
+        orbit.set_ylabel("y [m]")
+        orbit.set_title("orbit of the centre of mass (plan)", fontsize=8)
+        orbit.legend(loc="upper right", fontsize=7)
+        if title:
+            axes[0].set_title(title, fontsize=9, loc="left")
+        fig.align_ylabels(axes)
+        return fig
+
+
+def wobbling_figure(cyl):
+    """T_w p against θ/α (Eq 5.29) next to Housner's planar period (Eq 2.8), as thesis Fig 5.2."""
+    from .quantities import wobbling_curve
+    ratio, tw_p, housner_p = wobbling_curve(cyl)
+    with plt.rc_context(STYLE):
+        fig, ax = plt.subplots(figsize=(5.5, 3.8))
+        ax.plot(ratio, tw_p, color="C0", label=f"wobbling cylinder, tan α = {cyl.tan_alpha:.3g} (Eq 5.29)")
+        ax.plot(ratio, housner_p, color="0.3", ls="--", label="planar rocking, Housner (Eq 2.8)")
+        ax.set_xlabel("θ/α [-]")
+        ax.set_ylabel("T p [-]")
+        ax.set_ylim(0, min(60.0, float(np.nanmax(tw_p)) * 1.05))
+        ax.legend(fontsize=7)
+        return fig

@@ -1,0 +1,474 @@
+"""The cylinder's integrator: DOP853 with 7th-order dense output, as numba kernels (thesis Ch. 5).
+
+Hand-written because scipy's ``solve_ivp`` calls Python per stage (≈100× slower, see
+``benchmarks/bench_cylinder.py``) and cannot land on record samples, uplift from rest or apply the
+planar reflection.  The Runge–Kutta tableau (Hairer's DOP853: 12 stages, error estimators of order
+5 and 3, 3 extra stages for the dense output) is scipy's (``scipy.integrate._ivp.dop853_coefficients``);
+the step control is scipy's (safety 0.9, factors 0.2–10, exponent −1/8).
+
+One run (:func:`integrate`):
+
+* at rest, wait until the resultant |ü_g| = √(ü_gx² + ü_gy²) reaches g tan α (Eq 5.24), found
+  exactly on each linear record segment (a quadratic in t) or by a T_p/2000 scan and bisection for
+  pulses; then start at θ = θ_seed, θ̇ = φ̇ = 0 toward φ0 = atan2(−ü_gy, −ü_gx) (Eq 5.25 with its
+  quadrant);
+* steps end exactly on every record sample (records are piecewise linear) and on the end of the
+  excitation (the right-hand side is re-evaluated there with ü_g = 0);
+* quasi-impacts (θ → 0 with a spike of φ̇) are resolved by the step control alone, no event;
+* on every accepted step the dense output locates: the overturning tilt θ_ot (terminal), minima of
+  θ (θ̇: − → +; a minimum below ``quasi_tilt`` is a quasi-impact), maxima of θ, and — only for an
+  exactly planar motion (φ̇ ≡ 0, a one-directional excitation) — θ = 0, where the body switches to the
+  opposite rim point: θ → −θ, θ̇ → −r θ̇, φ → φ + π (r = 1 rigid, √c_r of Eq 5.41 damped);
+* rest rule (damped model): at a quasi-impact or planar crossing whose rocking energy (the contact
+  spring excluded: its deflection under the rocking body's own acceleration is no motion to end) is at
+  most ½ M R² v_rest² while |ü_g| < g tan α, the cylinder rests (θ = θ̇ = φ̇ = w_T = ẇ_T = 0, φ kept).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+from scipy.integrate._ivp import dop853_coefficients as _dop
+
+from ..motions.excitation import EXC_NONE, EXC_SAMPLES, ground_acceleration, next_breakpoint
+from .eom import contact_force_ratio, ground_xy, rhs, rocking_energy
+
+A = np.ascontiguousarray(_dop.A)
+B = np.ascontiguousarray(_dop.B)
+C = np.ascontiguousarray(_dop.C)
+E3 = np.ascontiguousarray(_dop.E3)
+E5 = np.ascontiguousarray(_dop.E5)
+D = np.ascontiguousarray(_dop.D)
+SAFETY = 0.9
+MIN_FACTOR = 0.2
+MAX_FACTOR = 10.0
+EXPONENT = -1.0 / 8.0
+
+# event codes
+EV_UPLIFT, EV_QUASI_IMPACT, EV_THETA_MAX, EV_CROSSING, EV_REST, EV_OVERTURN = 0, 1, 2, 3, 4, 5
+# status codes
+ST_COMPLETED, ST_OVERTURNED, ST_STEP_COLLAPSED, ST_STEP_LIMIT = 0, 1, 2, 3
+HISTORY_COLUMNS = 8          # t, θ, θ̇, φ, φ̇, w_T, ẇ_T, N/(mg)
+
+
+@njit(cache=True)
+def _step(t, y, f0, h, K, y_new, ytmp, n, par, active, kind, params, sx, sy, dirx, diry):
+    """One DOP853 step of size h: fills K[0..12] (K[12] = f(t+h, y_new)) and y_new."""
+    for i in range(n):
+        K[0, i] = f0[i]
+    for s in range(1, 12):
+        for i in range(n):
+            acc = 0.0
+            for j in range(s):
+                acc += A[s, j] * K[j, i]
+            ytmp[i] = y[i] + h * acc
+        rhs(t + C[s] * h, ytmp, K[s], par, active, kind, params, sx, sy, dirx, diry)
+    for i in range(n):
+        acc = 0.0
+        for j in range(12):
+            acc += B[j] * K[j, i]
+        y_new[i] = y[i] + h * acc
+    rhs(t + h, y_new, K[12], par, active, kind, params, sx, sy, dirx, diry)
+
+
+@njit(cache=True)
+def _error_norm(y, y_new, K, h, rtol, atol, n):
+    """scipy's DOP853 error norm (5th- and 3rd-order estimators)."""
+    e5 = 0.0
+    e3 = 0.0
+    for i in range(n):
+        sc = atol + rtol * max(abs(y[i]), abs(y_new[i]))
+        a5 = 0.0
+        a3 = 0.0
+        for j in range(13):
+            a5 += E5[j] * K[j, i]
+            a3 += E3[j] * K[j, i]
+        e5 += (a5 / sc) ** 2
+        e3 += (a3 / sc) ** 2
+    if e5 == 0.0 and e3 == 0.0:
+        return 0.0
+    return abs(h) * e5 / math.sqrt((e5 + 0.01 * e3) * n)
+
+
+@njit(cache=True)
+def _dense(t, y, y_new, K, h, F, ytmp, n, par, active, kind, params, sx, sy, dirx, diry):
+    """The 7th-order dense-output coefficients F[0..6] of the last step (3 extra stages)."""
+    for s in range(13, 16):
+        for i in range(n):
+            acc = 0.0
+            for j in range(s):
+                acc += A[s, j] * K[j, i]
+            ytmp[i] = y[i] + h * acc
+        rhs(t + C[s] * h, ytmp, K[s], par, active, kind, params, sx, sy, dirx, diry)
+    for i in range(n):
+        dy = y_new[i] - y[i]
+        F[0, i] = dy
+        F[1, i] = h * K[0, i] - dy
+        F[2, i] = 2.0 * dy - h * (K[12, i] + K[0, i])
+        for r in range(4):
+            acc = 0.0
+            for j in range(16):
+                acc += D[r, j] * K[j, i]
+            F[3 + r, i] = h * acc
+
+
+@njit(cache=True)
+def _dense_at(F, y, x, i):
+    """Component i of the dense output at x = (t − t_old)/h ∈ [0, 1]."""
+    v = 0.0
+    for k in range(6, -1, -1):
+        v += F[k, i]
+        if (6 - k) % 2 == 0:
+            v *= x
+        else:
+            v *= 1.0 - x
+    return v + y[i]
+
+
+@njit(cache=True)
+def _root(F, y, i, level, xa, xb):
+    """x in [xa, xb] where component i of the dense output equals ``level`` (bracketed; bisection+secant)."""
+    fa = _dense_at(F, y, xa, i) - level
+    fb = _dense_at(F, y, xb, i) - level
+    for _ in range(200):
+        if xb - xa <= 1e-15:
+            break
+        xm = xa - fa * (xb - xa) / (fb - fa) if fb != fa else 0.5 * (xa + xb)
+        if not (xa < xm < xb) or _ > 60:
+            xm = 0.5 * (xa + xb)
+        fm = _dense_at(F, y, xm, i) - level
+        if fm == 0.0:
+            return xm
+        if (fm < 0.0) == (fa < 0.0):
+            xa, fa = xm, fm
+        else:
+            xb, fb = xm, fm
+        if _ % 3 == 2:                                   # guarantee halving now and then
+            xm = 0.5 * (xa + xb)
+            fm = _dense_at(F, y, xm, i) - level
+            if (fm < 0.0) == (fa < 0.0):
+                xa, fa = xm, fm
+            else:
+                xb, fb = xm, fm
+    return 0.5 * (xa + xb)
+
+
+@njit(cache=True)
+def _uplift_time(t, t_stop, up, kind, params, sx, sy, dirx, diry):
+    """First time in [t, t_stop) at which √(ü_gx² + ü_gy²) ≥ up (Eq 5.24), or +inf."""
+    if kind == EXC_NONE:
+        return math.inf
+    if kind == EXC_SAMPLES:
+        dt = params[1]
+        npts = sx.shape[0]
+        i0 = int(math.floor(t / dt + 1e-9))
+        for i in range(max(i0, 0), npts - 1):
+            ta = i * dt
+            if ta + dt <= t:
+                continue
+            if ta >= t_stop:
+                return math.inf
+            ax0 = params[0] * sx[i] * dirx
+            ay0 = params[0] * sy[i] * diry
+            dx = params[0] * sx[i + 1] * dirx - ax0
+            dy = params[0] * sy[i + 1] * diry - ay0
+            # |a0 + s d|² = up², s ∈ [s0, 1]
+            s0 = max(0.0, (t - ta) / dt)
+            qa = dx * dx + dy * dy
+            qb = 2.0 * (ax0 * dx + ay0 * dy)
+            qc = ax0 * ax0 + ay0 * ay0 - up * up
+            if qc + s0 * (qb + s0 * qa) >= 0.0:
+                return ta + s0 * dt
+            if qa > 0.0:
+                disc = qb * qb - 4.0 * qa * qc
+                if disc >= 0.0:
+                    r = (-qb + math.sqrt(disc)) / (2.0 * qa)      # the rising root
+                    if s0 <= r <= 1.0:
+                        return ta + r * dt
+        return math.inf
+    # analytic pulse along (dirx, diry): scan and bisect
+    hs = params[1] / 2000.0
+    ta = t
+    while ta < t_stop:
+        tb = min(ta + hs, t_stop)
+        ga = abs(ground_acceleration(tb, kind, params, sx))
+        if ga >= up:
+            lo, hi = ta, tb
+            for _ in range(80):
+                mid = 0.5 * (lo + hi)
+                if abs(ground_acceleration(mid, kind, params, sx)) >= up:
+                    hi = mid
+                else:
+                    lo = mid
+            return hi
+        ta = tb
+    return math.inf
+
+
+@njit(cache=True)
+def _push(buf, count, row):
+    if count >= buf.shape[0]:
+        new = np.empty((2 * buf.shape[0], buf.shape[1]))
+        new[:count] = buf[:count]
+        buf = new
+    for k in range(buf.shape[1]):
+        buf[count, k] = row[k]
+    return buf, count + 1
+
+
+@njit(cache=True)
+def _record(hist, nh, t, y, f, par, row):
+    row[0] = t
+    for k in range(6):
+        row[1 + k] = y[k]
+    row[7] = contact_force_ratio(y, f, par)
+    return _push(hist, nh, row)
+
+
+@njit(cache=True)
+def _event(events, ne, code, t, theta, value, ev):
+    ev[0] = code
+    ev[1] = t
+    ev[2] = theta
+    ev[3] = value
+    return _push(events, ne, ev)
+
+
+@njit(cache=True)
+def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, rtol, atol, theta_seed,
+              theta_ot, quasi_tilt, rest_energy, planar_restitution, up, max_steps, out_dt):
+    """Integrate one cylinder from (t0, y0) to t_end (module docstring).
+
+    ``out_dt`` > 0 adds dense-output rows on the grid k·out_dt to the history.
+    Returns (history rows [t, θ, θ̇, φ, φ̇, w_T, ẇ_T, N/(mg)] at every accepted step and event,
+    events rows [code, t, θ, value], stats [steps, rejected, rhs evaluations, dense outputs, status,
+    t_stop]).
+    """
+    n = 6 if par[5] > 0.5 else 4
+    y = np.zeros(6)
+    y_new = np.zeros(6)
+    ytmp = np.zeros(6)
+    f = np.zeros(6)
+    fg = np.zeros(6)
+    yg = np.zeros(6)
+    k_out = 1
+    K = np.zeros((16, 6))
+    F = np.zeros((7, 6))
+    row = np.zeros(HISTORY_COLUMNS)
+    ev = np.zeros(4)
+    hist = np.empty((4096, HISTORY_COLUMNS))
+    events = np.empty((64, 4))
+    nh = 0
+    ne = 0
+    steps = 0
+    rejected = 0
+    nfev = 0
+    ndense = 0
+    status = ST_COMPLETED
+    for i in range(6):
+        y[i] = y0[i]
+    t = t0
+    resting = y[0] <= 0.0 and y[1] == 0.0
+    h = 0.0
+    active = t < t_exc_end
+    if not resting:
+        rhs(t, y, f, par, active, kind, params, sx, sy, dirx, diry)
+        nfev += 1
+    hist, nh = _record(hist, nh, t, y, f, par, row)
+    while t < t_end:
+        if resting:
+            tu = _uplift_time(t, min(t_end, t_exc_end), up * (1.0 + 1e-12), kind, params, sx, sy, dirx, diry)
+            if out_dt > 0.0:                      # grid rows while at rest
+                t_hi = min(tu, t_end)
+                while k_out * out_dt < t_hi - 1e-12 * max(1.0, t_hi):
+                    if k_out * out_dt > t:
+                        hist, nh = _record(hist, nh, k_out * out_dt, y, f, par, row)
+                    k_out += 1
+            if tu == math.inf or tu >= t_end:
+                t = t_end
+                hist, nh = _record(hist, nh, t, y, f, par, row)
+                break
+            ax, ay = ground_xy(tu, True, kind, params, sx, sy, dirx, diry)
+            t = tu
+            y[0] = theta_seed
+            y[1] = 0.0
+            y[2] = math.atan2(-ay, -ax)
+            y[3] = 0.0
+            y[4] = 0.0
+            y[5] = 0.0
+            resting = False
+            active = t < t_exc_end
+            rhs(t, y, f, par, active, kind, params, sx, sy, dirx, diry)
+            nfev += 1
+            hist, nh = _record(hist, nh, t, y, f, par, row)
+            events, ne = _event(events, ne, EV_UPLIFT, t, y[0], y[2], ev)
+            h = 0.0
+        if h == 0.0:
+            # initial step (Hairer's rule on the first two derivatives)
+            d0 = 0.0
+            d1 = 0.0
+            for i in range(n):
+                sc = atol + rtol * abs(y[i])
+                d0 += (y[i] / sc) ** 2
+                d1 += (f[i] / sc) ** 2
+            d0 = math.sqrt(d0 / n)
+            d1 = math.sqrt(d1 / n)
+            h = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
+            h = min(h, 1e-3)
+        active = t < t_exc_end
+        t_stop = t_end
+        if active:
+            t_stop = min(t_stop, t_exc_end, next_breakpoint(t, kind, params, sx))
+        accepted = False
+        rejected_now = False
+        while not accepted:
+            if steps + rejected >= max_steps:
+                status = ST_STEP_LIMIT
+                break
+            h_min = 10.0 * (np.nextafter(t, math.inf) - t)
+            if h < h_min:
+                status = ST_STEP_COLLAPSED
+                break
+            t_new = t + h
+            if t_new >= t_stop - 1e-12 * max(1.0, abs(t_stop)):
+                t_new = t_stop
+            hh = t_new - t
+            _step(t, y, f, hh, K, y_new, ytmp, n, par, active, kind, params, sx, sy, dirx, diry)
+            nfev += 12
+            err = _error_norm(y, y_new, K, hh, rtol, atol, n)
+            if y_new[0] < 0.0 and par[12] < 0.5:
+                err = 10.0           # θ < 0 off the planar case: the step overshot a quasi-impact
+            if err < 1.0 and math.isfinite(err):
+                factor = MAX_FACTOR if err == 0.0 else min(MAX_FACTOR, SAFETY * err ** EXPONENT)
+                if rejected_now:
+                    factor = min(1.0, factor)
+                h = hh * factor if t_new < t_stop else max(h, hh * factor)
+                accepted = True
+            else:
+                factor = MIN_FACTOR if not math.isfinite(err) else max(MIN_FACTOR, SAFETY * err ** EXPONENT)
+                h = hh * factor
+                rejected += 1
+                rejected_now = True
+        if not accepted:
+            break
+        steps += 1
+        # ---- events on the dense output of the accepted step [t, t_new]
+        have_dense = False
+        stop_at = -1.0            # x where the step is cut (overturn, rest, crossing)
+        if y_new[0] >= theta_ot or y_new[0] < 0.0 or (y[1] < 0.0 <= y_new[1]) or (y[1] > 0.0 >= y_new[1]):
+            _dense(t, y, y_new, K, hh, F, ytmp, n, par, active, kind, params, sx, sy, dirx, diry)
+            nfev += 3
+            ndense += 1
+            have_dense = True
+        if have_dense:
+            # scan the step at 16 points for θ̇ sign changes (extrema of θ) and level crossings
+            xa = 0.0
+            va = y[1]
+            ta_ = y[0]
+            for k in range(1, 17):
+                xb = k / 16.0
+                vb = _dense_at(F, y, xb, 1) if k < 16 else y_new[1]
+                tb_ = _dense_at(F, y, xb, 0) if k < 16 else y_new[0]
+                if tb_ >= theta_ot and ta_ < theta_ot:
+                    x = _root(F, y, 0, theta_ot, xa, xb)
+                    stop_at = x
+                    tt = t + x * hh
+                    events, ne = _event(events, ne, EV_OVERTURN, tt, theta_ot, _dense_at(F, y, x, 3), ev)
+                    status = ST_OVERTURNED
+                    break
+                if tb_ < 0.0 <= ta_:
+                    # exactly planar motion reaches θ = 0: switch to the opposite rim point
+                    x = _root(F, y, 0, 0.0, xa, xb)
+                    stop_at = x
+                    break
+                if va < 0.0 <= vb:
+                    x = _root(F, y, 1, 0.0, xa, xb)
+                    thmin = _dense_at(F, y, x, 0)
+                    if thmin < quasi_tilt:
+                        tt = t + x * hh
+                        events, ne = _event(events, ne, EV_QUASI_IMPACT, tt, thmin, _dense_at(F, y, x, 3), ev)
+                        if rest_energy > 0.0:
+                            for i in range(6):
+                                ytmp[i] = _dense_at(F, y, x, i) if i < n else 0.0
+                            ax, ay = ground_xy(tt, tt < t_exc_end, kind, params, sx, sy, dirx, diry)
+                            if rocking_energy(ytmp, par) <= rest_energy and ax * ax + ay * ay < up * up:
+                                stop_at = x
+                                break
+                elif va > 0.0 >= vb:
+                    x = _root(F, y, 1, 0.0, xa, xb)
+                    events, ne = _event(events, ne, EV_THETA_MAX, t + x * hh, _dense_at(F, y, x, 0), 0.0, ev)
+                xa = xb
+                va = vb
+                ta_ = tb_
+        if out_dt > 0.0:
+            t_hi = t + stop_at * hh if stop_at >= 0.0 else t_new
+            while k_out * out_dt <= t_hi - 1e-12 * max(1.0, t_hi):
+                tg = k_out * out_dt
+                k_out += 1
+                if tg <= t:
+                    continue
+                if not have_dense:
+                    _dense(t, y, y_new, K, hh, F, ytmp, n, par, active, kind, params, sx, sy, dirx, diry)
+                    nfev += 3
+                    ndense += 1
+                    have_dense = True
+                for i in range(6):
+                    yg[i] = _dense_at(F, y, (tg - t) / hh, i) if i < n else 0.0
+                rhs(tg, yg, fg, par, active, kind, params, sx, sy, dirx, diry)
+                hist, nh = _record(hist, nh, tg, yg, fg, par, row)
+        if stop_at >= 0.0:
+            tt = t + stop_at * hh
+            for i in range(n):
+                y_new[i] = _dense_at(F, y, stop_at, i)
+            t_new = tt
+            if status == ST_OVERTURNED:
+                y_new[0] = theta_ot
+                rhs(t_new, y_new, f, par, active, kind, params, sx, sy, dirx, diry)
+                hist, nh = _record(hist, nh, t_new, y_new, f, par, row)
+                t = t_new
+                break
+            if par[12] > 0.5 and abs(y_new[0]) < 1e-9:
+                # planar crossing
+                y_new[0] = 0.0
+                thd = y_new[1]
+                events, ne = _event(events, ne, EV_CROSSING, t_new, thd, y_new[2], ev)
+                y_new[1] = -planar_restitution * thd
+                y_new[2] = y_new[2] + math.pi
+                for i in range(n):
+                    y[i] = y_new[i]
+                ax, ay = ground_xy(t_new, t_new < t_exc_end, kind, params, sx, sy, dirx, diry)
+                if rest_energy > 0.0 and rocking_energy(y, par) <= rest_energy and ax * ax + ay * ay < up * up:
+                    resting = True
+                else:
+                    t = t_new
+                    active = t < t_exc_end
+                    rhs(t, y, f, par, active, kind, params, sx, sy, dirx, diry)
+                    nfev += 1
+                    hist, nh = _record(hist, nh, t, y, f, par, row)
+                    continue
+            else:
+                resting = True
+            if resting:
+                for i in range(6):
+                    if i != 2:
+                        y[i] = 0.0
+                y[2] = y_new[2]
+                t = t_new
+                events, ne = _event(events, ne, EV_REST, t, 0.0, y[2], ev)
+                for i in range(6):
+                    f[i] = 0.0
+                hist, nh = _record(hist, nh, t, y, f, par, row)
+                h = 0.0
+                continue
+        for i in range(n):
+            y[i] = y_new[i]
+            f[i] = K[12, i]
+        t = t_new
+        if active and t >= t_exc_end:
+            active = False
+            rhs(t, y, f, par, active, kind, params, sx, sy, dirx, diry)   # right limit: ü_g = 0
+            nfev += 1
+        hist, nh = _record(hist, nh, t, y, f, par, row)
+    stats = np.array([steps, rejected, nfev, ndense, status, t], dtype=np.float64)
+    return hist[:nh].copy(), events[:ne].copy(), stats

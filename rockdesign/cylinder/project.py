@@ -1,0 +1,157 @@
+"""The ``[cylinder]`` section of a project file and ``[analysis] overturn_tilt`` (thesis Ch. 5).
+
+    [cylinder]
+    height = "3.0 m"              # 2H               | or half_height = H
+    diameter = "0.6 m"            # 2B               | or slenderness = tan(alpha)
+    mass = "2.0 t"                # or density (mass = density · π B² · 2H)
+    contact = "rigid"             # rigid | spring-dashpot
+    contact_frequency = "200 rad/s"   # omega_n (spring-dashpot only; default 200 rad/s, Eq 5.32)
+    contact_damping = 0.5             # zeta (spring-dashpot only; default 0.5)
+    [analysis]
+    overturn_tilt = 1.5           # theta_ot / alpha (default 1.5, Sec 5.5.1)
+
+Everything that does not fit a cylinder raises :class:`~rockdesign.errors.ProjectError` naming the
+file, the key, what was expected and what was found: a ``[cylinder]`` together with ``[column]``,
+``[podium]`` or ``[superstructure]``, keys of the planar column (``width``, ``extended_width``,
+``radius``, ``mass_distribution``...), spring–dashpot keys on a rigid contact, and planar analysis
+keys (``model``, ``equations``, ``overturn``...).
+"""
+from __future__ import annotations
+
+import hashlib
+import math
+
+from ..errors import ProjectError
+from .system import (CONTACTS, DEFAULT_CONTACT_DAMPING, DEFAULT_CONTACT_FREQUENCY, DEFAULT_OVERTURN_TILT,
+                     Cylinder)
+
+CYLINDER_KEYS = ("height", "half_height", "diameter", "slenderness", "mass", "density", "contact",
+                 "contact_frequency", "contact_damping")
+PLANAR_ONLY_KEYS = ("width", "extended_width", "radius", "curvature", "depth", "section", "mass_distribution",
+                    "end_plate_thickness", "end_plate_density", "restitution", "columns", "cap_beam_mass")
+PLANAR_ANALYSIS_KEYS = ("model", "equations", "overturn", "linearization_tolerance", "restitution_variation",
+                        "rigid_superstructure_ratio")
+PLANAR_SECTIONS = ("column", "podium", "superstructure")
+
+
+def parse_cylinder_project(raw: dict, *, file: str = "<project>", text: str = ""):
+    """Validate a project with a ``[cylinder]`` section into a :class:`~rockdesign.project.Project`.
+
+    The ``[analysis]`` table is validated by the planar loader, except ``overturn_tilt`` (read here)
+    and the planar keys, which are refused.
+    """
+    import difflib
+
+    from ..project import Project, _parse_analysis, _Table
+    sections = ("project", "cylinder", "excitation", "analysis")
+    for section in raw:
+        if section not in sections and section not in PLANAR_SECTIONS:
+            close = difflib.get_close_matches(section, sections, n=1, cutoff=0.5)
+            raise ProjectError("unknown section", file=file, key=section,
+                               expected="sections " + ", ".join(f"[{s}]" for s in sections),
+                               found=f"[{section}]", hint=f"did you mean [{close[0]}]?" if close else None)
+    analysis_raw = raw.get("analysis", {})
+    if isinstance(analysis_raw, dict):
+        analysis = _parse_analysis({k: v for k, v in analysis_raw.items() if k != "overturn_tilt"}, file)
+    else:
+        analysis = _parse_analysis(analysis_raw, file)   # raises: not a table
+    if "cylinder" not in raw:
+        raise ProjectError("overturn_tilt applies to a [cylinder] only", file=file, key="analysis.overturn_tilt",
+                           expected="a [cylinder] section (planar columns use [analysis] overturn)",
+                           found=f"[{'podium' if 'podium' in raw else 'column'}]")
+    for section in PLANAR_SECTIONS:
+        if section in raw:
+            raise ProjectError("conflicting sections", file=file, key=section,
+                               expected="a [cylinder] alone (a cylinder is not a planar column, frame or podium)",
+                               found=f"[cylinder] and [{section}]")
+    for key in PLANAR_ANALYSIS_KEYS:
+        if key in analysis_raw:
+            raise ProjectError("a planar analysis key does not apply to a cylinder", file=file, key=f"analysis.{key}",
+                               expected="for a cylinder: rtol, atol, g, rest_velocity, free_vibration, overturn_tilt",
+                               found=f"{key} = {analysis_raw[key]!r}")
+    data = raw["cylinder"]
+    if isinstance(data, dict):
+        for key in data:
+            if key in PLANAR_ONLY_KEYS:
+                raise ProjectError("a planar-column key does not apply to a cylinder", file=file,
+                                   key=f"cylinder.{key}", expected="one of " + ", ".join(CYLINDER_KEYS),
+                                   found=f"'{key}'", hint="the cylinder's inertia and contact follow from its "
+                                   "height and diameter (Eqs 5.20-5.21)" if key == "mass_distribution" else None)
+    t = _Table(data, "cylinder", CYLINDER_KEYS, file, analysis.g)
+    info_t = raw.get("project", {})
+    if not isinstance(info_t, dict) or "name" not in info_t:
+        raise ProjectError("missing required value", file=file, key="project.name",
+                           expected="a project name, e.g. name = \"museum column\"", found="none")
+    from ..project import PROJECT_KEYS
+    info_table = _Table(info_t, "project", PROJECT_KEYS, file, analysis.g)
+    info = {}
+    for k in PROJECT_KEYS:
+        if k in info_table.data:
+            if not isinstance(info_table.data[k], str):
+                raise info_table.error(k, "wrong type", expected="a string", found=info_table.data[k])
+            info[k] = info_table.data[k]
+    system = _parse_cylinder(t, info["name"], analysis.g, _overturn_tilt(analysis_raw, file))
+    excitation = raw.get("excitation")
+    if excitation is not None and not isinstance(excitation, dict):
+        raise ProjectError("must be a table", file=file, key="excitation", expected="an [excitation] table",
+                           found=repr(excitation))
+    return Project(file, info["name"], system, analysis, info, excitation, raw, text,
+                   hashlib.sha256(text.encode("utf-8")).hexdigest() if text else "", ())
+
+
+def _overturn_tilt(analysis_raw: dict, file: str) -> float:
+    if "overturn_tilt" not in analysis_raw:
+        return DEFAULT_OVERTURN_TILT
+    raw = analysis_raw["overturn_tilt"]
+    if isinstance(raw, bool) or not isinstance(raw, (int, float)) or not math.isfinite(raw):
+        raise ProjectError("wrong type", file=file, key="analysis.overturn_tilt",
+                           expected="a plain number θ_ot/α, e.g. 1.5", found=repr(raw))
+    if raw < 1.0:
+        raise ProjectError("out of range", file=file, key="analysis.overturn_tilt",
+                           expected="θ_ot/α ≥ 1 (a cylinder tilted below α always comes back)", found=repr(raw))
+    return float(raw)
+
+
+def _parse_cylinder(t, name: str, g: float, overturn_tilt: float) -> Cylinder:
+    hk = t.one_of("height", "half_height")
+    H = t.quantity(hk, "length") / (2.0 if hk == "height" else 1.0)
+    wk = t.one_of("diameter", "slenderness")
+    if wk == "diameter":
+        B = t.quantity("diameter", "length") / 2.0
+    else:
+        B = t.number("slenderness", low=0.0) * H
+    if B / H >= 1.0:
+        raise t.error(wk, "cylinder too squat for rocking", expected="tan α = B/H < 1 (taller than wide)",
+                      found=t.data[wk])
+    alpha = math.atan2(B, H)
+    if overturn_tilt * alpha > math.pi / 2:
+        raise ProjectError("out of range", file=t.file, key="analysis.overturn_tilt",
+                           expected=f"θ_ot = overturn_tilt·α ≤ π/2, i.e. overturn_tilt ≤ {math.pi / 2 / alpha:.6g} "
+                           f"for α = {alpha:.6g} rad", found=repr(overturn_tilt))
+    mk = t.one_of("mass", "density")
+    if mk == "mass":
+        mass = t.quantity("mass", "mass")
+    else:
+        mass = t.quantity("density", "density") * math.pi * B * B * 2.0 * H
+    contact = t.choice("contact", CONTACTS, "rigid")
+    if contact == "rigid":
+        for key in ("contact_frequency", "contact_damping"):
+            if t.has(key):
+                raise t.error(key, "only used with a spring-dashpot contact",
+                              expected="contact = \"spring-dashpot\" (or no " + key + ")", found=t.data[key])
+        return Cylinder(name, H, B, mass, "rigid", DEFAULT_CONTACT_FREQUENCY, DEFAULT_CONTACT_DAMPING, g,
+                        overturn_tilt)
+    omega = DEFAULT_CONTACT_FREQUENCY
+    if t.has("contact_frequency"):
+        raw = t.data["contact_frequency"]
+        omega = t.quantity("contact_frequency", "frequency")   # "200 rad/s" (rad is dimensionless in pint)
+        if isinstance(raw, str) and "hz" in raw.lower():       # "30 Hz" is a cyclic frequency: ω_n = 2π f
+            omega *= 2.0 * math.pi
+    zeta = DEFAULT_CONTACT_DAMPING
+    if t.has("contact_damping"):
+        raw = t.data["contact_damping"]
+        zeta = (t.quantity("contact_damping", "dimensionless", positive=False) if isinstance(raw, str)
+                else t.number("contact_damping", low=0.0, low_open=False))
+        if not 0.0 <= zeta:
+            raise t.error("contact_damping", "out of range", expected="ζ ≥ 0", found=raw)
+    return Cylinder(name, H, B, mass, "spring-dashpot", omega, zeta, g, overturn_tilt)

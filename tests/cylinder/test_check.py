@@ -1,0 +1,82 @@
+"""``check`` for a cylinder: statistics over the far-field pairs, the planar comparison, excitation errors."""
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from scipy.stats import binomtest
+from typer.testing import CliRunner
+
+from rockdesign.checks.cylinder_check import cylinder_excitation, planar_block
+from rockdesign.cli import app
+from rockdesign.cylinder.engine import simulate_cylinder
+from rockdesign.errors import ProjectError
+from rockdesign.motions.pairs import load_pair
+from rockdesign.project import parse_project
+
+runner = CliRunner()
+TOML = ('[project]\nname = "check cylinder"\n[cylinder]\nheight = "3 m"\nslenderness = 0.2\nmass = "2 t"\n'
+        '[excitation]\nscale = { method = "resultant_pga", target = "0.3 g" }\n')
+
+
+@pytest.fixture(scope="module")
+def result(tmp_path_factory):
+    d = tmp_path_factory.mktemp("cyl")
+    p = d / "cyl.toml"
+    p.write_text(TOML)
+    r = runner.invoke(app, ["check", str(p), "-o", str(d / "out"), "--json"])
+    assert r.exit_code in (0, 1), r.output
+    data = json.loads(r.stdout)
+    assert r.exit_code == (0 if data["verdict"] == "PASS" else 1)
+    assert (d / "out" / "results.csv").exists() and (d / "out" / "cylinder_vs_planar.png").exists()
+    assert (d / "out" / "wobbling_period.png").exists()
+    return data
+
+
+def test_statistics_are_clopper_pearson_over_22_pairs(result):
+    s = result["summary"]
+    assert s["n_records"] == 22 and len(result["records"]) == 22
+    k = sum(r["overturned"] for r in result["records"])
+    assert s["n_overturned"] == k and s["p_overturn"] == pytest.approx(k / 22)
+    ci = binomtest(k, 22).proportion_ci(0.90, method="exact")
+    assert s["p_overturn_ci90"] == pytest.approx([ci.low, ci.high], abs=1e-12)
+    assert all(r["resultant_pga"] == pytest.approx(0.3 * 9.81, rel=1e-12) for r in result["records"])
+    assert s["difference_p_overturn"] == pytest.approx(s["p_overturn"] - s["planar"]["p_overturn"])
+    gov = [c for c in result["checks"] if c["governs_verdict"]]
+    assert len(gov) == 1 and result["verdict"] == ("PASS" if gov[0]["passed"] else "FAIL")
+
+
+def test_one_row_reproduces_simulate(result):
+    row = next(r for r in result["records"] if r["id"] == "p695-ff/12")
+    proj = parse_project({"project": {"name": "x"}, "cylinder": {"height": "3 m", "slenderness": 0.2,
+                                                                "mass": "2 t"}})
+    pair = load_pair("p695-ff/12")
+    r = simulate_cylinder(proj.system, pair.scaled(row["scale"]))
+    assert row["theta_max_over_alpha"] == pytest.approx(r.theta_max / proj.system.alpha, rel=1e-12)
+    assert row["quasi_impacts"] == r.quasi_impacts
+    # the planar model is the block of equal inertia with Eq 5.41's restitution
+    block = planar_block(proj.system)
+    assert block.column.mass_distribution == pytest.approx((3 + np.cos(proj.system.alpha) ** 2) / 12)
+    assert block.restitution == pytest.approx(0.94217 ** 2, abs=2e-5)
+
+
+@pytest.mark.parametrize("excitation, key", [
+    ({"scale": {"method": "sdmax", "target": "0.2 m"}}, "excitation.scale"),
+    ({"suites": ["p695-farfield"]}, "excitation.suites"),
+    ({"scale": {"method": "resultant_pga", "target": "0.3"}}, "excitation.scale.target"),
+    ({"spectrum": "ec8"}, "excitation.spectrum"),
+])
+def test_excitation_errors(excitation, key):
+    proj = parse_project({"project": {"name": "x"}, "cylinder": {"height": "3 m", "slenderness": 0.2, "mass": "2 t"},
+                          "excitation": excitation}, file="c.toml")
+    with pytest.raises(ProjectError) as err:
+        cylinder_excitation(proj)
+    assert err.value.key == key and err.value.file == "c.toml"
+
+
+def test_default_scaling_is_one_and_a_half_uplift():
+    proj = parse_project({"project": {"name": "x"}, "cylinder": {"height": "3 m", "slenderness": 0.2, "mass": "2 t"}})
+    suites, method, target = cylinder_excitation(proj)
+    assert suites == ["p695-farfield-pairs"] and method == "resultant_pga"
+    assert target == pytest.approx(1.5 * 9.81 * 0.2)
