@@ -1,4 +1,4 @@
-"""Dormand–Prince 5(4) with its 4th-order dense output, as small numba kernels.
+"""Dormand–Prince 5(4) with its 4th-order dense output, as small numba kernels (DOP853: dop853.py).
 
 The decomposition follows scipy.integrate._ivp (rk.py: tableau, step, dense output; common.py:
 initial step), adapted to fixed-size float arrays: one step, one error norm, one dense-output
@@ -51,22 +51,23 @@ def dp5_step(t, y, f0, h, K, y_new, ytmp, rocking, side, phase, kind, xp, sample
     for i in range(n):
         K[0, i] = f0[i]
     # one call site of the (inlined) right-hand side for all six evaluations: stages 1–5, then the
-    # FSAL evaluation at the new point (stage 6 combines with B into y_new)
+    # FSAL evaluation at the new point (stage 6 combines with B into y_new).  Sums run over the
+    # stages in order, skipping the tableau's zeros (stage-outer: independent chains per component).
     for s in range(1, 7):
+        for i in range(n):
+            ytmp[i] = 0.0
+        for j in range(s):
+            a = A[s, j] if s < 6 else B[j]
+            if a != 0.0:
+                for i in range(n):
+                    ytmp[i] += a * K[j, i]
+        for i in range(n):
+            ytmp[i] = y[i] + h * ytmp[i]
         if s < 6:
-            for i in range(n):
-                acc = 0.0
-                for j in range(s):
-                    acc += A[s, j] * K[j, i]
-                ytmp[i] = y[i] + h * acc
             ts = t + C[s] * h
         else:
             for i in range(n):
-                acc = 0.0
-                for j in range(6):
-                    acc += B[j] * K[j, i]
-                y_new[i] = y[i] + h * acc
-                ytmp[i] = y_new[i]
+                y_new[i] = ytmp[i]
             ts = t + h
         rhs(ts, ytmp, K[s], rocking, side, phase, kind, xp, samples, sp)
     return 6
@@ -88,24 +89,35 @@ def error_norm(y, y_new, K, h, rtol, atol, n):
 
 @njit(cache=True)
 def dense_coefficients(K, Q, n):
-    """Q = Kᵀ P (first n rows): y(t + x h) = y + h Σ_j Q[:, j] x^(j+1), x ∈ [0, 1] (4th-order interpolant)."""
+    """Q = Kᵀ P (first n rows): y(t + x h) = y + h Σ_j Q[:, j] x^(j+1), x ∈ [0, 1] (4th-order interpolant).
+
+    Q has room for the 7th-order DOP853 interpolant (:mod:`rockdesign.dynamics.dop853`); the powers
+    above 4 are zero here.
+    """
     for i in range(n):
         for j in range(4):
             acc = 0.0
             for k in range(7):
                 acc += K[k, i] * P[k, j]
             Q[i, j] = acc
+        for j in range(4, Q.shape[1]):
+            Q[i, j] = 0.0
 
 
 @njit(cache=True, inline="always")
 def dense_value(y, Q, h, x, i):
-    """Component ``i`` of the dense output at fraction x of the step."""
-    return y[i] + h * x * (Q[i, 0] + x * (Q[i, 1] + x * (Q[i, 2] + x * Q[i, 3])))
+    """Component ``i`` of the dense output at fraction x of the step (powers x¹ … x⁷ of either method)."""
+    return y[i] + h * x * (Q[i, 0] + x * (Q[i, 1] + x * (Q[i, 2] + x * (Q[i, 3] + x * (
+        Q[i, 4] + x * (Q[i, 5] + x * Q[i, 6]))))))
 
 
 @njit(cache=True)
-def initial_step(t, y, f0, t_bound, rtol, atol, ytmp, f1, rocking, side, phase, kind, xp, samples, sp, n):
-    """First step size by Hairer–Nørsett–Wanner II.4 (as scipy's select_initial_step); 1 evaluation."""
+def initial_step(t, y, f0, t_bound, rtol, atol, ytmp, f1, rocking, side, phase, kind, xp, samples, sp, n,
+                 error_order=4):
+    """First step size by Hairer–Nørsett–Wanner II.4 (as scipy's select_initial_step); 1 evaluation.
+
+    ``error_order`` is the order of the method's error estimator (4 for DP5(4), 7 for DOP853).
+    """
     interval = t_bound - t
     if interval <= 0.0:
         return 0.0
@@ -130,5 +142,5 @@ def initial_step(t, y, f0, t_bound, rtol, atol, ytmp, f1, rocking, side, phase, 
     if d1 <= 1e-15 and d2 <= 1e-15:
         h1 = max(1e-6, h0 * 1e-3)
     else:
-        h1 = (0.01 / max(d1, d2)) ** (1.0 / 5.0)
+        h1 = (0.01 / max(d1, d2)) ** (1.0 / (error_order + 1.0))
     return min(100.0 * h0, h1, interval)
