@@ -98,6 +98,8 @@ def simulate(project: Path = typer.Argument(..., help="Project file (TOML)"),
     from .api import simulate_project
     from .project import load_project
     proj = load_project(project)
+    from .dynamics.compilation import prepare
+    prepare("simulate", Console(stderr=True).print)
     result = simulate_project(proj, motion, model=model, t_end=t_end, rtol=rtol,
                               records_dir=str(records_dir) if records_dir else None)
     if csv:

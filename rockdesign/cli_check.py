@@ -49,6 +49,8 @@ def register(app: typer.Typer, handle_errors) -> None:
         from .project import load_project
         err = Console(stderr=True)
         proj = load_project(project)
+        from .dynamics.compilation import prepare
+        prepare("check", err.print)
         with Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
                       console=err, transient=False, disable=as_json and not err.is_terminal) as bar:
             tasks = {}

@@ -2,7 +2,7 @@
 
 * ``rockdesign`` — our event-driven engine (:func:`rockdesign.dynamics.simulate.simulate`) solving the
   problem's equations (exact, or linearized for the linearized problems) with the stepper it picks per
-  system (``method="auto"``: DOP853 for the 2DOF podium, DP5(4) otherwise).
+  system and tolerance (``method="auto"``: DOP853 for the 2DOF podium at rtol < 5e-8, DP5(4) otherwise).
 * ``rockdesign DP5(4)`` and ``rockdesign DOP853`` — the same engine with one stepper forced: the
   work-precision data that the automatic choice rests on.
 * ``rockdesign linear-exact`` — our closed-form solution of the linearized SDOF equations (SPEC §3.8).
@@ -103,7 +103,7 @@ ENGINE_STEPPERS = {"auto-events": "auto", "dp54-events": "dp5", "dop853-events":
 
 METHODS = (
     Method("rockdesign", "rockdesign", "auto-events",
-           "rockdesign engine: numba DP5(4) (SDOF) or DOP853 (2DOF podium), dense-output event search, "
+           "rockdesign engine: numba DP5(4), or DOP853 for the 2DOF podium at rtol < 5e-8; dense-output event search, "
            "exact event refinement"),
     Method("rockdesign linear-exact", "closed-form", "linear-exact",
            "rockdesign closed form of the linearized SDOF equations (SPEC §3.8); no tolerance"),

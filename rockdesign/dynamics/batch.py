@@ -45,7 +45,7 @@ def batch_options(rtol: float = 1e-10, atol: float = 1e-12, energy_stop: bool = 
                   scan_points: int = 8, method: str = "auto") -> np.ndarray:
     """The ``opts`` array shared by the jobs of a batch (t_end is per job).
 
-    ``method``: ``auto`` (DOP853 for the 2DOF podium, DP5(4) otherwise — chosen by the
+    ``method``: ``auto`` (DOP853 for the 2DOF podium at rtol < 5e-8, DP5(4) otherwise — chosen by the
     work-precision data of benchmarks/bench_engine.py), ``dp5`` or ``dop853``.
     """
     codes = {name: code for code, name in METHOD_NAMES.items()}

@@ -72,10 +72,16 @@ O_METHOD = 9           # METHOD_* (0: chosen per system by the work-precision da
 N_OPTIONS = 10
 
 # steppers
-METHOD_AUTO = 0        # DOP853 for systems with an elastic superstructure (2DOF), DP5(4) otherwise
+METHOD_AUTO = 0        # DOP853 for the 2DOF podium at rtol < DOP853_BELOW_RTOL, DP5(4) otherwise
 METHOD_DP5 = 5         # Dormand–Prince 5(4), 4th-order dense output
 METHOD_DOP853 = 8      # Dormand–Prince 8(5,3), 7th-order dense output
 METHOD_NAMES = {METHOD_AUTO: "auto", METHOD_DP5: "dp5", METHOD_DOP853: "dop853"}
+DOP853_BELOW_RTOL = 5e-8
+"""The automatic choice uses DOP853 for a 2DOF podium when rtol is below this: the work-precision crossover
+measured on the podium under a 30-s record (benchmarks/bench_engine.py, ``stepper_choice``).  Both methods
+then land on every record sample; DP5(4) needs ≤ 1.3 steps per sample down to rtol 1e-7 (cheaper), ≈ 2.4
+at 1e-8 and ≈ 5 at 1e-10, where DOP853 still takes one step per sample (and is ~1e4× more accurate).
+SDOF systems take about one DP5(4) step per sample at every tolerance: DP5(4) is cheaper there."""
 
 # summary array
 S_THETA_MAX = 0
@@ -113,12 +119,13 @@ def _phase_of(abs_theta, sp):
 
 
 @njit(cache=True)
-def resolve_method(method, two_dof):
+def resolve_method(method, two_dof, rtol):
     """The stepper a run uses: ``method`` unless METHOD_AUTO, which picks by the work-precision data
-    (benchmarks/bench_engine.py): DOP853 where steps are bound by the tolerance (the 2DOF podium's
-    uplifted superstructure), DP5(4) where they are bound by the record samples (SDOF systems)."""
+    (benchmarks/bench_engine.py): DOP853 where DP5(4)'s steps are bound by the tolerance (the 2DOF
+    podium's uplifted superstructure at rtol < :data:`DOP853_BELOW_RTOL`), DP5(4) where they are bound
+    by the record samples (SDOF systems; the podium at loose tolerances)."""
     if method == METHOD_AUTO:
-        return METHOD_DOP853 if two_dof else METHOD_DP5
+        return METHOD_DOP853 if (two_dof and rtol < DOP853_BELOW_RTOL) else METHOD_DP5
     return method
 
 
@@ -130,7 +137,7 @@ def _rk_step(high, t, y, f0, h, K, y_new, ytmp, rocking, side, phase, kind, xp, 
     return dp5_step(t, y, f0, h, K, y_new, ytmp, rocking, side, phase, kind, xp, samples, sp, n)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _store_event(ev_t, ev_kind, ev_y, diag, kind, t, y):
     diag[D_EVENTS] += 1
     k = diag[D_EVENTS_STORED]
@@ -197,7 +204,8 @@ def _advance(t_out, out_y, i_out, t, t_new, tb, y, y_new, Q, h, K, fsal, f0, roc
              sp, diag):
     """Accept a step: write outputs up to t_new, move the state, keep the FSAL derivative — or, on a kink
     or jump of ü_g (a breakpoint), restart from its right limit.  Returns the next output index."""
-    i_out = _fill_outputs(t_out, out_y, i_out, t_new, t, y, Q, h, y_new, True, False)
+    on = t_out.shape[0] >= 0     # run-time booleans (see integrate)
+    i_out = _fill_outputs(t_out, out_y, i_out, t_new, t, y, Q, h, y_new, on, not on)
     for i in range(4):
         y[i] = y_new[i]
         f0[i] = K[fsal, i]
@@ -213,7 +221,8 @@ def _advance(t_out, out_y, i_out, t, t_new, tb, y, y_new, Q, h, K, fsal, f0, roc
 
 
 @njit(cache=True)
-def _refine_event(high, t, y, f0, x_e, h, level, sgn, K, y_e, ytmp, side, phase, kind, xp, samples, sp, n, diag):
+def _refine_event(high, t, y, f0, x_e, h, level, sgn, K, y_e, ytmp, rocking, side, phase, kind, xp, samples, sp, n,
+                  diag):
     """Re-step from t to the event and Newton-correct so that sgn·θ − level = 0 to round-off.
 
     Returns the refined event time; ``y_e`` holds the state there.
@@ -224,7 +233,7 @@ def _refine_event(high, t, y, f0, x_e, h, level, sgn, K, y_e, ytmp, side, phase,
             for i in range(4):
                 y_e[i] = y[i]
             return t
-        diag[D_NFEV] += _rk_step(high, t, y, f0, he, K, y_e, ytmp, True, side, phase, kind, xp, samples, sp, n)
+        diag[D_NFEV] += _rk_step(high, t, y, f0, he, K, y_e, ytmp, rocking, side, phase, kind, xp, samples, sp, n)
         diag[D_REFINE] += 1
         g = sgn * y_e[0] - level
         gd = sgn * y_e[1]
@@ -285,11 +294,17 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
     # cannot raise the drift maximum skip the trigonometry of u_B
     drift_slope = 2.0 * sp[P_R] * (1.0 + 2.0 * sp[P_RADIUS] / sp[P_R])
     t_exc = excitation_end(kind, xp, samples)
-    high = resolve_method(int(opts[O_METHOD]), two_dof) == METHOD_DOP853
+    high = resolve_method(int(opts[O_METHOD]), two_dof, rtol) == METHOD_DOP853
     error_exponent = ERROR_EXPONENT_853 if high else ERROR_EXPONENT
     fsal = FSAL_ROW_853 if high else 6
     error_order = 7 if high else 4
 
+    # run-time booleans for flag arguments: numba compiles a separate specialisation of a kernel for
+    # every literal True/False/int it is called with (compile time, docs/engine.md)
+    on = opts.shape[0] > 0
+    off = not on
+    c_theta = opts.shape[0] - opts.shape[0]     # component indices θ, θ̇ (run-time ints, same reason)
+    c_rate = c_theta + 1
     y = np.zeros(4)
     for i in range(4):
         y[i] = y_init[i]
@@ -346,15 +361,15 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
         # ---------------------------------------------------------------- rigid rest
         if not rocking and not two_dof:
             if t >= t_exc:
-                i_out = _fill_outputs(t_out, out_y, i_out, t_end, t, y, Q, 0.0, y, False, True)
+                i_out = _fill_outputs(t_out, out_y, i_out, t_end, t, y, Q, 0.0, y, off, on)
                 t = t_end
                 break
             tu, s_up = next_threshold_crossing(t, t_end, thr_lo, thr_hi, kind, xp, samples)
             if tu > t_end:
-                i_out = _fill_outputs(t_out, out_y, i_out, t_end, t, y, Q, 0.0, y, False, True)
+                i_out = _fill_outputs(t_out, out_y, i_out, t_end, t, y, Q, 0.0, y, off, on)
                 t = t_end
                 break
-            i_out = _fill_outputs(t_out, out_y, i_out, tu, t, y, Q, 0.0, y, False, True)
+            i_out = _fill_outputs(t_out, out_y, i_out, tu, t, y, Q, 0.0, y, off, on)
             t = tu
             rocking = True
             side = s_up
@@ -461,14 +476,14 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
             if ev_x >= 0.0:
                 he = ev_x * h
                 if he > 0.0:
-                    diag[D_NFEV] += _rk_step(high, t, y, f0, he, K, y_e, ytmp, False, side, phase, kind, xp,
+                    diag[D_NFEV] += _rk_step(high, t, y, f0, he, K, y_e, ytmp, rocking, side, phase, kind, xp,
                                              samples, sp, n)
                     diag[D_REFINE] += 1
                 else:
                     for i in range(4):
                         y_e[i] = y[i]
                 t_e = t + he
-                i_out = _fill_outputs(t_out, out_y, i_out, t_e, t, y, Q, h, y_e, True, False)
+                i_out = _fill_outputs(t_out, out_y, i_out, t_e, t, y, Q, h, y_e, on, off)
                 t = t_e
                 for i in range(4):
                     y[i] = y_e[i]
@@ -489,7 +504,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
                              phase, kind, xp, samples, sp, diag)
             t = t_new
             h = h_next
-            if energy_stop and t >= t_exc and _energy_bound(y, False, side, phase, summary[S_THETA_MAX], sp):
+            if energy_stop and t >= t_exc and _energy_bound(y, rocking, side, phase + 0, summary[S_THETA_MAX], sp):
                 status = ST_ENERGY_BOUND
                 break
             continue
@@ -514,7 +529,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
             x_mid = x_b
             s_mid = sb
             if (va > 0.0 and vb < 0.0) or (va < 0.0 and vb > 0.0):
-                x_mid = root_on_dense(y, Q, h, 1, side, 0.0, x_a, x_b)
+                x_mid = root_on_dense(y, Q, h, c_rate, side, 0.0, x_a, x_b)
                 s_mid = side * dense_value(y, Q, h, x_mid, 0)
                 n_piece = 2
             px0 = x_a
@@ -537,8 +552,8 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
                         ev_type = EV_OVERTURN
                         ev_level = theta_ot
                     if summary[S_EXCEEDED] == 0.0 and ps0 < theta_c <= ps1:
-                        xc = root_on_dense(y, Q, h, 0, side, theta_c, px0, px1)
-                        if ev_type == 0 or xc <= root_on_dense(y, Q, h, 0, side, ev_level, px0, px1):
+                        xc = root_on_dense(y, Q, h, c_theta, side, theta_c, px0, px1)
+                        if ev_type == 0 or xc <= root_on_dense(y, Q, h, c_theta, side, ev_level, px0, px1):
                             summary[S_EXCEEDED] = 1.0
                             summary[S_T_EXCEEDED] = t + xc * h
                             summary[S_IMPACTS_BEFORE_EXCEEDED] = impacts
@@ -561,7 +576,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
                     if ps0 == ev_level:
                         ev_x = px0
                     else:
-                        ev_x = root_on_dense(y, Q, h, 0, side, ev_level, px0, px1)
+                        ev_x = root_on_dense(y, Q, h, c_theta, side, ev_level, px0, px1)
                     break
                 # peak candidate at the end of a piece
                 if ps1 > summary[S_THETA_MAX]:
@@ -584,7 +599,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
                              phase, kind, xp, samples, sp, diag)
             t = t_new
             h = h_next
-            if energy_stop and t >= t_exc and _energy_bound(y, True, side, phase, summary[S_THETA_MAX], sp):
+            if energy_stop and t >= t_exc and _energy_bound(y, rocking, side, phase + 0, summary[S_THETA_MAX], sp):
                 status = ST_ENERGY_BOUND
                 summary[S_UPLIFT_TIME] += t - t_rock_start
                 break
@@ -596,9 +611,9 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
                 y_e[i] = dense_value(y, Q, h, ev_x, i)
             t_e = t + ev_x * h
         else:
-            t_e = _refine_event(high, t, y, f0, ev_x, h, ev_level, side, K, y_e, ytmp, side, phase, kind, xp,
-                                samples, sp, n, diag)
-        i_out = _fill_outputs(t_out, out_y, i_out, t_e, t, y, Q, h, y_e, True, False)
+            t_e = _refine_event(high, t, y, f0, ev_x, h, ev_level, side, K, y_e, ytmp, rocking, side, phase, kind,
+                                xp, samples, sp, n, diag)
+        i_out = _fill_outputs(t_out, out_y, i_out, t_e, t, y, Q, h, y_e, on, off)
         t = t_e
         for i in range(4):
             y[i] = y_e[i]
@@ -645,7 +660,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
             side = -side
             phase = 1
         need_start = True
-        if energy_stop and t >= t_exc and _energy_bound(y, rocking, side, phase, summary[S_THETA_MAX], sp):
+        if energy_stop and t >= t_exc and _energy_bound(y, rocking, side, phase + 0, summary[S_THETA_MAX], sp):
             status = ST_ENERGY_BOUND
             if rocking:
                 summary[S_UPLIFT_TIME] += t - t_rock_start

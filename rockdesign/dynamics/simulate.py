@@ -50,7 +50,7 @@ def simulate(system: RockingSystem, motion: GroundMotion | None = None, *, model
         output_dt: output interval [s] for pulses (records output at their samples).
         energy_stop: stop once the remaining energy cannot raise θ_max (docs/early_termination.md).
         stop_at_capacity: stop when |θ| first reaches θc.
-        method: Runge–Kutta pair — ``auto`` (DOP853 for the 2DOF podium, DP5(4) otherwise; chosen by
+        method: Runge–Kutta pair — ``auto`` (DOP853 for the 2DOF podium at rtol < 5e-8, DP5(4) otherwise; chosen by
             the work-precision data, docs/engine.md), ``dp5`` or ``dop853``.
     """
     if model not in MODELS:
