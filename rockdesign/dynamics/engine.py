@@ -129,7 +129,7 @@ def resolve_method(method, two_dof, rtol):
     return method
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _rk_step(high, t, y, f0, h, K, y_new, ytmp, rocking, side, phase, kind, xp, samples, sp, n):
     """One step of the run's method (DOP853 if ``high``, else DP5(4)); returns the evaluations."""
     if high:
@@ -314,7 +314,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
     ytmp = np.zeros(4)
     ftmp = np.zeros(4)
     K = np.zeros((N_STAGES_EXTENDED, 4))
-    Q = np.zeros((4, 7))
+    Q = np.zeros((4, 7 if high else 4))     # dense-output powers x¹ … x⁷ (DOP853) or x¹ … x⁴ (DP5(4))
     work = np.zeros(8)
 
     # rigid-rest thresholds: uplift_condition is affine in ü_g when u_T = u̇_T = 0

@@ -51,23 +51,22 @@ def dp5_step(t, y, f0, h, K, y_new, ytmp, rocking, side, phase, kind, xp, sample
     for i in range(n):
         K[0, i] = f0[i]
     # one call site of the (inlined) right-hand side for all six evaluations: stages 1–5, then the
-    # FSAL evaluation at the new point (stage 6 combines with B into y_new).  Sums run over the
-    # stages in order, skipping the tableau's zeros (stage-outer: independent chains per component).
+    # FSAL evaluation at the new point (stage 6 combines with B into y_new)
     for s in range(1, 7):
-        for i in range(n):
-            ytmp[i] = 0.0
-        for j in range(s):
-            a = A[s, j] if s < 6 else B[j]
-            if a != 0.0:
-                for i in range(n):
-                    ytmp[i] += a * K[j, i]
-        for i in range(n):
-            ytmp[i] = y[i] + h * ytmp[i]
         if s < 6:
+            for i in range(n):
+                acc = 0.0
+                for j in range(s):
+                    acc += A[s, j] * K[j, i]
+                ytmp[i] = y[i] + h * acc
             ts = t + C[s] * h
         else:
             for i in range(n):
-                y_new[i] = ytmp[i]
+                acc = 0.0
+                for j in range(6):
+                    acc += B[j] * K[j, i]
+                y_new[i] = y[i] + h * acc
+                ytmp[i] = y_new[i]
             ts = t + h
         rhs(ts, ytmp, K[s], rocking, side, phase, kind, xp, samples, sp)
     return 6
@@ -91,8 +90,8 @@ def error_norm(y, y_new, K, h, rtol, atol, n):
 def dense_coefficients(K, Q, n):
     """Q = Kᵀ P (first n rows): y(t + x h) = y + h Σ_j Q[:, j] x^(j+1), x ∈ [0, 1] (4th-order interpolant).
 
-    Q has room for the 7th-order DOP853 interpolant (:mod:`rockdesign.dynamics.dop853`); the powers
-    above 4 are zero here.
+    Q has 4 columns for DP5(4) runs (7 for the DOP853 interpolant, :mod:`rockdesign.dynamics.dop853`;
+    powers above 4 are then zeroed here).
     """
     for i in range(n):
         for j in range(4):
@@ -106,7 +105,10 @@ def dense_coefficients(K, Q, n):
 
 @njit(cache=True, inline="always")
 def dense_value(y, Q, h, x, i):
-    """Component ``i`` of the dense output at fraction x of the step (powers x¹ … x⁷ of either method)."""
+    """Component ``i`` of the dense output at fraction x of the step: Q has 4 columns (DP5(4), powers
+    x¹ … x⁴) or 7 (DOP853, x¹ … x⁷)."""
+    if Q.shape[1] == 4:
+        return y[i] + h * x * (Q[i, 0] + x * (Q[i, 1] + x * (Q[i, 2] + x * Q[i, 3])))
     return y[i] + h * x * (Q[i, 0] + x * (Q[i, 1] + x * (Q[i, 2] + x * (Q[i, 3] + x * (
         Q[i, 4] + x * (Q[i, 5] + x * Q[i, 6]))))))
 
