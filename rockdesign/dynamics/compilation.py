@@ -30,7 +30,7 @@ KERNELS: dict[str, tuple[tuple[str, str], ...]] = {
     "simulate": (("rockdesign.dynamics.engine", "integrate"), ("rockdesign.dynamics.engine", "top_displacements")),
     "records": (("rockdesign.motions.spectra", "spectral_displacements"),),
 }
-ESTIMATE_SECONDS = {"check": 35, "simulate": 25, "records": 5}
+ESTIMATE_SECONDS = {"check": 50, "simulate": 35, "records": 5}
 MESSAGE = "compiling numerical kernels, once per installation, ~{seconds} s"
 
 
