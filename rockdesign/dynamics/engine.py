@@ -79,8 +79,8 @@ METHOD_NAMES = {METHOD_AUTO: "auto", METHOD_DP5: "dp5", METHOD_DOP853: "dop853"}
 DOP853_BELOW_RTOL = 5e-8
 """The automatic choice uses DOP853 for a 2DOF podium when rtol is below this: the work-precision crossover
 measured on the podium under a 30-s record (benchmarks/bench_engine.py, ``stepper_choice``).  Both methods
-then land on every record sample; DP5(4) needs ≤ 1.3 steps per sample down to rtol 1e-7 (cheaper), ≈ 2.4
-at 1e-8 and ≈ 5 at 1e-10, where DOP853 still takes one step per sample (and is ~1e4× more accurate).
+then land on every record sample; DP5(4) needs ≈ 1.4–1.7 steps per sample at rtol 1e-6…1e-7 (cheaper), 2.6
+at 1e-8 and 5.3 at 1e-10, where DOP853 takes 1.07 steps per sample (and is 40× to 3000× more accurate).
 SDOF systems take about one DP5(4) step per sample at every tolerance: DP5(4) is cheaper there."""
 
 # summary array
