@@ -81,7 +81,7 @@ DOP853_BELOW_RTOL = 5e-8
 measured on the podium under a 30-s record (benchmarks/bench_engine.py, ``stepper_choice``).  Both methods
 then land on every record sample; DP5(4) needs ≈ 1.4–1.7 steps per sample at rtol 1e-6…1e-7 (cheaper), 2.6
 at 1e-8 and 5.3 at 1e-10, where DOP853 takes 1.07 steps per sample (and is 40× to 3000× more accurate).
-SDOF systems take about one DP5(4) step per sample at every tolerance: DP5(4) is cheaper there."""
+SDOF systems take about one DP5(4) step per sample down to rtol 1e-10: DP5(4) is cheaper there (equal at 1e-12)."""
 
 # summary array
 S_THETA_MAX = 0
