@@ -139,6 +139,8 @@ def simulate(project: Path = typer.Argument(..., help="Project file (TOML)"),
     if proj.system.kind == "cylinder":                      # the 3D cylinder (thesis Ch. 5)
         from .cylinder.cli import simulate_command
         return simulate_command(proj, motion, model, as_json, plot, csv, t_end, rtol, records_dir, console)
+    from .dynamics.compilation import prepare
+    prepare("simulate", Console(stderr=True).print)
     result = simulate_project(proj, motion, model=model, t_end=t_end, rtol=rtol,
                               records_dir=str(records_dir) if records_dir else None)
     if csv:

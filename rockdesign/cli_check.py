@@ -34,6 +34,8 @@ def register(app: typer.Typer, handle_errors) -> None:
             return cylinder_check_command(proj, project, out, as_json, Console(stderr=True))
         folder = OutputFolder(out if out is not None else Path(f"{Path(project).stem}_check"), key="-o/--out")
         with folder.locked():   # before the analyses: a file, a read-only or busy folder stops here (exit 2)
+            from .dynamics.compilation import prepare
+            prepare("check", Console(stderr=True).print)
             executor = None
             if dask:
                 from .spectra.executor import make_executor

@@ -44,8 +44,8 @@ class AnalysisSettings:
 
     model: str = "auto"
     equations: str = "auto"
-    rtol: float = 1e-10
-    atol: float = 1e-12
+    rtol: float = 1e-8      # docs/tolerances.md: the loosest rtol at which the verdict's statistics are converged
+    atol: float = 1e-10
     overturn: str = "static"
     g: float = G_DEFAULT
     rest_velocity: float = 5e-4
@@ -397,8 +397,8 @@ def _parse_analysis(data: dict, file: str) -> AnalysisSettings:
     return AnalysisSettings(
         model=t.choice("model", MODELS, "auto"),
         equations=t.choice("equations", EQUATIONS, "auto"),
-        rtol=t.number("rtol", default=1e-10, low=0.0, high=1e-3),
-        atol=t.number("atol", default=1e-12, low=0.0, high=1e-3),
+        rtol=t.number("rtol", default=1e-8, low=0.0, high=1e-3),
+        atol=t.number("atol", default=1e-10, low=0.0, high=1e-3),
         overturn=t.choice("overturn", OVERTURN, "static"),
         g=g,
         rest_velocity=t.quantity("rest_velocity", "frequency", default=5e-4) if isinstance(

@@ -17,10 +17,10 @@ import numpy as np  # noqa: E402
 from ..report.plots import STYLE  # noqa: E402
 
 FLOOR = 1e-16
-COLORS = {"rockdesign": "C3", "rockdesign linear-exact": "k", "scipy RK45": "C0", "scipy DOP853": "C2",
-          "scipy LSODA": "C4", "scipy Radau": "C1"}
-MARKERS = {"rockdesign": "o", "rockdesign linear-exact": "*", "scipy RK45": "s", "scipy DOP853": "D",
-           "scipy LSODA": "v", "scipy Radau": "^"}
+COLORS = {"rockdesign": "C3", "rockdesign linear-exact": "k", "rockdesign DP5(4)": "C5", "rockdesign DOP853": "C6",
+          "scipy RK45": "C0", "scipy DOP853": "C2", "scipy LSODA": "C4", "scipy Radau": "C1"}
+MARKERS = {"rockdesign": "o", "rockdesign linear-exact": "*", "rockdesign DP5(4)": "<", "rockdesign DOP853": ">",
+           "scipy RK45": "s", "scipy DOP853": "D", "scipy LSODA": "v", "scipy Radau": "^"}
 PANELS = (("error_theta", "max |Δθ| over the history [rad]", "theta"),
           ("error_theta_max", "|Δθ_max| [rad]", "theta_max"),
           ("error_impact_times", "max |Δt| of the first impacts [s]", "impact_times"))

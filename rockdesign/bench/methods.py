@@ -1,7 +1,10 @@
 """The methods compared in the work-precision study, behind one calling convention.
 
-* ``rockdesign`` — our event-driven DP5(4) engine (:func:`rockdesign.dynamics.simulate.simulate`)
-  solving the problem's equations (exact, or linearized for the linearized problems).
+* ``rockdesign`` — our event-driven engine (:func:`rockdesign.dynamics.simulate.simulate`) solving the
+  problem's equations (exact, or linearized for the linearized problems) with the stepper it picks per
+  system and tolerance (``method="auto"``: DOP853 for the 2DOF podium at rtol < 5e-8, DP5(4) otherwise).
+* ``rockdesign DP5(4)`` and ``rockdesign DOP853`` — the same engine with one stepper forced: the
+  work-precision data that the automatic choice rests on.
 * ``rockdesign linear-exact`` — our closed-form solution of the linearized SDOF equations (SPEC §3.8).
   It has no tolerance; on the exact-equation problems its error is the linearization (model) error.
 * ``scipy RK45 | DOP853 | LSODA | Radau`` — ``scipy.integrate.solve_ivp`` with the same equations and
@@ -92,14 +95,22 @@ class Method:
             return _run_scipy(problem, self.solver, rtol, atol, detailed)
         model = "linear-exact" if self.family == "closed-form" else (
             "linear" if problem.equations == "linear" else "exact")
-        return _run_engine(problem, model, rtol, atol)
+        return _run_engine(problem, model, rtol, atol, ENGINE_STEPPERS.get(self.solver, "auto"))
 
+
+ENGINE_STEPPERS = {"auto-events": "auto", "dp54-events": "dp5", "dop853-events": "dop853"}
+"""``Method.solver`` of the engine's methods → the ``method`` argument of ``simulate``."""
 
 METHODS = (
-    Method("rockdesign", "rockdesign", "dp54-events",
-           "rockdesign engine: numba DP5(4), dense-output event search, exact event refinement"),
+    Method("rockdesign", "rockdesign", "auto-events",
+           "rockdesign engine: numba DP5(4), or DOP853 for the 2DOF podium at rtol < 5e-8; dense-output event search, "
+           "exact event refinement"),
     Method("rockdesign linear-exact", "closed-form", "linear-exact",
            "rockdesign closed form of the linearized SDOF equations (docs/model.md §4); no tolerance"),
+    Method("rockdesign DP5(4)", "rockdesign", "dp54-events",
+           "rockdesign engine with the Dormand–Prince 5(4) stepper forced (4th-order dense output)"),
+    Method("rockdesign DOP853", "rockdesign", "dop853-events",
+           "rockdesign engine with the DOP853 stepper forced (Hairer's 8(5,3), 7th-order dense output)"),
 ) + tuple(Method(f"scipy {m}", "scipy", m, f"scipy.integrate.solve_ivp(method='{m}'), restarted at events "
                                                  "and record samples") for m in SCIPY_METHODS)
 
@@ -112,9 +123,9 @@ def method(name: str) -> Method:
     raise KeyError(f"unknown method {name!r}; expected one of {[m.name for m in METHODS]}")
 
 
-def _run_engine(problem: Problem, model: str, rtol: float, atol: float) -> RunOutput:
+def _run_engine(problem: Problem, model: str, rtol: float, atol: float, stepper: str = "auto") -> RunOutput:
     r = simulate(problem.system, problem.motion, model=model, structure=problem.structure, rtol=rtol, atol=atol,
-                 t_end=problem.t_end, theta0=problem.theta0)
+                 t_end=problem.t_end, theta0=problem.theta0, method=stepper)
     d = r.diagnostics
     return RunOutput(t=r.t, theta=r.theta, impact_times=r.impact_times, theta_max=r.theta_max,
                      overturn_mode=r.overturn_mode, impacts=r.impacts, nfev=int(d.get("function_evaluations", 0)),

@@ -12,8 +12,9 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from .engine import (N_DIAG, N_OPTIONS, N_SUMMARY, O_ATOL, O_ENERGY_STOP, O_H_MAX, O_MAX_EVENTS, O_MAX_STEPS,
-                     O_RTOL, O_SCAN, O_STOP_EXCEEDED, O_T_END, integrate)
+from ..errors import ModelError
+from .engine import (METHOD_NAMES, N_DIAG, N_OPTIONS, N_SUMMARY, O_ATOL, O_ENERGY_STOP, O_H_MAX, O_MAX_EVENTS,
+                     O_MAX_STEPS, O_METHOD, O_RTOL, O_SCAN, O_STOP_EXCEEDED, O_T_END, integrate)
 
 
 @njit(cache=True, parallel=True)
@@ -41,9 +42,18 @@ def _run_batch(sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s):
 
 def batch_options(rtol: float = 1e-10, atol: float = 1e-12, energy_stop: bool = True,
                   stop_at_capacity: bool = False, max_steps: int = 20_000_000, max_events: int = 1_000_000,
-                  scan_points: int = 8) -> np.ndarray:
-    """The ``opts`` array shared by the jobs of a batch (t_end is per job)."""
+                  scan_points: int = 8, method: str = "auto") -> np.ndarray:
+    """The ``opts`` array shared by the jobs of a batch (t_end is per job).
+
+    ``method``: ``auto`` (DOP853 for the 2DOF podium at rtol < 5e-8, DP5(4) otherwise — chosen by the
+    work-precision data of benchmarks/bench_engine.py), ``dp5`` or ``dop853``.
+    """
+    codes = {name: code for code, name in METHOD_NAMES.items()}
+    if method not in codes:
+        raise ModelError("unknown integration method", key="method", expected=" | ".join(codes),
+                         found=f"'{method}'")
     opts = np.zeros(N_OPTIONS)
+    opts[O_METHOD] = codes[method]
     opts[O_RTOL] = rtol
     opts[O_ATOL] = atol
     opts[O_H_MAX] = math.inf

@@ -29,6 +29,7 @@ from ..motions.excitation import excitation_end, ground_acceleration, ground_acc
 from .eom import (rhs_given_acceleration, P_BETA, P_CR, P_HYST, P_OVERTURN, P_RADIUS, P_REST_V, P_R, P_THETA_C, P_TWO_DOF,
                   normalised_kinematics, potential_energy, rhs, total_energy, uplift_condition)
 from .events import next_threshold_crossing, root_on_dense
+from .dop853 import ERROR_EXPONENT_853, FSAL_ROW_853, N_STAGES_EXTENDED, dop853_dense, dop853_error_norm, dop853_step
 from .rk import (ERROR_EXPONENT, MAX_FACTOR, MIN_FACTOR, SAFETY, dense_coefficients, dense_value,
                  dp5_step, error_norm, initial_step)
 
@@ -67,7 +68,20 @@ O_ENERGY_STOP = 5
 O_STOP_EXCEEDED = 6
 O_SCAN = 7
 O_MAX_EVENTS = 8
-N_OPTIONS = 9
+O_METHOD = 9           # METHOD_* (0: chosen per system by the work-precision data)
+N_OPTIONS = 10
+
+# steppers
+METHOD_AUTO = 0        # DOP853 for the 2DOF podium at rtol < DOP853_BELOW_RTOL, DP5(4) otherwise
+METHOD_DP5 = 5         # Dormand–Prince 5(4), 4th-order dense output
+METHOD_DOP853 = 8      # Dormand–Prince 8(5,3), 7th-order dense output
+METHOD_NAMES = {METHOD_AUTO: "auto", METHOD_DP5: "dp5", METHOD_DOP853: "dop853"}
+DOP853_BELOW_RTOL = 5e-8
+"""The automatic choice uses DOP853 for a 2DOF podium when rtol is below this: the work-precision crossover
+measured on the podium under a 30-s record (benchmarks/bench_engine.py, ``stepper_choice``).  Both methods
+then land on every record sample; DP5(4) needs ≈ 1.4–1.7 steps per sample at rtol 1e-6…1e-7 (cheaper), 2.6
+at 1e-8 and 5.3 at 1e-10, where DOP853 takes 1.07 steps per sample (and is 40× to 3000× more accurate).
+SDOF systems take about one DP5(4) step per sample down to rtol 1e-10: DP5(4) is cheaper there (equal at 1e-12)."""
 
 # summary array
 S_THETA_MAX = 0
@@ -105,6 +119,25 @@ def _phase_of(abs_theta, sp):
 
 
 @njit(cache=True)
+def resolve_method(method, two_dof, rtol):
+    """The stepper a run uses: ``method`` unless METHOD_AUTO, which picks by the work-precision data
+    (benchmarks/bench_engine.py): DOP853 where DP5(4)'s steps are bound by the tolerance (the 2DOF
+    podium's uplifted superstructure at rtol < :data:`DOP853_BELOW_RTOL`), DP5(4) where they are bound
+    by the record samples (SDOF systems; the podium at loose tolerances)."""
+    if method == METHOD_AUTO:
+        return METHOD_DOP853 if (two_dof and rtol < DOP853_BELOW_RTOL) else METHOD_DP5
+    return method
+
+
+@njit(cache=True, inline="always")
+def _rk_step(high, t, y, f0, h, K, y_new, ytmp, rocking, side, phase, kind, xp, samples, sp, n):
+    """One step of the run's method (DOP853 if ``high``, else DP5(4)); returns the evaluations."""
+    if high:
+        return dop853_step(t, y, f0, h, K, y_new, ytmp, rocking, side, phase, kind, xp, samples, sp, n)
+    return dp5_step(t, y, f0, h, K, y_new, ytmp, rocking, side, phase, kind, xp, samples, sp, n)
+
+
+@njit(cache=True, inline="always")
 def _store_event(ev_t, ev_kind, ev_y, diag, kind, t, y):
     diag[D_EVENTS] += 1
     k = diag[D_EVENTS_STORED]
@@ -167,22 +200,29 @@ def _fill_outputs(t_out, out_y, i_out, t_hi, t0, y, Q, h, y_end, use_dense, rest
 
 
 @njit(cache=True)
-def _advance(t_out, out_y, i_out, t, t_new, tb, y, y_new, Q, h, K, f0, rocking, side, phase, kind, xp, samples, sp,
-             diag):
+def _advance(t_out, out_y, i_out, t, t_new, tb, y, y_new, Q, h, K, fsal, f0, rocking, side, phase, kind, xp, samples,
+             sp, diag):
     """Accept a step: write outputs up to t_new, move the state, keep the FSAL derivative — or, on a kink
     or jump of ü_g (a breakpoint), restart from its right limit.  Returns the next output index."""
-    i_out = _fill_outputs(t_out, out_y, i_out, t_new, t, y, Q, h, y_new, True, False)
+    on = t_out.shape[0] >= 0     # run-time booleans (see integrate)
+    i_out = _fill_outputs(t_out, out_y, i_out, t_new, t, y, Q, h, y_new, on, not on)
     for i in range(4):
         y[i] = y_new[i]
-        f0[i] = K[6, i]
+        f0[i] = K[fsal, i]
     if t_new == tb:
-        rhs_given_acceleration(ground_acceleration_right(t_new, kind, xp, samples), y, f0, rocking, side, phase, sp)
-        diag[D_NFEV] += 1
+        # the FSAL derivative used ü_g(t + h); restart only where ü_g jumps there (a record's end, a
+        # windowed pulse) — at a kink (a record sample) the left value is the right limit up to round-off
+        ag_right = ground_acceleration_right(t_new, kind, xp, samples)
+        ag_used = ground_acceleration(t + h, kind, xp, samples)
+        if abs(ag_right - ag_used) > 1e-12 * (abs(ag_right) + abs(ag_used)):
+            rhs_given_acceleration(ag_right, y, f0, rocking, side, phase, sp)
+            diag[D_NFEV] += 1
     return i_out
 
 
 @njit(cache=True)
-def _refine_event(t, y, f0, x_e, h, level, sgn, K, y_e, ytmp, side, phase, kind, xp, samples, sp, n, diag):
+def _refine_event(high, t, y, f0, x_e, h, level, sgn, K, y_e, ytmp, rocking, side, phase, kind, xp, samples, sp, n,
+                  diag):
     """Re-step from t to the event and Newton-correct so that sgn·θ − level = 0 to round-off.
 
     Returns the refined event time; ``y_e`` holds the state there.
@@ -193,7 +233,7 @@ def _refine_event(t, y, f0, x_e, h, level, sgn, K, y_e, ytmp, side, phase, kind,
             for i in range(4):
                 y_e[i] = y[i]
             return t
-        diag[D_NFEV] += dp5_step(t, y, f0, he, K, y_e, ytmp, True, side, phase, kind, xp, samples, sp, n)
+        diag[D_NFEV] += _rk_step(high, t, y, f0, he, K, y_e, ytmp, rocking, side, phase, kind, xp, samples, sp, n)
         diag[D_REFINE] += 1
         g = sgn * y_e[0] - level
         gd = sgn * y_e[1]
@@ -250,8 +290,21 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
     c_r = sp[P_CR]
     v_rest = sp[P_REST_V]
     hyst = sp[P_HYST]
+    # |u_B(θ)| ≤ 2R(1 + 2r/R)|θ| (|dU/dθ| ≤ 1 + 2r/R for every contact phase): scan points whose bound
+    # cannot raise the drift maximum skip the trigonometry of u_B
+    drift_slope = 2.0 * sp[P_R] * (1.0 + 2.0 * sp[P_RADIUS] / sp[P_R])
     t_exc = excitation_end(kind, xp, samples)
+    high = resolve_method(int(opts[O_METHOD]), two_dof, rtol) == METHOD_DOP853
+    error_exponent = ERROR_EXPONENT_853 if high else ERROR_EXPONENT
+    fsal = FSAL_ROW_853 if high else 6
+    error_order = 7 if high else 4
 
+    # run-time booleans for flag arguments: numba compiles a separate specialisation of a kernel for
+    # every literal True/False/int it is called with (compile time, docs/engine.md)
+    on = opts.shape[0] > 0
+    off = not on
+    c_theta = opts.shape[0] - opts.shape[0]     # component indices θ, θ̇ (run-time ints, same reason)
+    c_rate = c_theta + 1
     y = np.zeros(4)
     for i in range(4):
         y[i] = y_init[i]
@@ -260,8 +313,9 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
     y_e = np.zeros(4)
     ytmp = np.zeros(4)
     ftmp = np.zeros(4)
-    K = np.zeros((7, 4))
-    Q = np.zeros((4, 4))
+    K = np.zeros((N_STAGES_EXTENDED, 4))
+    Q = np.zeros((4, 7 if high else 4))     # dense-output powers x¹ … x⁷ (DOP853) or x¹ … x⁴ (DP5(4))
+    work = np.zeros(8)
 
     # rigid-rest thresholds: uplift_condition is affine in ü_g when u_T = u̇_T = 0
     c0p = uplift_condition(1.0, 0.0, 0.0, 0.0, sp)
@@ -288,6 +342,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
     status = ST_OK
     need_start = True
     fresh_start = True
+    step_rejected = False
     h = 0.0
     t_rock_start = t
     if rocking:
@@ -306,15 +361,15 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
         # ---------------------------------------------------------------- rigid rest
         if not rocking and not two_dof:
             if t >= t_exc:
-                i_out = _fill_outputs(t_out, out_y, i_out, t_end, t, y, Q, 0.0, y, False, True)
+                i_out = _fill_outputs(t_out, out_y, i_out, t_end, t, y, Q, 0.0, y, off, on)
                 t = t_end
                 break
             tu, s_up = next_threshold_crossing(t, t_end, thr_lo, thr_hi, kind, xp, samples)
             if tu > t_end:
-                i_out = _fill_outputs(t_out, out_y, i_out, t_end, t, y, Q, 0.0, y, False, True)
+                i_out = _fill_outputs(t_out, out_y, i_out, t_end, t, y, Q, 0.0, y, off, on)
                 t = t_end
                 break
-            i_out = _fill_outputs(t_out, out_y, i_out, tu, t, y, Q, 0.0, y, False, True)
+            i_out = _fill_outputs(t_out, out_y, i_out, tu, t, y, Q, 0.0, y, off, on)
             t = tu
             rocking = True
             side = s_up
@@ -337,7 +392,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
                 # after uplift or at the start: no step-size history to continue from
                 tb0 = min(next_breakpoint(t, kind, xp, samples), t_end)
                 h0 = initial_step(t, y, f0, tb0, rtol, atol, ytmp, ftmp, rocking, side, phase, kind, xp,
-                                  samples, sp, n)
+                                  samples, sp, n, error_order)
                 diag[D_NFEV] += 1
                 h = h0 if h == 0.0 else min(h, h0) if h0 > 0.0 else h
             need_start = False
@@ -354,20 +409,32 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
             else:
                 status = ST_STEP_COLLAPSE
                 break
-        diag[D_NFEV] += dp5_step(t, y, f0, h, K, y_new, ytmp, rocking, side, phase, kind, xp, samples, sp, n)
+        diag[D_NFEV] += _rk_step(high, t, y, f0, h, K, y_new, ytmp, rocking, side, phase, kind, xp, samples, sp, n)
         diag[D_STEPS] += 1
-        err = error_norm(y, y_new, K, h, rtol, atol, n)
+        if high:
+            err = dop853_error_norm(y, y_new, K, h, rtol, atol, n, work)
+        else:
+            err = error_norm(y, y_new, K, h, rtol, atol, n)
         if not err <= 1.0:  # also catches NaN
             diag[D_REJECTED] += 1
-            fac = MIN_FACTOR if not err == err else max(MIN_FACTOR, SAFETY * err ** ERROR_EXPONENT)
+            fac = MIN_FACTOR if not err == err else max(MIN_FACTOR, SAFETY * err ** error_exponent)
             h *= fac
+            step_rejected = True
             continue
-        fac = MAX_FACTOR if err == 0.0 else min(MAX_FACTOR, SAFETY * err ** ERROR_EXPONENT)
+        fac = MAX_FACTOR if err == 0.0 else min(MAX_FACTOR, SAFETY * err ** error_exponent)
+        if step_rejected:
+            # no growth right after a rejection (as scipy): avoids reject/accept oscillation
+            fac = min(1.0, fac)
+            step_rejected = False
         h_next = h * fac
         t_new = t + h
         if t_new > tb - 1e-13 * max(1.0, abs(tb)) and tb < math.inf:
             t_new = tb
-        dense_coefficients(K, Q, n)
+        if high:
+            diag[D_NFEV] += dop853_dense(t, y, y_new, h, K, Q, ytmp, rocking, side, phase, kind, xp, samples, sp, n,
+                                         work)
+        else:
+            dense_coefficients(K, Q, n)
 
         # ------------------------------------------------------------ rest of a 2DOF podium
         if not rocking:
@@ -409,14 +476,14 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
             if ev_x >= 0.0:
                 he = ev_x * h
                 if he > 0.0:
-                    diag[D_NFEV] += dp5_step(t, y, f0, he, K, y_e, ytmp, False, side, phase, kind, xp, samples,
-                                             sp, n)
+                    diag[D_NFEV] += _rk_step(high, t, y, f0, he, K, y_e, ytmp, rocking, side, phase, kind, xp,
+                                             samples, sp, n)
                     diag[D_REFINE] += 1
                 else:
                     for i in range(4):
                         y_e[i] = y[i]
                 t_e = t + he
-                i_out = _fill_outputs(t_out, out_y, i_out, t_e, t, y, Q, h, y_e, True, False)
+                i_out = _fill_outputs(t_out, out_y, i_out, t_e, t, y, Q, h, y_e, on, off)
                 t = t_e
                 for i in range(4):
                     y[i] = y_e[i]
@@ -433,11 +500,11 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
                 need_start = True
                 fresh_start = True
                 continue
-            i_out = _advance(t_out, out_y, i_out, t, t_new, tb, y, y_new, Q, h, K, f0, rocking, side, phase,
-                             kind, xp, samples, sp, diag)
+            i_out = _advance(t_out, out_y, i_out, t, t_new, tb, y, y_new, Q, h, K, fsal, f0, rocking, side,
+                             phase, kind, xp, samples, sp, diag)
             t = t_new
             h = h_next
-            if energy_stop and t >= t_exc and _energy_bound(y, False, side, phase, summary[S_THETA_MAX], sp):
+            if energy_stop and t >= t_exc and _energy_bound(y, rocking, side, phase + 0, summary[S_THETA_MAX], sp):
                 status = ST_ENERGY_BOUND
                 break
             continue
@@ -462,7 +529,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
             x_mid = x_b
             s_mid = sb
             if (va > 0.0 and vb < 0.0) or (va < 0.0 and vb > 0.0):
-                x_mid = root_on_dense(y, Q, h, 1, side, 0.0, x_a, x_b)
+                x_mid = root_on_dense(y, Q, h, c_rate, side, 0.0, x_a, x_b)
                 s_mid = side * dense_value(y, Q, h, x_mid, 0)
                 n_piece = 2
             px0 = x_a
@@ -485,8 +552,8 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
                         ev_type = EV_OVERTURN
                         ev_level = theta_ot
                     if summary[S_EXCEEDED] == 0.0 and ps0 < theta_c <= ps1:
-                        xc = root_on_dense(y, Q, h, 0, side, theta_c, px0, px1)
-                        if ev_type == 0 or xc <= root_on_dense(y, Q, h, 0, side, ev_level, px0, px1):
+                        xc = root_on_dense(y, Q, h, c_theta, side, theta_c, px0, px1)
+                        if ev_type == 0 or xc <= root_on_dense(y, Q, h, c_theta, side, ev_level, px0, px1):
                             summary[S_EXCEEDED] = 1.0
                             summary[S_T_EXCEEDED] = t + xc * h
                             summary[S_IMPACTS_BEFORE_EXCEEDED] = impacts
@@ -509,7 +576,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
                     if ps0 == ev_level:
                         ev_x = px0
                     else:
-                        ev_x = root_on_dense(y, Q, h, 0, side, ev_level, px0, px1)
+                        ev_x = root_on_dense(y, Q, h, c_theta, side, ev_level, px0, px1)
                     break
                 # peak candidate at the end of a piece
                 if ps1 > summary[S_THETA_MAX]:
@@ -518,20 +585,21 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
             if ev_type != 0:
                 break
             if two_dof:
-                rel = abs((y_new[2] if k == m_scan else dense_value(y, Q, h, x_b, 2))
-                          - side * _top_displacement(sb, sp))
-                if rel > summary[S_DRIFT_MAX]:
-                    summary[S_DRIFT_MAX] = rel
+                ut_b = y_new[2] if k == m_scan else dense_value(y, Q, h, x_b, 2)
+                if abs(ut_b) + drift_slope * abs(sb) > summary[S_DRIFT_MAX]:
+                    rel = abs(ut_b - side * _top_displacement(sb, sp))
+                    if rel > summary[S_DRIFT_MAX]:
+                        summary[S_DRIFT_MAX] = rel
             x_a = x_b
             sa = sb
             va = vb
 
         if ev_type == 0:
-            i_out = _advance(t_out, out_y, i_out, t, t_new, tb, y, y_new, Q, h, K, f0, rocking, side, phase,
-                             kind, xp, samples, sp, diag)
+            i_out = _advance(t_out, out_y, i_out, t, t_new, tb, y, y_new, Q, h, K, fsal, f0, rocking, side,
+                             phase, kind, xp, samples, sp, diag)
             t = t_new
             h = h_next
-            if energy_stop and t >= t_exc and _energy_bound(y, True, side, phase, summary[S_THETA_MAX], sp):
+            if energy_stop and t >= t_exc and _energy_bound(y, rocking, side, phase + 0, summary[S_THETA_MAX], sp):
                 status = ST_ENERGY_BOUND
                 summary[S_UPLIFT_TIME] += t - t_rock_start
                 break
@@ -543,9 +611,9 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
                 y_e[i] = dense_value(y, Q, h, ev_x, i)
             t_e = t + ev_x * h
         else:
-            t_e = _refine_event(t, y, f0, ev_x, h, ev_level, side, K, y_e, ytmp, side, phase, kind, xp,
-                                samples, sp, n, diag)
-        i_out = _fill_outputs(t_out, out_y, i_out, t_e, t, y, Q, h, y_e, True, False)
+            t_e = _refine_event(high, t, y, f0, ev_x, h, ev_level, side, K, y_e, ytmp, rocking, side, phase, kind,
+                                xp, samples, sp, n, diag)
+        i_out = _fill_outputs(t_out, out_y, i_out, t_e, t, y, Q, h, y_e, on, off)
         t = t_e
         for i in range(4):
             y[i] = y_e[i]
@@ -592,7 +660,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
             side = -side
             phase = 1
         need_start = True
-        if energy_stop and t >= t_exc and _energy_bound(y, rocking, side, phase, summary[S_THETA_MAX], sp):
+        if energy_stop and t >= t_exc and _energy_bound(y, rocking, side, phase + 0, summary[S_THETA_MAX], sp):
             status = ST_ENERGY_BOUND
             if rocking:
                 summary[S_UPLIFT_TIME] += t - t_rock_start

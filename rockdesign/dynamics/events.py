@@ -68,12 +68,12 @@ def _acc_root(t_lo, t_hi, level, kind, xp, samples):
 
 
 @njit(cache=True)
-def _extremum(t_a, t_b, kind, xp, samples, maximise):
-    """Golden-section search for the extremum of ü_g on [t_a, t_b]; returns (t, value)."""
+def _extremum(t_a, t_b, kind, xp, samples, sgn):
+    """Golden-section search for the maximum (sgn = 1.0) or minimum (sgn = −1.0) of ü_g on [t_a, t_b];
+    returns (t, value).  (A float flag: numba would compile one specialisation per literal bool.)"""
     gr = 0.6180339887498949
     c = t_b - gr * (t_b - t_a)
     d = t_a + gr * (t_b - t_a)
-    sgn = 1.0 if maximise else -1.0
     fc = sgn * ground_acceleration(c, kind, xp, samples)
     fd = sgn * ground_acceleration(d, kind, xp, samples)
     for _ in range(80):
@@ -153,11 +153,11 @@ def next_threshold_crossing(t, t_stop, lo, hi, kind, xp, samples):
         # local extremum at t_prev (between t_prev2 and tn): refine it
         if t_prev > t_prev2:
             if a_prev >= a_prev2 and a_prev >= a_n:
-                tm, am = _extremum(t_prev2, tn, kind, xp, samples, True)
+                tm, am = _extremum(t_prev2, tn, kind, xp, samples, 1.0)
                 if am >= hi:
                     return _acc_root(t_prev2, tm, hi, kind, xp, samples), -1.0
             if a_prev <= a_prev2 and a_prev <= a_n:
-                tm, am = _extremum(t_prev2, tn, kind, xp, samples, False)
+                tm, am = _extremum(t_prev2, tn, kind, xp, samples, -1.0)
                 if am <= lo:
                     return _acc_root(t_prev2, tm, lo, kind, xp, samples), 1.0
         t_prev2, a_prev2 = t_prev, a_prev

@@ -1,4 +1,4 @@
-"""Dormand–Prince 5(4) with its 4th-order dense output, as small numba kernels.
+"""Dormand–Prince 5(4) with its 4th-order dense output, as small numba kernels (DOP853: dop853.py).
 
 The decomposition follows scipy.integrate._ivp (rk.py: tableau, step, dense output; common.py:
 initial step), adapted to fixed-size float arrays: one step, one error norm, one dense-output
@@ -88,24 +88,38 @@ def error_norm(y, y_new, K, h, rtol, atol, n):
 
 @njit(cache=True)
 def dense_coefficients(K, Q, n):
-    """Q = Kᵀ P (first n rows): y(t + x h) = y + h Σ_j Q[:, j] x^(j+1), x ∈ [0, 1] (4th-order interpolant)."""
+    """Q = Kᵀ P (first n rows): y(t + x h) = y + h Σ_j Q[:, j] x^(j+1), x ∈ [0, 1] (4th-order interpolant).
+
+    Q has 4 columns for DP5(4) runs (7 for the DOP853 interpolant, :mod:`rockdesign.dynamics.dop853`;
+    powers above 4 are then zeroed here).
+    """
     for i in range(n):
         for j in range(4):
             acc = 0.0
             for k in range(7):
                 acc += K[k, i] * P[k, j]
             Q[i, j] = acc
+        for j in range(4, Q.shape[1]):
+            Q[i, j] = 0.0
 
 
 @njit(cache=True, inline="always")
 def dense_value(y, Q, h, x, i):
-    """Component ``i`` of the dense output at fraction x of the step."""
-    return y[i] + h * x * (Q[i, 0] + x * (Q[i, 1] + x * (Q[i, 2] + x * Q[i, 3])))
+    """Component ``i`` of the dense output at fraction x of the step: Q has 4 columns (DP5(4), powers
+    x¹ … x⁴) or 7 (DOP853, x¹ … x⁷)."""
+    if Q.shape[1] == 4:
+        return y[i] + h * x * (Q[i, 0] + x * (Q[i, 1] + x * (Q[i, 2] + x * Q[i, 3])))
+    return y[i] + h * x * (Q[i, 0] + x * (Q[i, 1] + x * (Q[i, 2] + x * (Q[i, 3] + x * (
+        Q[i, 4] + x * (Q[i, 5] + x * Q[i, 6]))))))
 
 
 @njit(cache=True)
-def initial_step(t, y, f0, t_bound, rtol, atol, ytmp, f1, rocking, side, phase, kind, xp, samples, sp, n):
-    """First step size by Hairer–Nørsett–Wanner II.4 (as scipy's select_initial_step); 1 evaluation."""
+def initial_step(t, y, f0, t_bound, rtol, atol, ytmp, f1, rocking, side, phase, kind, xp, samples, sp, n,
+                 error_order=4):
+    """First step size by Hairer–Nørsett–Wanner II.4 (as scipy's select_initial_step); 1 evaluation.
+
+    ``error_order`` is the order of the method's error estimator (4 for DP5(4), 7 for DOP853).
+    """
     interval = t_bound - t
     if interval <= 0.0:
         return 0.0
@@ -130,5 +144,5 @@ def initial_step(t, y, f0, t_bound, rtol, atol, ytmp, f1, rocking, side, phase, 
     if d1 <= 1e-15 and d2 <= 1e-15:
         h1 = max(1e-6, h0 * 1e-3)
     else:
-        h1 = (0.01 / max(d1, d2)) ** (1.0 / 5.0)
+        h1 = (0.01 / max(d1, d2)) ** (1.0 / (error_order + 1.0))
     return min(100.0 * h0, h1, interval)

@@ -18,7 +18,7 @@ from .model import REST_VELOCITY, ModelChoice, default_structure, resolve_struct
 from .response import Event, Response
 
 DEFAULT_RTOL = 1e-10
-"""Default relative tolerance of the DP5(4) integrator (CONTRACT §1 ``[analysis] rtol``)."""
+"""Default relative tolerance of the integrator (CONTRACT §1 ``[analysis] rtol``)."""
 DEFAULT_ATOL = 1e-12
 """Default absolute tolerance [rad, rad/s, m, m/s]."""
 FREE_VIBRATION = 10.0
@@ -32,7 +32,7 @@ def simulate(system: RockingSystem, motion: GroundMotion | None = None, *, model
              overturn: str = "static", rest_velocity: float = REST_VELOCITY, output_dt: float | None = None,
              energy_stop: bool = False, stop_at_capacity: bool = False, max_steps: int = 20_000_000,
              scan_points: int = 8, max_events: int = 1_000_000, event_capacity: int = 100_000,
-             record_history: bool = True, rigid_ratio: float = 10.0) -> Response:
+             record_history: bool = True, rigid_ratio: float = 10.0, method: str = "auto") -> Response:
     """Time-history response of ``system`` to ``motion`` (SPEC §3).
 
     Args:
@@ -50,6 +50,8 @@ def simulate(system: RockingSystem, motion: GroundMotion | None = None, *, model
         output_dt: output interval [s] for pulses (records output at their samples).
         energy_stop: stop once the remaining energy cannot raise θ_max (docs/early_termination.md).
         stop_at_capacity: stop when |θ| first reaches θc.
+        method: Runge–Kutta pair — ``auto`` (DOP853 for the 2DOF podium at rtol < 5e-8, DP5(4) otherwise; chosen by
+            the work-precision data, docs/engine.md), ``dp5`` or ``dop853``.
     """
     if model not in MODELS:
         raise ModelError("unknown model", key="--model", expected=" | ".join(MODELS), found=f"'{model}'")
@@ -91,7 +93,7 @@ def simulate(system: RockingSystem, motion: GroundMotion | None = None, *, model
     else:
         from .batch import batch_options
         opts = batch_options(rtol, atol, energy_stop=energy_stop, stop_at_capacity=stop_at_capacity,
-                             max_steps=max_steps, max_events=max_events, scan_points=scan_points)
+                             max_steps=max_steps, max_events=max_events, scan_points=scan_points, method=method)
         opts[O_T_END] = t_end
         out_y = np.zeros((t_out.size, 4))
         ev_t, ev_kind, ev_y = _event_buffers(event_capacity)

@@ -69,8 +69,8 @@ def test_references_and_their_bounds():
 
 def test_methods_registry():
     names = [m.name for m in METHODS]
-    assert names == ["rockdesign", "rockdesign linear-exact", "scipy RK45", "scipy DOP853", "scipy LSODA",
-                     "scipy Radau"]
+    assert names == ["rockdesign", "rockdesign linear-exact", "rockdesign DP5(4)", "rockdesign DOP853",
+                     "scipy RK45", "scipy DOP853", "scipy LSODA", "scipy Radau"]
     le = method("rockdesign linear-exact")
     assert not le.has_tolerance
     assert le.applies(make_problem("ricker-anti", "housner-block"))

@@ -1,0 +1,174 @@
+"""Benchmark: the full design check of the podium example with the overturning fragility and the perturbation
+ensembles (issue 13), stage by stage (the engine speed and first-run budgets are in bench_check.py).
+
+
+Budget (issue "rockdesign check"): warm run under 15 s, first (JIT-compiling) run under 90 s on the
+2-core machine; with the overturning fragility and the perturbation ensembles (issue 13, default
+``ensemble_size = 8``) the warm run stays under 30 s.  The stages of one in-process check are timed
+too (ensembles against the nominal suite analysis of the same process, fragility fits + bootstrap).  The cold run uses an empty numba cache directory (NUMBA_CACHE_DIR), so nothing of
+the repository's cache is reused; the warm run repeats it with that cache filled.  As a ratio
+against a baseline measured in the same run, the suite-analysis stage (the nonlinear RHA of the
+records) is also timed for a few records with the independent scipy implementation
+(solve_ivp DOP853, same equations and events, restarted at impacts).
+
+    .venv/bin/python benchmarks/bench_check_fragility.py [--project examples/podium_flat.toml] [--out benchmarks/results/check_fragility.json]
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import subprocess
+import sys
+import tempfile
+import time
+from datetime import datetime, timezone
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+CPU_SECONDS = {}
+"""CPU seconds (user + system) of the last timed check: on a machine shared with other jobs the wall time
+grows with the load, the CPU time much less; CPU/cores is the wall time of an idle machine at best."""
+
+
+def timed_check(project: str, out_dir: str, cache_dir: str) -> tuple[float, int]:
+    import resource
+    env = dict(os.environ, NUMBA_CACHE_DIR=cache_dir)
+    exe = str(Path(sys.executable).with_name("rockdesign"))
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    proc = subprocess.run([exe, "check", project, "-o", out_dir], env=env, cwd=ROOT, capture_output=True, text=True)
+    dt = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    CPU_SECONDS["last"] = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    if proc.returncode not in (0, 1):
+        raise SystemExit(f"check failed ({proc.returncode}):\n{proc.stderr[-3000:]}")
+    return dt, proc.returncode
+
+
+def suite_ratio(project: str, n_records: int = 3) -> dict:
+    """Our engine vs the scipy reference on the first records of the project's suite (same model)."""
+    from rockdesign.checks.check import _excitation
+    from rockdesign.design.quantities import design_quantities
+    from rockdesign.dynamics.simulate import simulate
+    from rockdesign.motions.config import resolve_motions
+    from rockdesign.project import load_project
+    from rockdesign.reference.scipy_engine import simulate_scipy
+    proj = load_project(ROOT / project)
+    q = design_quantities(proj.system)
+    suite = resolve_motions(_excitation(proj), gravity=proj.system.g,
+                            uplift_acceleration=q["uplift_acceleration"].value)
+    motions = [r.motion for r in suite.records[:n_records]]
+    ours = 0.0
+    for m in motions:   # warm-up then timed
+        simulate(proj.system, m, structure="podium-2dof" if proj.system.has_elastic_superstructure else "auto",
+                 record_history=False)
+    rows = []
+    for m in motions:
+        t0 = time.perf_counter()
+        r = simulate(proj.system, m, structure="podium-2dof" if proj.system.has_elastic_superstructure else "auto",
+                     record_history=False, rtol=1e-10)
+        t_ours = time.perf_counter() - t0
+        t0 = time.perf_counter()
+        ref = simulate_scipy(proj.system, m, method="DOP853", rtol=1e-10, atol=1e-12,
+                             t_end=m.duration + proj.analysis.free_vibration)
+        t_ref = time.perf_counter() - t0
+        ours += t_ours
+        rows.append({"record": m.name, "ours_s": t_ours, "scipy_s": t_ref, "ratio": t_ref / t_ours,
+                     "theta_max_ours": r.theta_max, "theta_max_scipy": ref.theta_max})
+    return {"records": rows, "median_ratio": sorted(x["ratio"] for x in rows)[len(rows) // 2]}
+
+
+def without_ensembles(text: str) -> str:
+    """The project text with ``[analysis] ensemble_size = 0``."""
+    lines = text.splitlines()
+    if "[analysis]" in (line.strip() for line in lines):
+        k = next(i for i, line in enumerate(lines) if line.strip() == "[analysis]")
+        lines.insert(k + 1, "ensemble_size = 0")
+    else:
+        lines += ["", "[analysis]", "ensemble_size = 0"]
+    return "\n".join(lines) + "\n"
+
+
+def stage_times(project: str) -> dict:
+    """Seconds per stage of one in-process check (kernels warm), from the progress callback."""
+    from rockdesign.checks.check import run_check
+    from rockdesign.checks.fragility import check_fragility
+    from rockdesign.checks.margins import SCAN_RATIO
+    from rockdesign.project import load_project
+    proj = load_project(ROOT / project)
+    starts = {}
+    t0 = time.perf_counter()
+    result = run_check(proj, progress=lambda stage, done, total: starts.setdefault(stage, time.perf_counter()))
+    end = time.perf_counter()
+    names = list(starts)
+    stages = {name: (starts[names[k + 1]] if k + 1 < len(names) else end) - starts[name]
+              for k, name in enumerate(names)}
+    t1 = time.perf_counter()
+    check_fragility(result.records, proj.analysis, empirical=(result.statistics["n_overturned"], len(result.records)),
+                    stripe_ratio=SCAN_RATIO)
+    fits = time.perf_counter() - t1
+    suite = next(v for k, v in stages.items() if k.startswith("suite analysis"))
+    ens = next((v for k, v in stages.items() if k.startswith("perturbation ensembles")), None)
+    return {"total_s": end - t0, "stages_s": stages, "fragility_fits_and_bootstrap_s": fits,
+            "ensemble_size": proj.analysis.ensemble_size,
+            "ensemble_over_suite_analysis": None if ens is None else ens / suite,
+            "fragility": {k: (result.fragility or {}).get(k) for k in ("median", "beta", "median_ci90", "beta_ci90",
+                                                                     "method", "n_censored", "p_overturn_design")},
+            "collapse_margin": {k: (result.collapse_margin or {}).get(k) for k in ("CMR", "ACMR", "beta_tot",
+                                                                               "ACMR10", "ACMR20",
+                                                                               "p_collapse_design", "passed")},
+            "ensemble": {k: (result.ensemble or {}).get(k) for k in ("p_overturn", "n_not_robust",
+                                                                    "records_not_robust")}}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--project", default="examples/podium_flat.toml")
+    ap.add_argument("--out", default=str(ROOT / "benchmarks" / "results" / "check_fragility.json"))
+    ap.add_argument("--skip-cold", action="store_true", help="only the warm run")
+    args = ap.parse_args()
+    with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as work:
+        cold = None
+        if not args.skip_cold:
+            cold, _ = timed_check(args.project, str(Path(work) / "cold"), cache)
+            print(f"first run (empty numba cache): {cold:.1f} s  (budget 90 s)")
+        else:
+            timed_check(args.project, str(Path(work) / "fill"), cache)
+        warm, code = timed_check(args.project, str(Path(work) / "warm"), cache)
+        warm_cpu = CPU_SECONDS["last"]
+        print(f"warm run: {warm:.1f} s  (budget 30 s with fragility and ensembles), verdict exit code {code}; "
+              f"CPU {warm_cpu:.1f} s (÷ {os.cpu_count()} cores = {warm_cpu / os.cpu_count():.1f} s; load average "
+              f"{os.getloadavg()[0]:.1f})")
+        # the same warm check without the perturbation ensembles, under the same load
+        plain = Path(work) / "no_ensembles.toml"
+        plain.write_text(without_ensembles((ROOT / args.project).read_text()))
+        warm_plain, _ = timed_check(str(plain), str(Path(work) / "plain"), cache)
+        plain_cpu = CPU_SECONDS["last"]
+        print(f"warm run without ensembles: {warm_plain:.1f} s, CPU {plain_cpu:.1f} s")
+    stages = stage_times(args.project)
+    for name, sec in stages["stages_s"].items():
+        print(f"  {sec:6.1f} s  {name}")
+    print(f"  fragility fits + bootstrap: {stages['fragility_fits_and_bootstrap_s']:.2f} s; ensembles / suite "
+          f"analysis: {stages['ensemble_over_suite_analysis'] or 0:.1f}x")
+    ratio = suite_ratio(args.project)
+    print(f"suite RHA, ours vs scipy DOP853 (same equations/events, rtol 1e-10): median ratio "
+          f"{ratio['median_ratio']:.0f}x")
+    result = {"benchmark": "check", "project": args.project, "first_run_s": cold, "warm_run_s": warm,
+              "warm_run_cpu_s": warm_cpu, "warm_run_without_ensembles_s": warm_plain,
+              "warm_run_without_ensembles_cpu_s": plain_cpu,
+              "budget_first_s": 90, "budget_warm_s": 30, "stages": stages, "suite_rha_vs_scipy": ratio,
+              "load_average": os.getloadavg(),
+              "date": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+              "machine": {"platform": platform.platform(), "processor": platform.processor(), "cpus": os.cpu_count(),
+                          "python": platform.python_version()}}
+    Path(args.out).parent.mkdir(parents=True, exist_ok=True)
+    Path(args.out).write_text(json.dumps(result, indent=2) + "\n")
+    print(f"wrote {args.out}")
+
+
+if __name__ == "__main__":
+    main()

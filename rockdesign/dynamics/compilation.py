@@ -1,0 +1,103 @@
+"""First-run compilation of the numerical kernels: detect it, say so, compile only what a command needs.
+
+numba compiles a kernel on its first call and keeps the machine code in its on-disk cache
+(``cache=True``; :mod:`rockdesign.kernel_cache` drops stale entries).  After an installation (or an
+upgrade) the first command therefore spends tens of seconds compiling — formerly behind a progress
+bar that did not move.  :func:`prepare` is called by the CLI commands before their work starts: when
+numba's cache index of a kernel the command needs is missing, it prints
+
+    compiling numerical kernels, once per installation, ~N s
+
+and compiles exactly those kernels by calling them on a tiny problem with the argument types of the
+real calls (so the real calls load them from the cache), then reports the seconds it took.  Commands
+compile only their own kernels: ``simulate`` never compiles the parallel batch runner, ``records``
+only the elastic response spectrum.
+"""
+from __future__ import annotations
+
+import importlib
+import os
+import time
+from pathlib import Path
+
+# Kernels (module, function) each command calls; the estimates are first-run compile seconds measured
+# on the 2-core development machine (benchmarks/bench_check.py reports the first `check` run).
+KERNELS: dict[str, tuple[tuple[str, str], ...]] = {
+    "check": (("rockdesign.dynamics.batch", "_run_batch"), ("rockdesign.dynamics.engine", "integrate"),
+              ("rockdesign.dynamics.engine", "top_displacements"),
+              ("rockdesign.dynamics.linear_exact", "integrate_linear_exact"),
+              ("rockdesign.motions.spectra", "spectral_displacements")),
+    "simulate": (("rockdesign.dynamics.engine", "integrate"), ("rockdesign.dynamics.engine", "top_displacements")),
+    "records": (("rockdesign.motions.spectra", "spectral_displacements"),),
+}
+ESTIMATE_SECONDS = {"check": 50, "simulate": 35, "records": 5}
+MESSAGE = "compiling numerical kernels, once per installation, ~{seconds} s"
+
+
+def _dispatcher(module: str, name: str):
+    return getattr(importlib.import_module(module), name)
+
+
+def is_cached(dispatcher) -> bool:
+    """True when numba's on-disk cache holds an index for ``dispatcher`` (compiled before).
+
+    False when the cache cannot be inspected (no ``cache=True``, a read-only installation).
+    """
+    try:
+        index = Path(dispatcher._cache._cache_file._index_path)
+    except AttributeError:
+        return False
+    return index.is_file()
+
+
+def missing_kernels(command: str) -> list[str]:
+    """Names (``module.function``) of the kernels ``command`` needs that are not in numba's cache."""
+    import rockdesign.dynamics  # noqa: F401  (drops stale caches first: rockdesign.kernel_cache)
+    return [f"{m}.{f}" for m, f in KERNELS.get(command, ()) if not is_cached(_dispatcher(m, f))]
+
+
+def _warm(command: str) -> None:
+    """Call the command's kernels once on a tiny problem, with the argument types of the real calls."""
+    import numpy as np
+
+    from ..motions.motion import record_motion
+    from ..systems import block
+    from .batch import batch_options, run_batch
+    from .model import ModelChoice, system_parameters
+    from .simulate import simulate
+    g = 9.81
+    system = block(1.5, 0.15)
+    record = record_motion("warm-up", np.array([0.0, 0.3, -0.3, 0.0]) * g, 0.01)
+    if command in ("check", "simulate"):
+        simulate(system, record, t_end=0.05)
+    if command == "check":
+        sp = system_parameters(system, ModelChoice("block", "exact"))
+        run_batch(sp, [record], [1.0], [0.05], batch_options())
+        from ..bench.accuracy import accuracy_problem
+        prob = accuracy_problem()
+        simulate(prob.system, prob.motion, model="linear-exact", t_end=0.05)
+    if command in ("check", "records"):
+        from ..motions.spectra import sd_max
+        sd_max(record)
+
+
+def prepare(command: str, say=None) -> float:
+    """Compile the kernels ``command`` needs if numba's cache lacks them, announcing it; returns seconds.
+
+    ``say(text)`` prints a line (the CLI passes its stderr console); nothing is printed and nothing is
+    compiled when every kernel is cached.  ``ROCKDESIGN_NO_WARMUP=1`` skips the step (kernels then
+    compile on first use, as numba does by default).
+    """
+    if os.environ.get("ROCKDESIGN_NO_WARMUP") or command not in KERNELS:
+        return 0.0
+    missing = missing_kernels(command)
+    if not missing:
+        return 0.0
+    if say is not None:
+        say(MESSAGE.format(seconds=ESTIMATE_SECONDS.get(command, 30)))
+    t0 = time.perf_counter()
+    _warm(command)
+    seconds = time.perf_counter() - t0
+    if say is not None:
+        say(f"compiled {len(missing)} kernel{'s' if len(missing) > 1 else ''} in {seconds:.0f} s")
+    return seconds
