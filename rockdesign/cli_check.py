@@ -29,10 +29,20 @@ def register(app: typer.Typer, handle_errors) -> None:
         from .project import load_project
         from .report.results import json_text
         proj = load_project(project)
+        target = out if out is not None else Path(f"{Path(project).stem}_check")
         if proj.system.kind == "cylinder":                  # the 3D cylinder (thesis Ch. 5)
-            from .checks.cylinder_cli import cylinder_check_command
-            return cylinder_check_command(proj, project, out, as_json, Console(stderr=True))
-        folder = OutputFolder(out if out is not None else Path(f"{Path(project).stem}_check"), key="-o/--out")
+            from .cylinder.cli import check_summary as cylinder_summary
+            from .report.cylinder_report import cylinder_output_folder
+            folder = cylinder_output_folder(target, key="-o/--out")
+            with folder.locked():   # before the analyses, as below
+                result = run_check(proj, progress=not as_json or Console(stderr=True).is_terminal)
+                write_report(result, folder, pdf=not no_pdf, html=html or not no_pdf)
+            if as_json:
+                sys.stdout.write(json_text(result.as_json()))
+            else:
+                cylinder_summary(result.as_json(), folder.target, Console())
+            raise typer.Exit(0 if result.verdict == "PASS" else 1)
+        folder = OutputFolder(target, key="-o/--out")
         with folder.locked():   # before the analyses: a file, a read-only or busy folder stops here (exit 2)
             from .dynamics.compilation import prepare
             prepare("check", Console(stderr=True).print)

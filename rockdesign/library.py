@@ -204,6 +204,10 @@ def check(project: Project, *, progress: bool = False, records_dir: str | Path |
     if not isinstance(project, Project):
         raise ProjectError("check needs a project", key="project",
                            expected="a Project (rd.load_project or rd.parse_project)", found=type(project).__name__)
+    if project.system.kind == "cylinder":     # the 3D cylinder (thesis Ch. 5): a CylinderCheckResult
+        from .checks.cylinder_check import cylinder_check
+        with progress_bars(disable=not progress) as tick:
+            return cylinder_check(project, progress=tick)
     with progress_bars(disable=not progress) as tick:
         return run_check(project, records_dir=str(records_dir) if records_dir else None, margins=margins,
                          progress=tick, executor=executor)
@@ -211,7 +215,8 @@ def check(project: Project, *, progress: bool = False, records_dir: str | Path |
 
 @_parameter_names
 def write_report(result, out_dir, *, pdf: bool = True, html: bool = True) -> Path:
-    """Write a check's ``report.pdf``, ``report.html``, ``results.json``, ``results.csv`` into ``out_dir``.
+    """Write a check's ``report.pdf``, ``report.html``, ``results.json``, ``results.csv`` into ``out_dir``
+    (for a cylinder check also the figures ``cylinder_vs_planar.png`` and ``wobbling_period.png``).
 
     The folder is written all or nothing (a temporary folder beside it is moved into place when
     complete), holds only this run's files afterwards, and is locked against concurrent runs (see
@@ -220,8 +225,12 @@ def write_report(result, out_dir, *, pdf: bool = True, html: bool = True) -> Pat
     Returns:
         The output folder.
     """
+    from .checks.cylinder_check import CylinderCheckResult
     from .outdir import OutputFolder
     from .report.results import write_results_csv, write_results_json
+    if isinstance(result, CylinderCheckResult):
+        from .report.cylinder_report import write_cylinder_folder
+        return write_cylinder_folder(result, out_dir, pdf=pdf, html=html)
     folder = out_dir if isinstance(out_dir, OutputFolder) else OutputFolder(out_dir, key="out_dir")
     data = result.as_json()
     with folder.staging() as tmp:

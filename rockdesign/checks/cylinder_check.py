@@ -17,6 +17,7 @@ must not exceed ``[analysis] overturn_probability_limit``.  The comparison repor
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 import statistics as pystats
 
@@ -177,12 +178,87 @@ def run_cylinder_check(project, progress=None) -> dict:
          "passed": True, "governs_verdict": False, "detail": "informative only: Polyakov's rule is planar"},
     ]
     verdict = "PASS" if all(c["passed"] for c in checks if c["governs_verdict"]) else "FAIL"
+    cylinder = {"height": 2.0 * cyl.half_height, "diameter": 2.0 * cyl.base_radius, "slenderness": cyl.tan_alpha,
+                "mass": cyl.mass, "contact": cyl.contact, "overturn_tilt": cyl.overturn_tilt, "g": cyl.g}
+    if cyl.damped:
+        cylinder.update(contact_frequency=cyl.contact_frequency, contact_damping=cyl.contact_damping)
+    settings = {"rtol": a.rtol, "atol": a.atol, "rest_velocity": a.rest_velocity, "free_vibration": a.free_vibration,
+                "overturn_probability_limit": limit, "sd_max_damping": a.sdmax_damping,
+                "sd_max_band": list(a.sdmax_band)}
     return {"project": {"name": project.name, "file": project.path, "system": "cylinder", "contact": cyl.contact},
+            "cylinder": cylinder, "units": CYLINDER_UNITS, "suites": suites, "settings": settings,
             "quantities": quantities_json(project)["quantities"],
             "model": {"chosen": "cylinder-" + ("damped" if cyl.damped else "undamped"),
                       "reason": "[cylinder] project: the 3D rocking and wobbling model of thesis Ch. 5"},
             "records": records, "summary": summary, "checks": checks, "verdict": verdict}
 
+
+GOVERNING_PAIRS = 2
+"""θ(t)/orbit histories kept for the report: the pairs with the largest 3D θ_max/α."""
+
+FIGURE_FILES = ("cylinder_vs_planar.png", "wobbling_period.png")
+"""The figures written beside results.json (besides the report, which embeds its own)."""
+
+
+@dataclasses.dataclass
+class CylinderCheckResult:
+    """The check of a cylinder project: ``as_json()`` is results.json (``check --json``).
+
+    ``histories`` maps the ids of the governing pairs (largest 3D θ_max/α) to
+    ``(CylinderResponse, scaled MotionPair)`` for the report's θ(t)/orbit figures.
+    """
+
+    project: object
+    data: dict
+    histories: dict = dataclasses.field(default_factory=dict)
+
+    @property
+    def verdict(self) -> str:
+        return self.data["verdict"]
+
+    @property
+    def records(self) -> list[dict]:
+        return self.data["records"]
+
+    @property
+    def checks(self) -> list[dict]:
+        return self.data["checks"]
+
+    @property
+    def summary(self) -> dict:
+        return self.data["summary"]
+
+    def as_json(self) -> dict:
+        return self.data
+
+
+def governing_ids(data: dict, n: int = GOVERNING_PAIRS) -> list[str]:
+    """Ids of the ``n`` pairs with the largest 3D θ_max/α (overturned pairs first; stable order)."""
+    rows = sorted(data["records"], key=lambda r: (not r["overturned"], -r["theta_max_over_alpha"]))
+    return [r["id"] for r in rows[:n]]
+
+
+def cylinder_check(project, progress=None) -> CylinderCheckResult:
+    """:func:`run_cylinder_check` plus the histories of the governing pairs (re-analysed: the engine is
+    deterministic, so they are the histories behind the rows of results.json)."""
+    from ..cylinder.engine import simulate_cylinder
+    from ..motions.pairs import load_pair
+    data = run_cylinder_check(project, progress=progress)
+    cyl, a = project.system, project.analysis
+    rows = {r["id"]: r for r in data["records"]}
+    histories = {}
+    for rid in governing_ids(data):
+        pair = load_pair(rid, gravity=cyl.g).scaled(rows[rid]["scale"])
+        histories[rid] = (simulate_cylinder(cyl, pair, free_vibration=a.free_vibration, rtol=a.rtol, atol=a.atol,
+                                            rest_velocity=a.rest_velocity), pair)
+    return CylinderCheckResult(project, data, histories)
+
+
+CYLINDER_UNITS = {"height": "m", "diameter": "m", "slenderness": "-", "mass": "kg", "overturn_tilt": "-",
+                  "g": "m/s^2", "contact_frequency": "rad/s", "contact_damping": "-", "scale": "-",
+                  "resultant_pga": "m/s^2", "theta_max_over_alpha": "-", "uplift_time": "s", "rtol": "-",
+                  "atol": "-", "rest_velocity": "rad/s", "free_vibration": "s", "sd_max_band": "s"}
+"""Units of the numbers of results.json's ``cylinder``, ``records`` and ``settings`` (SI)."""
 
 CSV_COLUMNS = ["id", "suite", "event", "station", "scale", "resultant_pga", "theta_max_over_alpha", "overturned",
                "overturn_mode", "quasi_impacts", "uplift_time", "planar_theta_max_over_alpha", "planar_overturned",
@@ -195,7 +271,7 @@ def write_cylinder_results(data: dict, out_dir) -> None:
     import json
     from pathlib import Path
 
-    from ..report.plots import STYLE, plt, save
+    from ..report.plots import save
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     (out_dir / "results.json").write_text(json.dumps(data, indent=2, ensure_ascii=False) + "\n", encoding="utf-8")
@@ -204,6 +280,12 @@ def write_cylinder_results(data: dict, out_dir) -> None:
         w.writerow(CSV_COLUMNS)
         for row in data["records"]:
             w.writerow(["" if row.get(c) is None else row.get(c) for c in CSV_COLUMNS])
+    save(comparison_figure(data), out_dir / "cylinder_vs_planar.png")
+
+
+def comparison_figure(data: dict):
+    """3D θ_max/α against the planar Housner θ_max/α (worse component) per record pair."""
+    from ..report.plots import STYLE, plt
     with plt.rc_context(STYLE):
         fig, ax = plt.subplots(figsize=(5.0, 4.6))
         x = np.array([r["planar_theta_max_over_alpha"] for r in data["records"]])
@@ -216,4 +298,4 @@ def write_cylinder_results(data: dict, out_dir) -> None:
         ax.set_xlabel("planar Housner θ_max/α (worse component)")
         ax.set_ylabel("3D cylinder θ_max/α")
         ax.legend(fontsize=7)
-        save(fig, out_dir / "cylinder_vs_planar.png")
+        return fig

@@ -32,3 +32,19 @@ def simulate_command(project, motion, model, as_json, plot, csv, t_end, rtol, re
         sys.stdout.write(json.dumps(result.as_json(), indent=2) + "\n")
         return
     response_table(result, console)
+
+
+def check_summary(data: dict, out_dir, console) -> None:
+    """Print the checks of a cylinder check (results.json ``data``), the verdict and the output folder."""
+    from rich.markup import escape
+    from rich.table import Table
+    table = Table(title=f"{data['project']['name']} — cylinder check", title_justify="left")
+    for col in ("check", "utilisation", "result", "detail"):
+        table.add_column(col)
+    for c in data["checks"]:
+        table.add_row(escape(c["name"]), f"{c['utilisation']:.3f}",
+                      ("PASS" if c["passed"] else "FAIL") + ("" if c["governs_verdict"] else " (info)"),
+                      escape(c["detail"]))
+    console.print(table)
+    colour = "green" if data["verdict"] == "PASS" else "red"
+    console.print(f"verdict: [bold {colour}]{data['verdict']}[/]   output: {escape(str(out_dir))}", highlight=False)

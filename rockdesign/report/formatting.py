@@ -16,6 +16,7 @@ _SUPERSCRIPT = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
 UNIT_LABELS = {
     "m/s^2": "m/s²",
     "m/s2": "m/s²",
+    "m^2": "m²",
     "1/s": "1/s",
     "rad/s": "rad/s",
     "-": "",
