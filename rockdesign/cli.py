@@ -80,7 +80,7 @@ def _root(version: bool = typer.Option(False, "--version", callback=_version_cal
 
 @app.command()
 @handle_errors
-def init(kind: str = typer.Argument(..., help="podium | column"),
+def init(kind: str = typer.Argument(..., help="podium | column | cylinder"),
          path: Optional[Path] = typer.Argument(None, help="Where to write (default: KIND.toml)"),
          force: bool = typer.Option(False, "--force", metavar=FLAG, help="Overwrite an existing file.")):
     """Write a commented template project file."""

@@ -6,13 +6,13 @@ from pathlib import Path
 from .errors import ProjectError
 from .paths import templates_dir
 
-KINDS = ("podium", "column")
+KINDS = ("podium", "column", "cylinder")
 
 
 def template_text(kind: str) -> str:
-    """The commented template for ``kind`` (podium | column)."""
+    """The commented template for ``kind`` (podium | column | cylinder)."""
     if kind not in KINDS:
-        raise ProjectError("unknown template", key="init KIND", expected="'podium' or 'column'", found=f"'{kind}'")
+        raise ProjectError("unknown template", key="init KIND", expected="'podium', 'column' or 'cylinder'", found=f"'{kind}'")
     return (templates_dir() / f"project_{kind}.toml").read_text(encoding="utf-8")
 
 

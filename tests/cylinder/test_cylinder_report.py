@@ -1,0 +1,128 @@
+"""The calculation report of a cylinder check: PDF with the verdict and Fig 5.2, numbers equal to
+results.json, the governing histories, and the library API (rd.check / rd.write_report).
+
+A small suite (three FEMA P695 far-field pairs, registered for the test) keeps the runs short."""
+from __future__ import annotations
+
+import base64
+import html
+import json
+import re
+
+import pytest
+from typer.testing import CliRunner
+
+import rockdesign as rd
+from rockdesign.checks.cylinder_check import CylinderCheckResult, governing_ids
+from rockdesign.cli import app
+from rockdesign.motions import pairs
+from rockdesign.report.formatting import fmt
+
+runner = CliRunner()
+SUITE = "test-three-pairs"
+TOML = ('[project]\nname = "report cylinder"\nengineer = "T. Tester"\n[cylinder]\nheight = "3 m"\n'
+        'slenderness = 0.2\nmass = "2 t"\n'
+        f'[excitation]\nsuites = ["{SUITE}"]\nscale = {{ method = "resultant_pga", target = "0.3 g" }}\n')
+
+
+@pytest.fixture(scope="module")
+def small_suite():
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setitem(pairs.PAIR_SUITES, SUITE, ("p695-ff", range(1, 4)))
+        yield SUITE
+
+
+@pytest.fixture(scope="module")
+def report(small_suite, tmp_path_factory):
+    """``check`` through the CLI with the PDF: (results.json, report.html text, PDF text, folder)."""
+    from pypdf import PdfReader
+    d = tmp_path_factory.mktemp("cylrep")
+    (d / "cyl.toml").write_text(TOML)
+    out = d / "out"
+    r = runner.invoke(app, ["check", str(d / "cyl.toml"), "-o", str(out)])
+    data = json.loads((out / "results.json").read_text(encoding="utf-8"))
+    assert r.exit_code == (0 if data["verdict"] == "PASS" else 1), r.output
+    pdf_text = "\n".join(p.extract_text() for p in PdfReader(out / "report.pdf").pages)
+    return data, (out / "report.html").read_text(encoding="utf-8"), pdf_text, out
+
+
+def _cells(html_text: str, row_id: str) -> list[str]:
+    """The text of the cells of the per-pair table row of ``row_id``."""
+    table = html_text[html_text.index('id="pairs"'):]
+    table = table[:table.index("</table>")]
+    row = re.search(r'<tr[^>]*><td class="nobreak">' + re.escape(row_id) + r"</td>(.*?)</tr>", table, re.S)
+    assert row, row_id
+    return [html.unescape(re.sub(r"<[^>]+>", "", c)) for c in re.findall(r"<td[^>]*>(.*?)</td>", row.group(1), re.S)]
+
+
+@pytest.mark.slow
+def test_pdf_holds_verdict_reason_and_fig_5_2(report):
+    data, page, pdf_text, out = report
+    assert sorted(p.name for p in out.iterdir()) == ["cylinder_vs_planar.png", "report.html", "report.pdf",
+                                                     "results.csv", "results.json", "wobbling_period.png"]
+    flat = " ".join(pdf_text.split())
+    assert data["verdict"] in flat and "Verdict" in flat
+    s = data["summary"]
+    assert f"{s['n_overturned']} of {s['n_records']} record pairs overturn the cylinder in 3D" in flat
+    assert f"upper bound of P(overturn), {fmt(s['p_overturn_ci90'][1])}" in flat
+    assert "Is a planar analysis enough?" in flat and "Fig 5.2" in flat
+    # the figure is an <img> whose SVG draws both curves of Fig 5.2
+    fig = re.search(r'<figure class="narrow" id="fig-wobbling"><img[^>]*src="data:image/svg\+xml;base64,([^"]+)"',
+                    page)
+    assert fig
+    svg = base64.b64decode(fig.group(1)).decode("utf-8")
+    assert "Eq 5.29" in svg and "Housner (Eq 2.8)" in svg
+    for eq in ("Eq 5.20", "Eq 5.21", "Eq 5.27", "Eq 5.41", "Eq 5.24", "Eq 5.38", "Eq 5.29"):
+        assert eq in flat
+    # one θ(t)/orbit figure per governing pair
+    for rid in governing_ids(data):
+        assert re.search(r'<figure class="history-cyl"><img[^>]*>\s*<figcaption>' + re.escape(rid), page)
+
+
+@pytest.mark.slow
+def test_report_numbers_are_those_of_results_json(report):
+    data, page, pdf_text, _ = report
+    flat = " ".join(pdf_text.split())
+    units = {"m^2": "m²", "m/s^2": "m/s²", "-": ""}
+    for name, q in data["quantities"].items():
+        text = fmt(q["value"], q["unit"])
+        assert text in page, name
+        assert (text.split()[0] if units.get(q["unit"], q["unit"]) == "" else text) in flat, name
+    assert len(data["records"]) == 3
+    for r in data["records"]:
+        cells = _cells(page, r["id"])
+        assert cells[1:7] == [fmt(r["scale"]), fmt(r["resultant_pga"]), fmt(r["theta_max_over_alpha"]),
+                              fmt(r["overturned"]), fmt(r["quasi_impacts"]), fmt(r["uplift_time"])]
+        assert cells[7:] == [fmt(r["planar_x"]["theta_max_over_alpha"]), fmt(r["planar_y"]["theta_max_over_alpha"]),
+                             fmt(r["planar_overturned"]), fmt(r["polyakov_ratio_x"]), fmt(r["polyakov_ratio_y"])]
+    s = data["summary"]
+    # the comparison table: 3D against planar P(overturn) and median θ_max/α
+    for key in ("p_overturn", "median_theta_max_over_alpha"):
+        assert f"{fmt(s[key])}</td><td class=\"num\">{fmt(s['planar'][key])}</td>" in page
+    assert fmt(data["cylinder"]["height"], "m") == "3 m" and "3 m" in flat
+    assert fmt(data["cylinder"]["mass"], "kg") in flat
+
+
+def test_library_check_and_write_report_for_a_cylinder(small_suite, tmp_path):
+    """rd.check returns a CylinderCheckResult; the governing histories are the analyses behind the rows;
+    rd.write_report writes the folder (HTML without PDF here) with results.json = as_json()."""
+    project = rd.parse_project(TOML, name="cyl.toml")
+    result = rd.check(project)
+    assert isinstance(result, CylinderCheckResult) and result.verdict in ("PASS", "FAIL")
+    rows = {r["id"]: r for r in result.records}
+    ids = governing_ids(result.as_json())
+    assert list(result.histories) == ids and len(ids) == 2
+    top = max(r["theta_max_over_alpha"] for r in result.records if not r["overturned"]) \
+        if not any(r["overturned"] for r in result.records) else None
+    if top is not None:
+        assert rows[ids[0]]["theta_max_over_alpha"] == top
+    for rid, (response, pair) in result.histories.items():
+        assert response.theta_max / project.system.alpha == pytest.approx(rows[rid]["theta_max_over_alpha"],
+                                                                         rel=1e-12)
+        assert response.quasi_impacts == rows[rid]["quasi_impacts"]
+    out = rd.write_report(result, tmp_path / "lib", pdf=False)
+    assert sorted(p.name for p in out.iterdir()) == ["cylinder_vs_planar.png", "report.html", "results.csv",
+                                                     "results.json", "wobbling_period.png"]
+    assert json.loads((out / "results.json").read_text(encoding="utf-8")) == json.loads(json.dumps(result.as_json()))
+    page = (out / "report.html").read_text(encoding="utf-8")
+    assert f'<span class="word">{result.verdict}</span>' in page
