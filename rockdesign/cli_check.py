@@ -33,6 +33,12 @@ def register(app: typer.Typer, handle_errors) -> None:
         if proj.system.kind == "cylinder":                  # the 3D cylinder (thesis Ch. 5)
             from .cylinder.cli import check_summary as cylinder_summary
             from .report.cylinder_report import cylinder_output_folder
+            from .errors import RockdesignError
+            for flag, value in (("--dask", dask), ("--records-dir", records_dir)):
+                if value is not None:
+                    raise RockdesignError("not used by the check of a cylinder (built-in suites of record pairs, "
+                                          "analysed in this process)", key=flag, expected="no " + flag,
+                                          found=repr(str(value)))
             folder = cylinder_output_folder(target, key="-o/--out")
             with folder.locked():   # before the analyses, as below
                 result = run_check(proj, progress=not as_json or Console(stderr=True).is_terminal)

@@ -206,6 +206,11 @@ def check(project: Project, *, progress: bool = False, records_dir: str | Path |
                            expected="a Project (rd.load_project or rd.parse_project)", found=type(project).__name__)
     if project.system.kind == "cylinder":     # the 3D cylinder (thesis Ch. 5): a CylinderCheckResult
         from .checks.cylinder_check import cylinder_check
+        for key, value in (("records_dir", records_dir), ("executor", executor)):
+            if value is not None:
+                raise RockdesignError("not used by the check of a cylinder (built-in suites of record pairs, "
+                                      "analysed in this process)", key=key, expected="None",
+                                      found=type(value).__name__ if key == "executor" else repr(str(value)))
         with progress_bars(disable=not progress) as tick:
             return cylinder_check(project, progress=tick)
     with progress_bars(disable=not progress) as tick:

@@ -109,3 +109,15 @@ def test_init_cylinder_writes_a_template_that_parses_and_checks(tmp_path, monkey
     assert r.exit_code == (0 if data["verdict"] == "PASS" else 1)
     assert data["summary"]["n_records"] == 2
     assert all(rec["resultant_pga"] == pytest.approx(0.3 * 9.81, rel=1e-12) for rec in data["records"])
+
+
+def test_options_a_cylinder_check_does_not_use_are_refused(project, tmp_path, no_analysis):
+    import rockdesign as rd
+    from rockdesign.errors import RockdesignError
+    for option in (["--dask", "local:2"], ["--records-dir", str(tmp_path)]):
+        r = runner.invoke(app, ["check", str(project), "-o", str(tmp_path / "out"), *option])
+        assert r.exit_code == 2 and option[0] in r.output and "Traceback" not in r.output
+    assert not (tmp_path / "out").exists()
+    with pytest.raises(RockdesignError) as err:
+        rd.check(load_project(project), records_dir=tmp_path)
+    assert err.value.key == "records_dir"
