@@ -283,19 +283,26 @@ def write_cylinder_results(data: dict, out_dir) -> None:
     save(comparison_figure(data), out_dir / "cylinder_vs_planar.png")
 
 
-def comparison_figure(data: dict):
-    """3D θ_max/α against the planar Housner θ_max/α (worse component) per record pair."""
+def comparison_figure(data: dict, cap: float = 2.0):
+    """3D θ_max/α against the planar Housner θ_max/α (worse component) per record pair; planar values
+    beyond ``cap`` (the planar block overturned) are drawn at ``cap``."""
     from ..report.plots import STYLE, plt
+    tilt = data.get("cylinder", {}).get("overturn_tilt")
     with plt.rc_context(STYLE):
         fig, ax = plt.subplots(figsize=(5.0, 4.6))
-        x = np.array([r["planar_theta_max_over_alpha"] for r in data["records"]])
+        x = np.minimum([r["planar_theta_max_over_alpha"] for r in data["records"]], cap)
         y = np.array([r["theta_max_over_alpha"] for r in data["records"]])
         ot = np.array([r["overturned"] for r in data["records"]])
-        top = max(2.0, float(np.max(np.concatenate([x, y]))) * 1.05)
-        ax.plot([0, top], [0, top], color="0.6", lw=0.8)
+        top = max(cap, float(np.max(y)) * 1.05)
+        ax.plot([0, cap], [0, cap], color="0.6", lw=0.8)
+        ax.axvline(1.0, color="0.3", lw=0.7, ls=":", label="planar overturning (θ_max = α)")
+        if tilt:
+            ax.axhline(tilt, color="C3", lw=0.7, ls="--", label="θ_ot (3D overturning)")
         ax.scatter(x[~ot], y[~ot], s=14, color="C0", label="3D survives")
         ax.scatter(x[ot], y[ot], s=18, color="C3", marker="x", label="3D overturns (θ_ot)")
-        ax.set_xlabel("planar Housner θ_max/α (worse component)")
+        ax.set_xlim(0, cap * 1.03)
+        ax.set_ylim(0, top * 1.03)
+        ax.set_xlabel(f"planar Housner θ_max/α (worse component; drawn at {cap:g} beyond)")
         ax.set_ylabel("3D cylinder θ_max/α")
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=7, loc="upper left")
         return fig
