@@ -197,7 +197,10 @@ def check(project: Project, *, progress: bool = False, records_dir: str | Path |
     Returns:
         CheckResult with ``verdict`` ("PASS" | "FAIL"), ``records`` (one outcome per record: scale,
         PGA [m/s²], SD_max [m], θ_max/α, class...), ``checks``, ``statistics``, ``fragility`` (None
-        until computed) and ``as_json()`` = results.json.
+        until computed) and ``as_json()`` = results.json.  For a ``[cylinder]`` project a
+        :class:`~rockdesign.checks.cylinder_check.CylinderCheckResult` (``verdict``, ``records``,
+        ``checks``, ``summary``, ``histories``, ``as_json()``; docs/cylinder.md); ``records_dir`` and
+        ``executor`` do not apply to it.
     """
     from .checks.check import run_check
     from .progress import progress_bars
