@@ -282,8 +282,8 @@ def record_intensities(outcomes, im: str, period: float | None) -> list[float]:
 def check_fragility(outcomes, analysis, *, empirical: tuple[int, int], stripe_ratio: float) -> dict | None:
     """:func:`fragility_analysis` of a check's records (None without incremental analysis); the design
     intensity is the median IM of the design-level records (= the design PGA for PGA scaling)."""
-    if any(o.margin is None for o in outcomes):
-        return None
+    if not outcomes or any(o.margin is None for o in outcomes):
+        return None     # no incremental analysis, or no completed analysis to fit
     im = analysis.fragility_im
     period = analysis.fragility_period if im == "sa" else None
     ims = record_intensities(outcomes, im, period)

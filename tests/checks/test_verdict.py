@@ -194,12 +194,14 @@ def test_example_verdict_box_says_what_the_run_found(tmp_path):
     assert res.exit_code == 1, res.output
     data = json.loads((out / "results.json").read_text(encoding="utf-8"))
     assert data["verdict"] == "FAIL" and data["verdict_robust"] is True     # FAIL with c_r ± 2 % too
-    assert "overturning at 0.92× design (p695-ff/11a)" in data["verdict_reason"]
+    # the lowest overturning intensity (11a at 0.92×) is robust to the stepper; which other records join it is
+    # chaos (a different integrator moves single histories after many impacts), so it is not asserted
+    assert "overturning at 0.92× design (p695-ff/11a" in data["verdict_reason"]
     assert "overturning at 0.92× design" in " ".join(res.output.split())
     assert "also fails with c_r − 2 % and c_r + 2 %" in data["verdict_reason"]     # 19b, 11a flip
     assert data["excitation"]["design_pga"] == pytest.approx(0.2 * 9.81)
     assert "0.2 g" in data["excitation"]["intensity_analysed"]
     html = (out / "report.html").read_text(encoding="utf-8")
-    assert "overturning at 0.92× design (p695-ff/11a)" in html
+    assert "overturning at 0.92× design (p695-ff/11a" in html
     assert all("verdict_reason" in c for c in data["checks"])
     assert math.isfinite(max(c["utilisation"] for c in data["checks"]))
