@@ -41,8 +41,8 @@ def printed_precision(value) -> float:
     """Half a unit of the last printed decimal of a reference value (cases.json rounds to ~6 digits
     while some tolerances are 1e-9: the comparison cannot be tighter than the printed number)."""
     text = repr(float(value))
-    if "e" in text or "." not in text:
-        return 0.0
+    if "e" in text or "." not in text or text.endswith(".0"):
+        return 0.0                  # a whole number (0.0, 1.0, a count) is exact, not rounded to 0.1
     return 0.5 * 10.0 ** -len(text.split(".")[1])
 
 

@@ -15,7 +15,6 @@ from casedata import all_cases
 
 TESTS = Path(__file__).resolve().parents[1]
 
-CYLINDER = "cylinder engine: issue 12"
 WAIVED = {
     # --- equation forms, not numbers: the misprints corrected in docs/model.md and the code ---
     **{i: "misprint entry (equation form, no number)" for i in (
@@ -31,10 +30,6 @@ WAIVED = {
     # --- not compared yet (a test is still to be written) ---
     "sec3.3.3_equivalency_I": "not compared yet: Equivalency I time histories (B1a vs B2a, Eq 3.71)",
     "sec4.2.4_claim_ws_over_p_gt_6": "not compared yet: minimum overturning a_p vs ω_p/p, rigid vs 2DOF (Fig 4.8a)",
-    # --- Ch. 5, the 3D rocking cylinder ---
-    **{i: CYLINDER for i in ("eq5.38", "eq5.41", "eq5.42", "eq5.39_5.40", "eq5.27_p", "sec5.4.2_pure_wobbling",
-                             "sec5.4.1_angle_of_turn_numeric", "sec5.4.4_damped_quasi_impacts",
-                             "table5.4_landers")},
 }
 
 
