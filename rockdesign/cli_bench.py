@@ -125,18 +125,18 @@ def register(app: typer.Typer, handle_errors) -> None:
 
     @app.command()
     @handle_errors
-    def bench(quick: bool = typer.Option(False, "--quick", help="CI-scale run: 3 tolerances, fewer repeats, "
+    def bench(quick: bool = typer.Option(False, "--quick", metavar=" ", help="CI-scale run: 3 tolerances, fewer repeats, "
                                                                    "12-s record, reduced stability cases."),
               out: Path = typer.Option(Path("bench-results"), "-o", "--out",
                                        help="Output folder for bench.json, figures and stability.md."),
               only: Optional[str] = typer.Option(None, "--only", help="Comma-separated problem filters "
                                                  "(substrings of name/system, e.g. 'free-vibration/housner-block')."),
-              no_stability: bool = typer.Option(False, "--no-stability", help="Skip the stability study."),
-              as_json: bool = typer.Option(False, "--json", help="Print bench.json to stdout instead of tables."),
+              no_stability: bool = typer.Option(False, "--no-stability", metavar=" ", help="Skip the stability study."),
+              as_json: bool = typer.Option(False, "--json", metavar=" ", help="Print bench.json to stdout instead of tables."),
               docs: Optional[Path] = typer.Option(None, "--docs", help="Also publish into this docs folder: "
                                                   "figures/, stability.md and the latest-numbers blocks of "
                                                   "workprecision.md and ../benchmarks/README.md."),
-              verbose: bool = typer.Option(False, "--verbose", "-v", help="Print one line per measured point.")):
+              verbose: bool = typer.Option(False, "--verbose", "-v", metavar=" ", help="Print one line per measured point.")):
         """Work-precision charts (error vs wall time) and the solver stability study."""
         from .cli_inputs import output_folder
         output_folder(out, "--out")

@@ -143,7 +143,7 @@ def register(app: typer.Typer, handle_errors) -> None:
     def calibrate(project: Path = typer.Argument(..., help="Project file (TOML) of the specimen."),
                   free_vibration: Path = typer.Option(..., "--free-vibration", help="Measured tilt history CSV: "
                                                       "columns t [s] and theta [rad] (or theta_deg)."),
-                  as_json: bool = typer.Option(False, "--json", help="Print JSON (SI units)."),
+                  as_json: bool = typer.Option(False, "--json", metavar=" ", help="Print JSON (SI units)."),
                   plot: Optional[Path] = typer.Option(None, "--plot", help="Measured vs simulated θ/α (png/svg/pdf)."),
                   half_cycles: int = typer.Option(20, "--half-cycles", min=2, help="Use at most this many half-cycles."),
                   min_amplitude: float = typer.Option(0.05, "--min-amplitude", help="Ignore half-cycles with "
@@ -178,10 +178,10 @@ def register(app: typer.Typer, handle_errors) -> None:
                  measured: Optional[Path] = typer.Option(None, "--analyses-measured-cr",
                                                          help="Model results CSV with the measured c_r."),
                  seed: int = typer.Option(1, "--seed", help="Seed of the random D1/D2 split of the tests."),
-                 as_json: bool = typer.Option(False, "--json", help="Print JSON."),
+                 as_json: bool = typer.Option(False, "--json", metavar=" ", help="Print JSON."),
                  out: Optional[Path] = typer.Option(None, "-o", "--out", help="Folder for validation.json, "
                                                     "figure, report.html/pdf."),
-                 no_pdf: bool = typer.Option(False, "--no-pdf", help="With -o: HTML report only."),
+                 no_pdf: bool = typer.Option(False, "--no-pdf", metavar=" ", help="With -o: HTML report only."),
                  plot: Optional[Path] = typer.Option(None, "--plot", help="Write the CDF figure (png/svg/pdf).")):
         """Compare test and model statistics of θ_max/α (thesis Ch. 7: Eq 7.1, Tables 7.2, 7.3)."""
         from .experiments.validate import read_results_csv, validate as run
@@ -215,7 +215,7 @@ def register(app: typer.Typer, handle_errors) -> None:
                  restitution: Optional[float] = typer.Option(None, "--restitution", help="c_r to use instead "
                                                              "of the project's (e.g. measured)."),
                  records_dir: Optional[Path] = typer.Option(None, "--records-dir", help="Folder of PEER AT2 files."),
-                 as_json: bool = typer.Option(False, "--json", help="Print the results as JSON.")):
+                 as_json: bool = typer.Option(False, "--json", metavar=" ", help="Print the results as JSON.")):
         """Run a project over a ground-motion ensemble and write the analyses.csv that 'validate' reads."""
         from .experiments.ensemble import run_ensemble, write_analyses_csv
         from .project import load_project

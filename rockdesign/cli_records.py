@@ -284,7 +284,7 @@ def scale_model_command(
     out: Optional[Path] = typer.Option(None, "-o", "--out", help="Write the scaled record (AT2, units of g)."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Plot a, v, d (PNG, SVG, PDF)."),
     band: Optional[str] = typer.Option(None, "--band", help="Band-pass corners low:high [Hz, model time]."),
-    as_json: bool = typer.Option(False, "--json", help="JSON on stdout (SI)."),
+    as_json: bool = typer.Option(False, "--json", metavar=" ", help="JSON on stdout (SI)."),
     records_dir: Optional[Path] = typer.Option(None, "--records-dir", help=RECORDS_DIR_HELP),
     gravity: float = typer.Option(9.81, "--gravity", help=GRAVITY_HELP),
 ) -> None:

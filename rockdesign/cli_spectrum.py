@@ -65,20 +65,20 @@ def register(app: typer.Typer, handle_errors) -> None:
         tm_ratio: float = typer.Option(1.5, "--tm-ratio", help="Ricker centre t_m/T_p (1.5: thesis Table 3.4)."),
         chunk_rows: Optional[int] = typer.Option(None, "--chunk-rows", help="Grid rows per chunk (default: "
                                                  "about 48 chunks, or the interrupted run's)."),
-        resume: bool = typer.Option(True, "--resume/--no-resume", help="Reuse the chunks of an interrupted run "
+        resume: bool = typer.Option(True, "--resume/--no-resume", metavar=" ", help="Reuse the chunks of an interrupted run "
                                     "with identical inputs."),
-        keep_chunks: bool = typer.Option(False, "--keep-chunks", help="Keep the chunk files after success."),
-        energy_stop: bool = typer.Option(True, "--energy-stop/--no-energy-stop", help="Stop each analysis once "
+        keep_chunks: bool = typer.Option(False, "--keep-chunks", metavar=" ", help="Keep the chunk files after success."),
+        energy_stop: bool = typer.Option(True, "--energy-stop/--no-energy-stop", metavar=" ", help="Stop each analysis once "
                                          "the energy bound proves θ_max final (docs/early_termination.md)."),
-        stop_at_capacity: bool = typer.Option(False, "--stop-at-capacity", help="Static criterion: stop each "
+        stop_at_capacity: bool = typer.Option(False, "--stop-at-capacity", metavar=" ", help="Static criterion: stop each "
                                               "analysis when θ reaches θc (verdict final; θ_max shown as θc)."),
-        polyakov: bool = typer.Option(True, "--polyakov/--no-polyakov", help="Overlay Polyakov's overturning "
+        polyakov: bool = typer.Option(True, "--polyakov/--no-polyakov", metavar=" ", help="Overlay Polyakov's overturning "
                                       "line (SD_max of the pulse = u_B(θc))."),
         equivalent_at: Optional[List[float]] = typer.Option(None, "--equivalent-at", help="Ordinate(s) y for "
                                                             "the equivalent size of Eq 3.65 (repeatable)."),
-        figures: bool = typer.Option(True, "--figures/--no-figures", help="Write PNG and SVG figures."),
-        as_json: bool = typer.Option(False, "--json", help="Print summary.json to stdout."),
-        quiet: bool = typer.Option(False, "--quiet", "-q", help="No progress bar."),
+        figures: bool = typer.Option(True, "--figures/--no-figures", metavar=" ", help="Write PNG and SVG figures."),
+        as_json: bool = typer.Option(False, "--json", metavar=" ", help="Print summary.json to stdout."),
+        quiet: bool = typer.Option(False, "--quiet", "-q", metavar=" ", help="No progress bar."),
     ):
         """Rocking spectra: θ_max/α, overturning by impacts, limit states, Polyakov's line (docs/spectra.md)."""
         from .errors import RockdesignError

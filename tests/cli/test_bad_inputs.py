@@ -174,6 +174,16 @@ def test_version_flag_has_no_bool_metavar():
     assert invoke("--version").exit_code == 0
 
 
+@pytest.mark.parametrize("command", [["init"], ["quantities"], ["simulate"], ["check"], ["spectrum"], ["bench"],
+                                     ["calibrate"], ["validate"], ["ensemble"], ["records", "list"],
+                                     ["records", "scale-model"], ["records", "synth"]])
+def test_no_option_shows_a_bool_metavar(command):
+    r = invoke(*command, "--help")
+    assert r.exit_code == 0, r.output
+    lines = [ln for ln in r.output.splitlines() if "<bool>" in ln and "--help" not in ln]
+    assert not lines, lines
+
+
 # ------------------------------------------------------------------------------ project keys, every command
 BAD_PROJECTS = [
     ('[analysis]\nfree_vibration = "-10 s"\n', "analysis.free_vibration", "-10 s"),
