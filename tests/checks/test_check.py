@@ -16,7 +16,7 @@ from rockdesign.checks.statistics import empirical_cdf, overturning_probability
 from rockdesign.cli import app
 from rockdesign.dynamics.model import ModelChoice
 from rockdesign.motions.motion import pulse_motion
-from support import G, block_from_p
+from support import G, block_from_p, stocky_podium_toml
 
 runner = CliRunner()
 
@@ -66,30 +66,6 @@ def test_margins_find_the_zhang_makris_bands():
 
 
 # ----------------------------------------------------------------------------------------- CLI
-PROJECT = """
-[project]
-name = "stocky podium"
-
-[podium]
-columns = 20
-cap_beam_mass = "200 t"
-height = "3.0 m"
-width = "0.6 m"
-mass = "2.7 t"
-mass_distribution = 0.3333
-
-[superstructure]
-mass = "600 t"
-period = "rigid"
-
-[excitation]
-records = ["p695-ff/12a", "p695-ff/15b"]
-scale = {{ method = "pga", target = "{pga}" }}
-
-[analysis]
-overturn = "static"
-overturn_probability_limit = 0.8   # two records: the one-sided 95 % bound with 0 overturns is 0.776
-"""
 
 
 def _write(tmp_path, text, name="p.toml"):
@@ -99,7 +75,7 @@ def _write(tmp_path, text, name="p.toml"):
 
 
 def test_check_pass_exit_code_and_outputs(tmp_path):
-    path = _write(tmp_path, PROJECT.format(pga="0.1 g"))
+    path = _write(tmp_path, stocky_podium_toml(pga="0.1 g"))
     out = tmp_path / "out"
     result = runner.invoke(app, ["check", str(path), "-o", str(out), "--no-pdf", "--json"])
     assert result.exit_code == 0, result.output
@@ -121,7 +97,7 @@ def test_check_pass_exit_code_and_outputs(tmp_path):
 
 
 def test_check_fail_exit_code(tmp_path):
-    path = _write(tmp_path, PROJECT.format(pga="1.2 g"))
+    path = _write(tmp_path, stocky_podium_toml(pga="1.2 g"))
     result = runner.invoke(app, ["check", str(path), "-o", str(tmp_path / "o"), "--no-pdf", "--no-margins"])
     assert result.exit_code == 1, result.output
     assert "FAIL" in result.output
@@ -134,7 +110,7 @@ def test_check_fail_exit_code(tmp_path):
     ('[excitation]\nrecords = ["p695-ff/11a"]\nscale = { method = "pgv", target = "0.3 g" }\n', "excitation.scale"),
 ])
 def test_bad_excitation_entries(tmp_path, excitation, key):
-    text = PROJECT.format(pga="0.1 g")
+    text = stocky_podium_toml(pga="0.1 g")
     text = text[:text.index("[excitation]")] + excitation + "\n[analysis]\noverturn = \"static\"\n"
     result = runner.invoke(app, ["check", str(_write(tmp_path, text)), "-o", str(tmp_path / "o"), "--no-pdf"])
     assert result.exit_code == 2, result.output
@@ -143,7 +119,7 @@ def test_bad_excitation_entries(tmp_path, excitation, key):
 
 
 def test_check_without_excitation_needs_design_pga(tmp_path):
-    text = PROJECT.format(pga="0.1 g")
+    text = stocky_podium_toml(pga="0.1 g")
     text = text[:text.index("[excitation]")] + "[analysis]\noverturn = \"static\"\n"
     result = runner.invoke(app, ["check", str(_write(tmp_path, text)), "--no-pdf"])
     assert result.exit_code == 2
@@ -153,7 +129,7 @@ def test_check_without_excitation_needs_design_pga(tmp_path):
 @pytest.mark.slow
 def test_check_on_dask_equals_local(tmp_path, dask_cluster):
     # the same executor as rocking spectra (dask.distributed LocalCluster): identical results.json
-    path = _write(tmp_path, PROJECT.format(pga="0.35 g"))
+    path = _write(tmp_path, stocky_podium_toml(pga="0.35 g"))
     local = runner.invoke(app, ["check", str(path), "-o", str(tmp_path / "a"), "--no-pdf", "--json"])
     dask = runner.invoke(app, ["check", str(path), "-o", str(tmp_path / "b"), "--no-pdf", "--json", "--dask", dask_cluster.scheduler_address])
     assert local.exit_code in (0, 1) and dask.exit_code == local.exit_code, dask.output

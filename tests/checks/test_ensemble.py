@@ -22,7 +22,7 @@ from rockdesign.checks.runner import run_jobs
 from rockdesign.cli import app
 from rockdesign.dynamics.model import ModelChoice
 from rockdesign.motions.motion import pulse_motion
-from support import G, block_from_p
+from support import G, block_from_p, stocky_podium_toml
 
 ALPHA = 0.25
 KW = dict(rtol=1e-10, atol=1e-12, free_vibration=10.0, criterion="dynamic", rest_velocity=5e-4)
@@ -57,32 +57,9 @@ def test_ensemble_on_the_zhang_makris_bands():
     assert summary["records_not_robust"] == ["threshold"] and summary["rtol"] == pytest.approx(1e-11)
 
 
-PROJECT = """
-[project]
-name = "stocky podium"
-
-[podium]
-columns = 20
-cap_beam_mass = "200 t"
-height = "3.0 m"
-width = "0.6 m"
-mass = "2.7 t"
-mass_distribution = 0.3333
-
-[superstructure]
-mass = "600 t"
-period = "rigid"
-
-[excitation]
-records = ["p695-ff/12a", "p695-ff/15b", "p695-ff/11a"]
-scale = { method = "pga", target = "0.3 g" }
-
-[analysis]
-overturn = "static"
-overturn_probability_limit = 0.8
-ensemble_size = 3
-quality = { design_requirements = "B", test_data = "C", modeling = "B" }
-"""
+PROJECT = stocky_podium_toml(("p695-ff/12a", "p695-ff/15b", "p695-ff/11a"), "0.3 g",
+                             'overturn_probability_limit = 0.8\nensemble_size = 3\n'
+                             'quality = { design_requirements = "B", test_data = "C", modeling = "B" }')
 
 
 def test_results_json_sections_and_report(tmp_path):
