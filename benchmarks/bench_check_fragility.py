@@ -26,6 +26,8 @@ import time
 from datetime import datetime, timezone
 from pathlib import Path
 
+from bench_check import suite_ratio  # noqa: E402  (same folder: the engine vs scipy ratio)
+
 ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -49,37 +51,6 @@ def timed_check(project: str, out_dir: str, cache_dir: str) -> tuple[float, int]
     return dt, proc.returncode
 
 
-def suite_ratio(project: str, n_records: int = 3) -> dict:
-    """Our engine vs the scipy reference on the first records of the project's suite (same model)."""
-    from rockdesign.checks.check import _excitation
-    from rockdesign.design.quantities import design_quantities
-    from rockdesign.dynamics.simulate import simulate
-    from rockdesign.motions.config import resolve_motions
-    from rockdesign.project import load_project
-    from rockdesign.reference.scipy_engine import simulate_scipy
-    proj = load_project(ROOT / project)
-    q = design_quantities(proj.system)
-    suite = resolve_motions(_excitation(proj), gravity=proj.system.g,
-                            uplift_acceleration=q["uplift_acceleration"].value)
-    motions = [r.motion for r in suite.records[:n_records]]
-    ours = 0.0
-    for m in motions:   # warm-up then timed
-        simulate(proj.system, m, structure="podium-2dof" if proj.system.has_elastic_superstructure else "auto",
-                 record_history=False)
-    rows = []
-    for m in motions:
-        t0 = time.perf_counter()
-        r = simulate(proj.system, m, structure="podium-2dof" if proj.system.has_elastic_superstructure else "auto",
-                     record_history=False, rtol=1e-10)
-        t_ours = time.perf_counter() - t0
-        t0 = time.perf_counter()
-        ref = simulate_scipy(proj.system, m, method="DOP853", rtol=1e-10, atol=1e-12,
-                             t_end=m.duration + proj.analysis.free_vibration)
-        t_ref = time.perf_counter() - t0
-        ours += t_ours
-        rows.append({"record": m.name, "ours_s": t_ours, "scipy_s": t_ref, "ratio": t_ref / t_ours,
-                     "theta_max_ours": r.theta_max, "theta_max_scipy": ref.theta_max})
-    return {"records": rows, "median_ratio": sorted(x["ratio"] for x in rows)[len(rows) // 2]}
 
 
 def without_ensembles(text: str) -> str:
