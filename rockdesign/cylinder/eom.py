@@ -68,6 +68,14 @@ def ground_xy(t, active, kind, params, sx, sy, dirx, diry):
 @njit(cache=True, inline="always")
 def rhs(t, y, out, par, active, kind, params, sx, sy, dirx, diry):
     """Right-hand side dy/dt of Eqs 5.22–5.23 (undamped) or 5.23, 5.36–5.37 (damped) into ``out``."""
+    ax, ay = ground_xy(t, active, kind, params, sx, sy, dirx, diry)
+    rhs_ground(y, out, par, ax, ay)
+
+
+@njit(cache=True, inline="always")
+def rhs_ground(y, out, par, ax, ay):
+    """:func:`rhs` for a given ground acceleration (ü_gx, ü_gy) [m/s²] (the integrator interpolates it
+    linearly within a step, which never crosses a record sample)."""
     R = par[P_R]
     g = par[P_G]
     s2 = par[P_S2]
@@ -78,7 +86,6 @@ def rhs(t, y, out, par, active, kind, params, sx, sy, dirx, diry):
     thd = y[1]
     ph = y[2]
     phd = y[3]
-    ax, ay = ground_xy(t, active, kind, params, sx, sy, dirx, diry)
     sa = par[P_SA]
     ca = par[P_CA]
     sh = math.sin(0.5 * th)                              # four transcendental calls, the rest by identities
