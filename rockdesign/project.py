@@ -202,16 +202,7 @@ def parse_project(raw: dict, *, file: str = "<project>", text: str = "") -> Proj
                                found=f"[{section}]", hint=f"did you mean [{close[0]}]?" if close else None)
     analysis = _parse_analysis(raw.get("analysis", {}), file)
     g = analysis.g
-    info_t = _Table(raw.get("project", {}), "project", PROJECT_KEYS, file, g)
-    if "project" not in raw or "name" not in raw["project"]:
-        raise ProjectError("missing required value", file=file, key="project.name",
-                           expected="a project name, e.g. name = \"5-storey block\"", found="none")
-    info = {}
-    for k in PROJECT_KEYS:
-        if k in info_t.data:
-            if not isinstance(info_t.data[k], str):
-                raise info_t.error(k, "wrong type", expected="a string", found=info_t.data[k])
-            info[k] = info_t.data[k]
+    info = project_info(raw, file, g)
     if "column" in raw and "podium" in raw:
         raise ProjectError("conflicting sections", file=file, key="podium",
                            expected="exactly one of [column] or [podium]", found="both")
@@ -446,6 +437,25 @@ def _parse_fragility(t: _Table) -> dict:
     return {"fragility_im": im, "fragility_period": period, "quality": quality,
             "ensemble_size": t.number("ensemble_size", default=8, low=0, low_open=False, high=1000, integer=True),
             "seed": t.number("seed", default=20090601, low=0, low_open=False, integer=True)}
+
+
+def project_info(raw: dict, file: str, g: float, example: str = "5-storey block") -> dict:
+    """The ``[project]`` table (name required, engineer/notes optional; all strings) of any project file."""
+    section = raw.get("project", {})
+    if not isinstance(section, dict):
+        raise ProjectError("wrong type", file=file, key="project", expected="a [project] table with name = \"...\"",
+                           found=section)
+    info_t = _Table(section, "project", PROJECT_KEYS, file, g)
+    if "name" not in section:
+        raise ProjectError("missing required value", file=file, key="project.name",
+                           expected=f"a project name, e.g. name = \"{example}\"", found="none")
+    info = {}
+    for k in PROJECT_KEYS:
+        if k in info_t.data:
+            if not isinstance(info_t.data[k], str):
+                raise info_t.error(k, "wrong type", expected="a string", found=info_t.data[k])
+            info[k] = info_t.data[k]
+    return info
 
 
 def _check_model_choice(analysis: AnalysisSettings, system: RockingSystem, file: str) -> None:

@@ -22,6 +22,7 @@ is 1 − 0.05^(1/n), so a suite of fewer than :func:`minimum_records` records ca
 from __future__ import annotations
 
 import math
+import statistics
 from dataclasses import dataclass, field
 
 from .statistics import overturning_probability
@@ -325,8 +326,7 @@ class PolyakovRule2(Criterion):
         ratios = sorted(o.polyakov_ratio for o in valid)
         if not ratios:
             return self.item(math.inf, False, "no completed analysis", "no completed analysis")
-        median = ratios[len(ratios) // 2] if len(ratios) % 2 else 0.5 * (ratios[len(ratios) // 2 - 1]
-                                                                            + ratios[len(ratios) // 2])
+        median = statistics.median(ratios)
         n_b = sum(o.klass == "b" for o in valid)
         detail = (f"{sum(x >= 1 for x in ratios)} of {len(ratios)} records with SD_max ≥ capacity; "
                   f"{n_b} false negative(s) (class b)")

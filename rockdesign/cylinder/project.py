@@ -78,18 +78,8 @@ def parse_cylinder_project(raw: dict, *, file: str = "<project>", text: str = ""
                                    found=f"'{key}'", hint="the cylinder's inertia and contact follow from its "
                                    "height and diameter (Eqs 5.20-5.21)" if key == "mass_distribution" else None)
     t = _Table(data, "cylinder", CYLINDER_KEYS, file, analysis.g)
-    info_t = raw.get("project", {})
-    if not isinstance(info_t, dict) or "name" not in info_t:
-        raise ProjectError("missing required value", file=file, key="project.name",
-                           expected="a project name, e.g. name = \"museum column\"", found="none")
-    from ..project import PROJECT_KEYS
-    info_table = _Table(info_t, "project", PROJECT_KEYS, file, analysis.g)
-    info = {}
-    for k in PROJECT_KEYS:
-        if k in info_table.data:
-            if not isinstance(info_table.data[k], str):
-                raise info_table.error(k, "wrong type", expected="a string", found=info_table.data[k])
-            info[k] = info_table.data[k]
+    from ..project import project_info
+    info = project_info(raw, file, analysis.g, example="museum column")
     system = _parse_cylinder(t, info["name"], analysis.g, _overturn_tilt(analysis_raw, file))
     excitation = raw.get("excitation")
     if excitation is not None and not isinstance(excitation, dict):

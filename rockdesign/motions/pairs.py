@@ -197,21 +197,10 @@ def _angle(text: str, value: str) -> float:
 
 
 def _split(text: str, body: str, allowed: tuple[str, ...]) -> tuple[list[str], dict[str, str]]:
-    positional, named = [], {}
-    for part in (p.strip() for p in body.split(",")):
-        if not part:
-            continue
-        if "=" not in part:
-            positional.append(part)
-            continue
-        k, v = (x.strip() for x in part.split("=", 1))
-        if k not in allowed:
-            raise MotionError("unknown motion parameter", key="--motion", expected="one of " + ", ".join(allowed),
-                              found=f"'{k}' in '{text}'")
-        if k in named:
-            raise MotionError("parameter given twice", key="--motion", expected="each parameter once",
-                              found=f"'{k}' in '{text}'")
-        named[k] = v
+    """(positional parts, named parameters) of a pair's motion string (the planar parser's rules)."""
+    from .parse import _fields
+    positional: list[str] = []
+    named = _fields(text, body, allowed, positional)
     return positional, named
 
 

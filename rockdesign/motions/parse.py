@@ -43,11 +43,20 @@ class SystemScales:
     g: float
 
 
-def _fields(text: str, body: str, allowed: tuple[str, ...]) -> dict[str, str]:
+def _fields(text: str, body: str, allowed: tuple[str, ...], positional: list | None = None) -> dict[str, str]:
+    """``name=value`` parameters of a motion string (each allowed name once).  With a ``positional`` list,
+    empty parts are skipped and parts without ``=`` are appended to it (record pairs: ``files:X,Y``)."""
     out = {}
     if not body.strip():
         return out
     for part in body.split(","):
+        if positional is not None:
+            part = part.strip()
+            if not part:
+                continue
+            if "=" not in part:
+                positional.append(part)
+                continue
         if "=" not in part:
             raise MotionError("malformed motion parameter", key="--motion", expected="name=value pairs "
                               "separated by commas, e.g. ricker-anti:ap=0.38g,Tp=0.95s", found=f"'{part}' in '{text}'")

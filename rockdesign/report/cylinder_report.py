@@ -115,19 +115,8 @@ def render_cylinder_html(result, *, figures: dict | None = None, date: str | Non
 
 def write_cylinder_report(result, out_dir, *, pdf: bool = True, html: bool = True) -> dict[str, Path]:
     """Write ``report.html`` and/or ``report.pdf`` of a cylinder check into ``out_dir``."""
-    from .render import html_to_pdf
-    out_dir = Path(out_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
-    written: dict[str, Path] = {}
-    if not (pdf or html):
-        return written
-    text = render_cylinder_html(result)
-    if html:
-        written["html"] = out_dir / "report.html"
-        written["html"].write_text(text, encoding="utf-8")
-    if pdf:
-        written["pdf"] = html_to_pdf(text, out_dir / "report.pdf")
-    return written
+    from .render import write_report
+    return write_report(result, out_dir, pdf=pdf, html=html, render=render_cylinder_html)
 
 
 def cylinder_output_folder(target, *, key: str = "out_dir"):

@@ -115,8 +115,10 @@ def html_to_pdf(html_text: str, path: Path, base_url: str | None = None) -> Path
     return path
 
 
-def write_report(result, out_dir, *, pdf: bool = True, html: bool = True) -> dict[str, Path]:
-    """Write ``report.html`` and/or ``report.pdf`` of a CheckResult into ``out_dir``.
+def write_report(result, out_dir, *, pdf: bool = True, html: bool = True, render=None) -> dict[str, Path]:
+    """Write ``report.html`` and/or ``report.pdf`` of a check result into ``out_dir``.
+
+    ``render(result) -> str`` makes the HTML (default :func:`render_html`, the planar CheckResult's report).
 
     Returns:
         {"html": path, "pdf": path} for the files written.
@@ -126,7 +128,7 @@ def write_report(result, out_dir, *, pdf: bool = True, html: bool = True) -> dic
     written: dict[str, Path] = {}
     if not (pdf or html):
         return written
-    text = render_html(result)
+    text = (render or render_html)(result)
     if html:
         path = out_dir / "report.html"
         path.write_text(text, encoding="utf-8")
