@@ -1,0 +1,27 @@
+"""Rewrite the pinned outputs (``python tests/golden/regenerate.py``): only for a deliberate change of
+the numbers a user sees, explained in the commit message."""
+from __future__ import annotations
+
+import json
+import sys
+import tempfile
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from golden_cases  # noqa: E402 (the folder is not a package) import CHECKS, DATA, SIMULATIONS, run_check, run_simulation
+
+
+def main() -> None:
+    with tempfile.TemporaryDirectory() as tmp:
+        for name in CHECKS:
+            doc = run_check(name, Path(tmp) / name)
+            (DATA / "check" / f"{name}.json").write_text(json.dumps(doc, indent=1, sort_keys=True) + "\n")
+            print("check", name)
+    for key in SIMULATIONS:
+        (DATA / "simulate" / f"{key}.json").write_text(json.dumps(run_simulation(key), indent=1, sort_keys=True)
+                                                       + "\n")
+        print("simulate", key)
+
+
+if __name__ == "__main__":
+    main()
