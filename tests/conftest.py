@@ -2,12 +2,19 @@
 from __future__ import annotations
 
 import math
+import os
 
 import pytest
+from hypothesis import settings
 
 from rockdesign.paths import shared_dir
 from support import G, block_from_p, reference_podium, table34_column  # noqa: F401  (re-exported)
 
+# Property tests draw the same examples on every run (deterministic CI; a failure reproduces);
+# HYPOTHESIS_PROFILE=explore draws new random examples each run (to search for failures by hand).
+settings.register_profile("deterministic", derandomize=True, database=None)
+settings.register_profile("explore", derandomize=False)
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "deterministic"))
 
 
 def pytest_configure(config):

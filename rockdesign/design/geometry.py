@@ -51,16 +51,23 @@ def critical_curvature_linear(alpha: float, alpha_ext: float) -> float:
 
 
 def rotation_capacity_curved(tan_alpha: float, tan_alpha_ext: float, rho: float) -> float:
-    """θc [rad] of a column with curved extensions, corrected Eq 3.56 (atan in both branches, SPEC §8).
+    """θc [rad] of a column with curved extensions: the first zero of F_R (corrected Eq 3.56, atan in
+    both branches), in the phase where it lies.
 
-    θc = atan(tan α/(1 − 2ρ)) if ρ ≤ ρc (instability while rolling),
-    θc = atan(tan α'/(1 − 2ρ(1 − cos β))) if ρ > ρc (instability while rocking).
-    The atan is taken on (0, π) so that 1 − 2ρ < 0 (ρ > ½) gives θc > π/2 (never unstable while rolling).
+    θc = atan(tan α/(1 − 2ρ)) if that root lies in the rolling phase (θ ≤ β): instability while rolling;
+    θc = atan(tan α'/(1 − 2ρ(1 − cos β))) otherwise: instability while rocking.
+    Eq 3.56 chooses the branch by ρ ≤ ρc (Eq 3.55), which is exact only for the linearized β of Eq 3.68:
+    with the exact β of Eq 3.44, for ρ slightly above ρc the rocking formula falls below β (outside its
+    phase) while F_R already vanishes in the rolling phase — e.g. tan α = 0.1875, tan α' = 0.4375,
+    ρ = 0.289 (ρc = 0.286): the rocking formula gives 0.434 rad < β = 0.447 rad, the true capacity is the
+    rolling root 0.418 rad (docs/model.md §2). The atan is taken on (0, π): 1 − 2ρ < 0 gives θc > π/2.
     """
-    rho_c = critical_curvature(tan_alpha, tan_alpha_ext)
-    if rho <= rho_c:
-        return math.atan2(tan_alpha, 1.0 - 2.0 * rho)
+    theta_rolling = math.atan2(tan_alpha, 1.0 - 2.0 * rho)
+    if rho <= critical_curvature(tan_alpha, tan_alpha_ext):
+        return theta_rolling          # ρ ≤ ρc: the rolling root is below α' < β (Eq 3.44)
     beta = wedge_angle(tan_alpha, tan_alpha_ext, rho)
+    if theta_rolling <= beta:
+        return theta_rolling
     return math.atan2(tan_alpha_ext, 1.0 - 2.0 * rho * (1.0 - math.cos(beta)))
 
 

@@ -3,6 +3,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
@@ -125,3 +127,16 @@ def test_quantities_complete_and_finite(ta, lam_, n, gamma, eta, period):
 def test_wedge_angle_domain():
     with pytest.raises(ValueError):
         wedge_angle(0.1, 0.3, 0.05)
+
+
+def test_capacity_just_above_critical_curvature_is_the_rolling_root():
+    # found by the property test above with random examples: ρ slightly above ρc, where Eq 3.56's
+    # ρ > ρc branch returns an angle below β (outside the rocking phase); F_R vanishes at the rolling root
+    ta, tae, rho = 0.1875, 0.4375, 0.2890625
+    assert rho > critical_curvature(ta, tae)
+    geo = rocking_geometry(Column(1.0, ta, 1.0, 0.5, "curved", tae, 2.0 * rho))
+    assert geo.theta_c < geo.beta
+    assert geo.theta_c == pytest.approx(math.atan(ta / (1.0 - 2.0 * rho)), rel=1e-14)
+    assert abs(restoring_force_ratio(geo.theta_c, geo)) < 1e-12
+    # and F_R > 0 everywhere before it (the first zero)
+    assert all(restoring_force_ratio(t, geo) > 0 for t in np.linspace(0.0, geo.theta_c, 200)[:-1])
