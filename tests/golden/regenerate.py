@@ -8,7 +8,7 @@ import tempfile
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from golden_cases  # noqa: E402 (the folder is not a package) import CHECKS, DATA, SIMULATIONS, run_check, run_simulation
+from golden_cases import CHECKS, DATA, SIMULATIONS, run_check, run_simulation  # noqa: E402 (not a package)
 
 
 def main() -> None:
