@@ -41,17 +41,17 @@ import numpy as np
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from rockdesign.bench import metrics  # noqa: E402
+from rockdesign.dynamics import metrics  # noqa: E402
 from rockdesign.bench.problems import G, RECORD_ID, RECORD_SCALE, SYSTEMS, Problem, bench_record  # noqa: E402
 from rockdesign.bench.reference import build_reference  # noqa: E402
-from rockdesign.bench.runner import json_ready  # noqa: E402
+from rockdesign.jsonable import json_ready  # noqa: E402
 from rockdesign.bench.timing import TimingPolicy, machine_info, time_call  # noqa: E402
 from rockdesign.dynamics.batch import batch_options, run_batch  # noqa: E402
-from rockdesign.dynamics.engine import DOP853_BELOW_RTOL, S_DYNAMIC, S_IMPACTS, S_THETA_MAX  # noqa: E402
+from rockdesign.dynamics.layout import DOP853_BELOW_RTOL, S_DYNAMIC, S_IMPACTS, S_THETA_MAX  # noqa: E402
 from rockdesign.dynamics.model import ModelChoice, system_parameters  # noqa: E402
 from rockdesign.dynamics.simulate import simulate  # noqa: E402
 from rockdesign.motions.library import load_record  # noqa: E402
-from rockdesign.reference.scipy_engine import simulate_scipy  # noqa: E402
+from rockdesign.bench.baseline.scipy_engine import simulate_scipy  # noqa: E402
 
 T_END = 30.0
 OUR_RTOL, OUR_ATOL = 1e-10, 1e-12

@@ -86,7 +86,7 @@ def baselines(n_sample: int, n_python: int, n_scipy: int, seed: int = 0) -> dict
     from rockdesign.dynamics.batch import batch_options
     from rockdesign.dynamics.simulate import simulate
     from rockdesign.motions.motion import pulse_motion
-    from rockdesign.reference.scipy_engine import simulate_scipy
+    from rockdesign.bench.baseline.scipy_engine import simulate_scipy
     from rockdesign.spectra.kernel import OUT_STEPS, pulse_points, warm_up
     from rockdesign.spectra.spectrum import SpectrumRequest, prepare
     from rockdesign.systems import Column, RockingSystem

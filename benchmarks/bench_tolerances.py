@@ -30,7 +30,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from rockdesign.bench.runner import json_ready  # noqa: E402
+from rockdesign.jsonable import json_ready  # noqa: E402
 from rockdesign.bench.timing import machine_info  # noqa: E402
 from rockdesign.checks.check import run_check  # noqa: E402
 from rockdesign.project import load_project  # noqa: E402

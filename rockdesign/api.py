@@ -41,7 +41,7 @@ def write_pushover(system, path) -> None:
                    header="theta_rad,F_R_over_mg,phase", comments="")
     elif suffix in (".png", ".svg", ".pdf"):
         from .report.figures import pushover_figure
-        from .report.plots import save
+        from .plots import save
         save(pushover_figure(system), path)
     else:
         raise RockdesignError("unknown pushover file type", key="--pushover", expected=".csv, .png, .svg or .pdf",

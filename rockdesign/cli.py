@@ -104,7 +104,7 @@ def quantities(project: Path = typer.Argument(..., help="Project file (TOML)"),
     cli_inputs.output_file(pushover, "--pushover", (".csv",) + cli_inputs.FIGURE_SUFFIXES)
     proj = load_project(project)
     if proj.system.kind == "cylinder":                      # the 3D cylinder (thesis Ch. 5)
-        from .cylinder.cli import quantities_command
+        from .cli_cylinder import quantities_command
         return quantities_command(proj, console, as_json, units, pushover)
     if pushover is not None:
         write_pushover(proj.system, pushover)
@@ -137,7 +137,7 @@ def simulate(project: Path = typer.Argument(..., help="Project file (TOML)"),
     cli_inputs.output_file(csv, "--csv")
     proj = load_project(project)
     if proj.system.kind == "cylinder":                      # the 3D cylinder (thesis Ch. 5)
-        from .cylinder.cli import simulate_command
+        from .cli_cylinder import simulate_command
         return simulate_command(proj, motion, model, as_json, plot, csv, t_end, rtol, records_dir, console)
     from .dynamics.compilation import prepare
     prepare("simulate", Console(stderr=True).print)
@@ -147,7 +147,7 @@ def simulate(project: Path = typer.Argument(..., help="Project file (TOML)"),
         from .api import write_history_csv
         write_history_csv(result.response, csv)
     if plot:
-        from .report.plots import save, time_history_figure
+        from .plots import save, time_history_figure
         save(time_history_figure(result.response, proj.system.g, f"{proj.name} — {motion}"), plot)
     if as_json:
         sys.stdout.write(json.dumps(result.as_json(), indent=2) + "\n")

@@ -45,7 +45,8 @@ def run_bench(out_dir: Path, quick: bool = False, only: Optional[str] = None, st
     """
     from .bench.figures import write_study_figures
     from .bench.problems import problem_set
-    from .bench.runner import highlights, json_ready, run_study
+    from .bench.runner import highlights, run_study
+    from .jsonable import json_ready
     from .bench.speed import speed_summary
     t0 = time.perf_counter()
     problems = problem_set(quick=quick)
@@ -150,7 +151,7 @@ def register(app: typer.Typer, handle_errors) -> None:
             written = publish_docs(study, out, docs, readmes=[docs.parent / "benchmarks" / "README.md"])
             err.print(f"published {len(written)} files into {docs}", markup=False)
         if as_json:
-            from .bench.runner import json_ready
+            from .jsonable import json_ready
             sys.stdout.write(json.dumps(json_ready(study), indent=1, ensure_ascii=False) + "\n")
             return
         console = _console()

@@ -31,7 +31,7 @@ def register(app: typer.Typer, handle_errors) -> None:
         proj = load_project(project)
         target = out if out is not None else Path(f"{Path(project).stem}_check")
         if proj.system.kind == "cylinder":                  # the 3D cylinder (thesis Ch. 5)
-            from .cylinder.cli import check_summary as cylinder_summary
+            from .cli_cylinder import check_summary as cylinder_summary
             from .report.cylinder_report import cylinder_output_folder
             from .errors import RockdesignError
             for flag, value in (("--dask", dask), ("--records-dir", records_dir)):
@@ -54,7 +54,7 @@ def register(app: typer.Typer, handle_errors) -> None:
             prepare("check", Console(stderr=True).print)
             executor = None
             if dask:
-                from .spectra.executor import make_executor
+                from .execution.executor import make_executor
                 executor = make_executor(dask)
                 executor.start()
             try:

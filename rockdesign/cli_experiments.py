@@ -28,7 +28,7 @@ def _fmt(value, digits: int = 4) -> str:
 
 
 def _save(fig, path: Path) -> None:
-    from .report.plots import save
+    from .plots import save
     Path(path).parent.mkdir(parents=True, exist_ok=True)
     save(fig, path)
 

@@ -17,7 +17,8 @@ from rich.console import Console
 from rich.table import Table
 
 from .errors import MotionError
-from .motions.library import list_records, load_record
+from .motions.library import load_record
+from .motions.suites import list_records
 from .motions.measures import motion_measures
 from .motions.spectra import DEFAULT_BAND, DEFAULT_DAMPING, DEFAULT_N_PERIODS, motion_spectrum, period_grid, sd_max
 from .units import QuantityParseError, parse_quantity

@@ -84,7 +84,7 @@ def register(app: typer.Typer, handle_errors) -> None:
         from .errors import RockdesignError
         from .project import load_project
         from .spectra.axes import parse_axis
-        from .spectra.executor import make_executor
+        from .execution.executor import make_executor
         from .spectra.kernel import warm_up
         from .spectra.output import analyse, write_outputs
         from .spectra.spectrum import SpectrumError, compute_spectrum, request_from_project
@@ -93,7 +93,7 @@ def register(app: typer.Typer, handle_errors) -> None:
         console = Console(stderr=True, highlight=False)
         proj = load_project(project)
         if proj.system.kind == "cylinder":                  # the 3D cylinder (thesis Ch. 5)
-            from .cylinder.spectrum_cli import cylinder_spectrum_command
+            from .cli_cylinder_spectrum import cylinder_spectrum_command
             return cylinder_spectrum_command(proj, project, record, x, y, relative, out, as_json, figures, console)
         if pulse is None:
             raise RockdesignError("missing pulse", key="--pulse", expected="--pulse ricker-anti (or another pulse)",
@@ -168,7 +168,7 @@ def register(app: typer.Typer, handle_errors) -> None:
                                 reference_project=_project_json(ref_proj) if ref_proj else None, figures=figures,
                                 title=proj.name, reference_title=ref_proj.name if ref_proj else None, timings=timings)
         if not keep_chunks:
-            from .spectra.executor import remove_tree
+            from .execution.executor import remove_tree
             remove_tree(chunks_root)
         if as_json:
             sys.stdout.write(json.dumps(summary, indent=1, ensure_ascii=False) + "\n")

@@ -8,6 +8,7 @@ cached kernels so that they are compiled afresh from the current sources.
 """
 from __future__ import annotations
 
+import functools
 import hashlib
 import os
 from pathlib import Path
@@ -21,8 +22,9 @@ def kernel_sources() -> list[Path]:
     return sorted(p for p in PACKAGE.rglob("*.py") if "@njit" in p.read_text(encoding="utf-8", errors="ignore"))
 
 
+@functools.lru_cache(maxsize=1)
 def sources_digest() -> str:
-    """SHA-256 over the kernel sources (paths and contents)."""
+    """SHA-256 over the kernel sources (paths and contents); read once per process."""
     h = hashlib.sha256()
     for p in kernel_sources():
         h.update(str(p.relative_to(PACKAGE)).encode())

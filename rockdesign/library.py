@@ -192,7 +192,7 @@ def check(project: Project, *, progress: bool = False, records_dir: str | Path |
         progress: draw progress bars (rich; works in a terminal and in a notebook).
         records_dir: folder of PEER AT2 files for suites that name them.
         margins: run the incremental overturning-margin analysis.
-        executor: a started executor of :mod:`rockdesign.spectra.executor` (e.g. a dask cluster).
+        executor: a started executor of :mod:`rockdesign.execution.executor` (e.g. a dask cluster).
 
     Returns:
         CheckResult with ``verdict`` ("PASS" | "FAIL"), ``records`` (one outcome per record: scale,

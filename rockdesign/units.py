@@ -123,11 +123,3 @@ def _name_of(q: pint.Quantity) -> str:
     return f"quantity of dimension {q.dimensionality}"
 
 
-def to_display(value_si: float, unit_si: str, display_unit: str | None) -> tuple[float, str]:
-    """Convert an SI value to a display unit (pint string); returns (value, unit label)."""
-    if not display_unit or display_unit == unit_si:
-        return value_si, unit_si
-    ureg = registry()
-    q = ureg.Quantity(value_si, ureg.parse_units(unit_si) if unit_si not in ("", "-") else "")
-    out = q.to(ureg.parse_units(display_unit))
-    return float(out.magnitude), display_unit

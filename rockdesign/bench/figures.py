@@ -14,7 +14,7 @@ from pathlib import Path
 from .. import mplfig as plt  # noqa: E402  (pyplot-free Figures: importing never switches the backend)
 import numpy as np  # noqa: E402
 
-from ..report.plots import STYLE  # noqa: E402
+from ..plots import STYLE  # noqa: E402
 
 FLOOR = 1e-16
 COLORS = {"rockdesign": "C3", "rockdesign linear-exact": "k", "rockdesign DP5(4)": "C5", "rockdesign DOP853": "C6",

@@ -9,7 +9,7 @@
   It has no tolerance; on the exact-equation problems its error is the linearization (model) error.
 * ``scipy RK45 | DOP853 | LSODA | Radau`` — ``scipy.integrate.solve_ivp`` with the same equations and
   events, restarted at every impact and record sample
-  (:func:`rockdesign.reference.scipy_engine.simulate_scipy`): what a Python engineer would write.
+  (:func:`rockdesign.bench.baseline.scipy_engine.simulate_scipy`): what a Python engineer would write.
 
 Every method is run as ``method.run(problem, rtol, atol, detailed)`` and returns a :class:`RunOutput`.
 ``detailed`` asks scipy for every accepted step (for the error metrics; timed runs use the default
@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..dynamics.simulate import simulate
-from ..reference.scipy_engine import simulate_scipy
+from .baseline.scipy_engine import simulate_scipy
 from .problems import Problem
 
 ATOL_OVER_RTOL = 1e-2

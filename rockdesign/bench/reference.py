@@ -10,7 +10,7 @@ Two kinds (``ReferenceSolution.kind``):
 * ``converged`` (exact equations; the 2DOF podium): our engine at rtol = 1e-13, atol = 1e-15.  Its
   error is bounded by comparing it with two other solutions: the same engine at rtol = 1e-12
   (self-convergence) and the independent scipy implementation (DOP853, rtol = 1e-13, atol = 1e-15,
-  restarted at every event and sample; :mod:`rockdesign.reference`).  The stated bound per metric is
+  restarted at every event and sample; :mod:`rockdesign.bench.baseline`).  The stated bound per metric is
   the larger of the two differences.
 
 Histories are evaluated at arbitrary times by re-running the kernel with those output times (its
@@ -18,20 +18,14 @@ dense output or closed form there), so no method's output is ever interpolated.
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..design.geometry import rocking_geometry
-from ..dynamics.engine import N_OPTIONS, O_ATOL, O_H_MAX, O_MAX_EVENTS, O_MAX_STEPS, O_RTOL, O_SCAN, O_T_END
-from ..dynamics.engine import integrate
-from ..dynamics.kinematics import top_displacement
-from ..dynamics.linear_exact import integrate_linear_exact, sampled_pulse
-from ..dynamics.model import ModelChoice, resolve_structure, system_parameters
+from ..dynamics.accuracy import history_at
 from ..dynamics.simulate import simulate
-from ..reference.scipy_engine import simulate_scipy
-from . import metrics
+from .baseline.scipy_engine import simulate_scipy
+from ..dynamics import metrics
 from .problems import Problem
 
 REFERENCE_RTOL = 1e-13
@@ -41,56 +35,10 @@ SELF_CHECK_RTOL = 1e-12
 
 def engine_history_at(problem: Problem, times, *, model: str = "exact", rtol: float = REFERENCE_RTOL,
                       atol: float = REFERENCE_ATOL, scan_points: int = 8) -> np.ndarray:
-    """θ(t) [rad] of our engine (or closed form) for ``problem`` at the given times [s].
-
-    Sets up the kernel exactly as :func:`rockdesign.dynamics.simulate.simulate` does and passes
-    ``times`` as output times, so the values come from the integrator's dense output (``exact``,
-    ``linear``) or the closed form (``linear-exact``) at those very instants.
-
-    Args:
-        problem: the problem.
-        times: any times [s] in [0, t_end] (unsorted, duplicates allowed).
-        model: ``exact`` | ``linear`` | ``linear-exact``.
-        rtol, atol: integrator tolerances (ignored by the closed form).
-
-    Returns:
-        θ at ``times`` (same shape).
-    """
-    times = np.asarray(times, dtype=np.float64)
-    t_sorted, inverse = np.unique(times, return_inverse=True)
-    system = problem.system
-    structure = resolve_structure(system, problem.structure)
-    equations = "linear" if model in ("linear", "linear-exact") else "exact"
-    sp = system_parameters(system, ModelChoice(structure, equations))
-    y0 = np.array([problem.theta0, 0.0, 0.0, 0.0])
-    if problem.theta0 != 0.0 and structure == "podium-2dof":
-        # as simulate(): the superstructure starts undeformed on the tilted frame
-        geo = rocking_geometry(system.column)
-        phase = 2 if geo.radius > 0 and abs(problem.theta0) > geo.beta else 1
-        y0[2] = math.copysign(top_displacement(abs(problem.theta0), 1.0, phase, geo.R, geo.alpha, geo.radius,
-                                               geo.beta), problem.theta0)
-    side0 = 1.0 if problem.theta0 >= 0.0 else -1.0
-    t_out = np.ascontiguousarray(np.clip(t_sorted, 0.0, problem.t_end))
-    out_y = np.zeros((t_out.size, 4))
-    cap = 1
-    ev_t, ev_kind, ev_y = np.zeros(cap), np.zeros(cap, dtype=np.int64), np.zeros((cap, 4))
-    motion = problem.motion
-    if model == "linear-exact":
-        motion = sampled_pulse(motion)
-        integrate_linear_exact(sp, motion.kind, motion.params, motion.samples, y0, side0, 0.0, problem.t_end,
-                               t_out, out_y, ev_t, ev_kind, ev_y, 1_000_000, False, False)
-    else:
-        opts = np.zeros(N_OPTIONS)
-        opts[O_T_END] = problem.t_end
-        opts[O_RTOL] = rtol
-        opts[O_ATOL] = atol
-        opts[O_H_MAX] = math.inf
-        opts[O_MAX_STEPS] = 50_000_000
-        opts[O_SCAN] = scan_points
-        opts[O_MAX_EVENTS] = 1_000_000
-        integrate(sp, motion.kind, motion.params, motion.samples, y0, side0, 0.0, opts, t_out, out_y,
-                  ev_t, ev_kind, ev_y)
-    return out_y[:, 0][inverse].reshape(times.shape)
+    """θ(t) [rad] of our engine (or closed form) for ``problem`` at the given times [s]
+    (:func:`rockdesign.dynamics.accuracy.history_at` on the problem's system, motion and start)."""
+    return history_at(problem.system, problem.motion, times, t_end=problem.t_end, structure=problem.structure,
+                      theta0=problem.theta0, model=model, rtol=rtol, atol=atol, scan_points=scan_points)
 
 
 @dataclass

@@ -19,11 +19,12 @@ from typing import Callable
 
 import numpy as np
 
-from . import metrics
+from ..dynamics import metrics
 from .methods import ATOL_OVER_RTOL, CLOSED_FORM_TOLERANCE, METHODS, Method, RunOutput, is_finite_run
 from .problems import Problem, make_problem, problem_set
 from .reference import ReferenceSolution, build_reference
 from .timing import FULL, QUICK, TimingPolicy, machine_info, time_call
+
 
 TOLERANCES_FULL = tuple(10.0 ** -k for k in range(3, 13))
 """The sweep of the full study: rtol = 1e-3 … 1e-12 (atol = 0.01 rtol)."""
@@ -211,17 +212,3 @@ def highlights(study: dict) -> list[dict]:
     return rows
 
 
-def json_ready(obj):
-    """Replace non-finite floats (inf/NaN) by None so the file is strict JSON."""
-    if isinstance(obj, dict):
-        return {k: json_ready(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [json_ready(v) for v in obj]
-    if isinstance(obj, (np.floating, float)):
-        x = float(obj)
-        return x if math.isfinite(x) else None
-    if isinstance(obj, np.integer):
-        return int(obj)
-    if isinstance(obj, np.bool_):
-        return bool(obj)
-    return obj

@@ -16,12 +16,12 @@ import numpy as np  # noqa: E402
 from ..dynamics.simulate import simulate  # noqa: E402
 from ..motions.library import load_record  # noqa: E402
 from ..motions.motion import no_motion, pulse_motion, record_motion  # noqa: E402
-from ..reference.scipy_engine import simulate_scipy  # noqa: E402
-from ..report.plots import STYLE  # noqa: E402
+from .baseline.scipy_engine import simulate_scipy  # noqa: E402
+from ..plots import STYLE  # noqa: E402
 from ..systems import Column, RockingSystem  # noqa: E402
 from .figures import COLORS, MARKERS  # noqa: E402
 from .problems import G, Problem, housner_block, make_problem, podium_2dof  # noqa: E402
-from .stability import ALL_METHODS, Outcome, StabilityCase  # noqa: E402
+from .stability_outcome import ALL_METHODS, Outcome, StabilityCase  # noqa: E402
 
 SCIPY = ("scipy RK45", "scipy DOP853", "scipy LSODA", "scipy Radau")
 

@@ -22,7 +22,7 @@ from .. import __version__
 from ..design.quantities import design_quantities
 from ..errors import ProjectError
 from ..motions.config import default_excitation, parse_excitation, resolve_motions
-from ..motions.spectra import sd_max
+from ..motions.spectra import motion_spectrum, period_grid, sd_max
 from ..project import Project
 from .criteria import CheckContext, analysis_failed, decide, evaluate_criteria, minimum_records
 from .collapse_margin import collapse_margin, collapse_margin_criterion
@@ -100,6 +100,10 @@ class RecordOutcome:
         }
 
 
+SPECTRUM_PERIODS = 160
+"""Periods of the elastic spectra drawn in the report (log-spaced over the rule's band)."""
+
+
 @dataclass
 class CheckResult:
     """A design check: everything the report and results.json need (SI units throughout).
@@ -109,8 +113,6 @@ class CheckResult:
     bound, classes, margins); ``quantities`` the design quantities (value + unit); ``as_json()`` is
     results.json (= ``rockdesign check --json``).
     """
-
-    fragility = None   # the suite's fragility (CONTRACT §5.3) once computed; a class default until then
 
     project: Project
     quantities: dict
@@ -130,6 +132,13 @@ class CheckResult:
     verdict_reason: str = ""
     verdict_robust: bool = True
     intensity: dict = field(default_factory=dict)
+
+    def elastic_spectra(self, n_periods: int = SPECTRUM_PERIODS):
+        """(periods [s], SD [m] per record): elastic displacement spectra of the scaled records at
+        the rule's damping, on a grid over its band (what the report's spectra figure draws)."""
+        periods = period_grid(self.rule.band, n_periods)
+        sds = [motion_spectrum(o.motion, periods, self.rule.damping)[0] for o in self.records]
+        return periods, np.array(sds)
 
     @property
     def failed_records(self) -> list[RecordOutcome]:
@@ -196,7 +205,7 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     """Run the design check of a project (see module docstring).
 
     ``progress(stage, done, total)`` is called as work proceeds (the CLI draws rich progress bars).
-    ``executor``: run the analyses on the chunked executor of :mod:`rockdesign.spectra.executor`
+    ``executor``: run the analyses on the chunked executor of :mod:`rockdesign.execution.executor`
     (e.g. a dask.distributed cluster); default in-process on all cores.  Results are identical.
     """
     system = project.system
@@ -319,7 +328,7 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
             f"size R̂ = {q['R_hat'].value:.4g} m ({q['R_hat'].equation}); not used as a substitute model because "
             "impacts differ (c_r) — the curved column itself is analysed (docs/model.md §3)")
     # the engine's error against a closed form at the tolerance used (report appendix)
-    from ..bench.accuracy import engine_accuracy
+    from ..dynamics.accuracy import engine_accuracy
     acc = engine_accuracy(a.rtol, a.atol)
     settings["engine_accuracy"] = {k: v for k, v in acc.items() if k != "seconds"}
     intensity = {"design_pga": spec.design_pga, "intensity_analysed": resolved.scale_description,

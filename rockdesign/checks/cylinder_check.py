@@ -107,7 +107,7 @@ def _planar_component(block, samples, dt, a):
 
 def run_cylinder_check(project, progress=None) -> dict:
     """The cylinder check: results as a JSON-ready dict (records, summary, checks, verdict)."""
-    from ..cylinder.commands import quantities_json
+    from ..cylinder.quantities import quantities_json
     from ..cylinder.engine import simulate_cylinder
     from ..motions.pairs import suite_pairs
     from ..motions.spectra import sd_max_of_samples
@@ -271,7 +271,7 @@ def write_cylinder_results(data: dict, out_dir) -> None:
     import json
     from pathlib import Path
 
-    from ..report.plots import save
+    from ..plots import save
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     (out_dir / "results.json").write_text(json.dumps(data, indent=2, ensure_ascii=False) + "\n", encoding="utf-8")
@@ -286,7 +286,7 @@ def write_cylinder_results(data: dict, out_dir) -> None:
 def comparison_figure(data: dict, cap: float = 2.0):
     """3D θ_max/α against the planar Housner θ_max/α (worse component) per record pair; planar values
     beyond ``cap`` (the planar block overturned) are drawn at ``cap``."""
-    from ..report.plots import STYLE, plt
+    from ..plots import STYLE, plt
     tilt = data.get("cylinder", {}).get("overturn_tilt")
     with plt.rc_context(STYLE):
         fig, ax = plt.subplots(figsize=(5.0, 4.6))

@@ -3,16 +3,16 @@ from __future__ import annotations
 
 import math
 import os
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
 from ..design.geometry import displacement_capacity, slenderness_angle
 from ..dynamics.batch import batch_options, run_batch
-from ..dynamics.engine import (D_STATUS, S_DYNAMIC, S_IMPACTS, S_IMPACTS_BEFORE_EXCEEDED,
-                               S_IMPACTS_BEFORE_OVERTURN, S_T_UPLIFT, S_THETA_MAX, S_UB_MAX, S_UPLIFT_TIME,
-                               STATUS_NAMES)
+from ..dynamics.layout import D_STATUS, STATUS_NAMES, S_IMPACTS, S_THETA_MAX, S_T_UPLIFT, S_UB_MAX, S_UPLIFT_TIME
 from ..dynamics.model import ModelChoice, system_parameters
+from ..dynamics.eom import P_CR, P_THETA_C
+from ..dynamics.overturning import classify
 from ..systems import RockingSystem
 
 
@@ -37,17 +37,9 @@ class RunSummary:
 def interpret(summary: np.ndarray, status: int, theta_c: float, alpha: float, capacity: float,
               criterion: str) -> RunSummary:
     """Turn an engine summary row into a :class:`RunSummary` (same rules as ``simulate``)."""
-    dynamic = summary[S_DYNAMIC] != 0.0
     theta_max = float(summary[S_THETA_MAX])
-    exceeded = dynamic or theta_max >= theta_c
-    mode = "dynamic" if dynamic else ("exceeded" if exceeded else "none")
-    overturned = exceeded if criterion == "static" else dynamic
-    if dynamic:
-        before = int(summary[S_IMPACTS_BEFORE_OVERTURN])
-    elif exceeded and summary[S_IMPACTS_BEFORE_EXCEEDED] >= 0:
-        before = int(summary[S_IMPACTS_BEFORE_EXCEEDED])
-    else:
-        before = None
+    outcome = classify(summary, theta_c, criterion)
+    mode, overturned, before = outcome.mode, outcome.overturned, outcome.impacts_before
     t_up = float(summary[S_T_UPLIFT])
     return RunSummary(theta_max, theta_max / alpha, theta_max / theta_c, float(summary[S_UB_MAX]),
                       float(summary[S_UB_MAX]) / capacity, int(summary[S_IMPACTS]),
@@ -67,15 +59,15 @@ def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rto
 
     ``restitution_factor`` multiplies the coefficient of restitution (capped at 1) for sensitivity
     studies.  ``progress(n_done)`` is called after each chunk.  With an ``executor`` (the chunked
-    executor of :mod:`rockdesign.spectra.executor`, e.g. a dask.distributed cluster) the jobs run
+    executor of :mod:`rockdesign.execution.executor`, e.g. a dask.distributed cluster) the jobs run
     there in chunks; the results are identical to the in-process run.
     """
     sp = system_parameters(system, choice, rest_velocity=rest_velocity)
     if restitution_factor != 1.0:
         sp = sp.copy()
-        sp[10] = min(1.0, sp[10] * restitution_factor)
+        sp[P_CR] = min(1.0, sp[P_CR] * restitution_factor)
     opts = batch_options(rtol, atol, energy_stop=energy_stop, stop_at_capacity=stop_at_capacity)
-    theta_c = float(sp[12])
+    theta_c = float(sp[P_THETA_C])
     alpha = slenderness_angle(system.column.half_width, system.column.half_height)
     capacity = displacement_capacity(system.column)
     n = len(motions)
@@ -83,7 +75,7 @@ def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rto
     out: list[RunSummary] = []
     step = chunk or max(4 * worker_count(), 8)
     if executor is not None:
-        from ..spectra.batches import run_motions
+        from ..dynamics.parallel import run_motions
         done = [0]
 
         def on_chunk(k):
@@ -104,8 +96,3 @@ def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rto
     return out
 
 
-def with_restitution_factor(system: RockingSystem, factor: float) -> RockingSystem:
-    """The system with c_r multiplied by ``factor`` (capped at 1), as a measured value."""
-    from ..design.quantities import coefficient_of_restitution
-    c_r, _ = coefficient_of_restitution(system)
-    return replace(system, restitution=min(1.0, c_r * factor), restitution_rule="measured")

@@ -7,15 +7,9 @@ import numpy as np
 
 from ..errors import ModelError
 from .engine import CylinderResponse, simulate_cylinder
-from .quantities import cylinder_quantities, frequency_parameter
+from .quantities import cylinder_quantities, frequency_parameter, quantities_json  # noqa: F401 (re-exported)
 
 CYLINDER_MODELS = ("auto", "undamped", "damped")
-
-
-def quantities_json(project) -> dict:
-    """``quantities --json`` of a cylinder: alpha, R, p, c_r, uplift_acceleration, angle_of_turn (+ extras)."""
-    q = cylinder_quantities(project.system)
-    return {"quantities": {name: x.as_json() for name, x in q.items()}, "warnings": list(project.warnings)}
 
 
 def quantities_table(project, console, units: str | None = None) -> None:
@@ -38,7 +32,7 @@ def write_wobbling(project, path) -> None:
         np.savetxt(path, np.column_stack([ratio, tw, th]), delimiter=",", fmt="%.12g",
                    header="theta_over_alpha,Tw_p,T_housner_p", comments="")
     elif path.suffix.lower() in (".png", ".svg", ".pdf"):
-        from ..report.plots import save
+        from ..plots import save
         save(wobbling_figure(project.system), path)
     else:
         raise RockdesignError("unknown file type", key="--pushover", expected=".csv, .png, .svg or .pdf",

@@ -42,7 +42,7 @@ def parse_cylinder_project(raw: dict, *, file: str = "<project>", text: str = ""
     """
     import difflib
 
-    from ..project import Project, _parse_analysis, _Table
+    from ..project_tables import Project, _parse_analysis, _Table
     sections = ("project", "cylinder", "excitation", "analysis")
     for section in raw:
         if section not in sections and section not in PLANAR_SECTIONS:
@@ -78,7 +78,7 @@ def parse_cylinder_project(raw: dict, *, file: str = "<project>", text: str = ""
                                    found=f"'{key}'", hint="the cylinder's inertia and contact follow from its "
                                    "height and diameter (Eqs 5.20-5.21)" if key == "mass_distribution" else None)
     t = _Table(data, "cylinder", CYLINDER_KEYS, file, analysis.g)
-    from ..project import project_info
+    from ..project_tables import project_info
     info = project_info(raw, file, analysis.g, example="museum column")
     system = _parse_cylinder(t, info["name"], analysis.g, _overturn_tilt(analysis_raw, file))
     excitation = raw.get("excitation")

@@ -119,3 +119,9 @@ def cylinder_quantities(cyl: Cylinder) -> dict[str, Quantity]:
         add("contact_frequency", "ω_n", "contact spring frequency", cyl.contact_frequency, "1/s", "Eq 5.31")
         add("contact_damping", "ζ", "contact damping ratio", cyl.contact_damping, "-", "Eq 5.31")
     return q
+
+
+def quantities_json(project) -> dict:
+    """``quantities --json`` of a cylinder: alpha, R, p, c_r, uplift_acceleration, angle_of_turn (+ extras)."""
+    q = cylinder_quantities(project.system)
+    return {"quantities": {name: x.as_json() for name, x in q.items()}, "warnings": list(project.warnings)}

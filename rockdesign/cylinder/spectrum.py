@@ -123,7 +123,7 @@ def cylinder_spectrum(cyl, pair, R_values, pga_over_up, *, rtol: float = 1e-10, 
 def spectrum_figure(spec: CylinderSpectrum, title: str, reference: CylinderSpectrum | None = None,
                     overturn_tilt: float = 1.5):
     """Fig 5.16a (θ_max/α, overturned in black) or, with ``reference``, the relative spectrum (Fig 5.16b/5.17)."""
-    from ..report.plots import STYLE, plt
+    from ..plots import STYLE, plt
     with plt.rc_context(STYLE):
         fig, ax = plt.subplots(figsize=(6.4, 4.6))
         if reference is None:

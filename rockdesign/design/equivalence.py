@@ -1,6 +1,31 @@
 """Equivalent sizes: the solitary flat-based block that responds like a frame or a critically curved column."""
 from __future__ import annotations
 
+import math
+
+from ..systems import RockingSystem
+from .geometry import critical_curvature, critical_curvature_linear
+
+CRITICAL_CURVATURE_TOLERANCE = 0.02
+"""ρ counts as 'at ρc' (for p̂ of Eq 3.94 and R̂ of Eq 3.71) within this relative distance of the
+exact (Eq 3.55) or linearized (Eq 3.68) ρc; the thesis examples use the linearized value."""
+
+
+def effective_gamma(system: RockingSystem) -> float:
+    """γ of the frame that carries the superstructure rigidly: γ̂ = γ(1+η) (SPEC §3.3, Polyakov rule 1)."""
+    return system.gamma * (1.0 + system.eta)
+
+
+def at_critical_curvature(system: RockingSystem) -> bool:
+    """True for curved extensions with ρ = ρc (exact Eq 3.55 or linearized Eq 3.68) within tolerance."""
+    c = system.column
+    if c.extension != "curved":
+        return False
+    rho = c.curvature
+    rc = critical_curvature(c.tan_alpha, c.tan_alpha_ext)
+    rcl = critical_curvature_linear(math.atan(c.tan_alpha), math.atan(c.tan_alpha_ext))
+    return abs(rho - rc) <= CRITICAL_CURVATURE_TOLERANCE * rc or abs(rho - rcl) <= CRITICAL_CURVATURE_TOLERANCE * rcl
+
 
 def frame_size_factor(lam: float, gamma: float) -> float:
     """R̂/R = (1+λ+4γ)/((1+2γ)(1+λ)) of a frame's equivalent solitary block (Eqs 3.81, 3.89; Eq 2.24).

@@ -7,7 +7,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..dynamics.kinematics import centre_kinematics
+from .kinematics import centre_kinematics
 from ..systems import Column
 
 
@@ -19,11 +19,6 @@ def slenderness_angle(half_width: float, half_height: float) -> float:
 def half_diagonal(half_width: float, half_height: float) -> float:
     """R = √(B² + H²) [m] (Eq 2.2)."""
     return math.hypot(half_width, half_height)
-
-
-def curvature_from_radius(radius: float, half_height: float) -> float:
-    """ρ = r/(2H) [-] (Eq 3.43)."""
-    return radius / (2.0 * half_height)
 
 
 def wedge_angle(tan_alpha: float, tan_alpha_ext: float, rho: float) -> float:

@@ -60,7 +60,3 @@ def composite_column(section: str, half_width: float, half_height: float, plate_
     return inertia / (mass * R2), mass
 
 
-def uniform_mass_distribution(section: str, half_width: float, half_height: float) -> float:
-    """λ of a homogeneous column: 1/3 for a rectangle (Eq 3.4), (B²/4 + H²/3)/R² for a cylinder."""
-    lam, _ = composite_column(section, half_width, half_height, 0.0)
-    return lam

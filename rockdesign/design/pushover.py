@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..dynamics.kinematics import centre_kinematics
+from .kinematics import centre_kinematics
 from .geometry import RockingGeometry
 
 

@@ -1,29 +1,28 @@
-"""All closed-form design quantities of a system (SPEC §2), with symbol, unit, equation and the
-substituted formula shown in the calculation report.
+"""All closed-form design quantities of a system (SPEC §2), each with symbol, unit, thesis equation, its
+formula and the formula with the numbers substituted (what the calculation report prints).
 
 Names are those of CONTRACT §3 (``alpha, R, p, lambda, c_r, ...``) plus a few documented extras.
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
 from ..systems import RockingSystem
-from .equivalence import equivalent_size
+from .equivalence import (CRITICAL_CURVATURE_TOLERANCE, at_critical_curvature,  # noqa: F401 (re-exported)
+                          effective_gamma, equivalent_size)
 from .frequencies import (critical_rolling_frequency_parameter, frame_frequency_parameter,
                           frequency_parameter, podium_frequency_parameter, rocking_period,
                           uplifted_damping, uplifted_frequency_ratio)
 from .geometry import (critical_curvature, critical_curvature_linear, displacement_capacity,
                        rocking_geometry, slenderness_angle, wedge_angle, wedge_angle_linear)
 from .pushover import post_uplift_stiffness_linear
+from .substitutions import substitution
 from .restitution import (restitution_block, restitution_flat_extensions, restitution_frame,
                           restitution_podium)
 from .uplift import (podium_uplift_factor, uplift_acceleration, uplift_acceleration_linear,
                      uplift_force)
-
-CRITICAL_CURVATURE_TOLERANCE = 0.02
-"""ρ counts as 'at ρc' (for p̂ of Eq 3.94 and R̂ of Eq 3.71) within this relative distance of the
-exact (Eq 3.55) or linearized (Eq 3.68) ρc; the thesis examples use the linearized value."""
 
 RIGID_SUPERSTRUCTURE_RATIO = 10.0
 """ω_s/p at and above which the superstructure is treated as rigid by default (SPEC §6)."""
@@ -56,22 +55,6 @@ def _f(x: float) -> str:
         mant, exp = text.split("e")
         text = f"{mant}·10^{int(exp)}"
     return text
-
-
-def effective_gamma(system: RockingSystem) -> float:
-    """γ of the frame that carries the superstructure rigidly: γ̂ = γ(1+η) (SPEC §3.3, Polyakov rule 1)."""
-    return system.gamma * (1.0 + system.eta)
-
-
-def at_critical_curvature(system: RockingSystem) -> bool:
-    """True for curved extensions with ρ = ρc (exact Eq 3.55 or linearized Eq 3.68) within tolerance."""
-    c = system.column
-    if c.extension != "curved":
-        return False
-    rho = c.curvature
-    rc = critical_curvature(c.tan_alpha, c.tan_alpha_ext)
-    rcl = critical_curvature_linear(math.atan(c.tan_alpha), math.atan(c.tan_alpha_ext))
-    return abs(rho - rc) <= CRITICAL_CURVATURE_TOLERANCE * rc or abs(rho - rcl) <= CRITICAL_CURVATURE_TOLERANCE * rcl
 
 
 def coefficient_of_restitution(system: RockingSystem) -> tuple[float, str]:
@@ -221,4 +204,8 @@ def design_quantities(system: RockingSystem) -> dict[str, Quantity]:
                    else "superstructure flexibility matters: 2DOF podium model")
         add("omega_s_over_p", "ω_s/p", "superstructure to rocking frequency ratio", ratio, "-", "Sec 4.2.4, docs/model.md §7",
             "ω_s/p", f"{_f(s.omega_s)}/{_f(p)}", f"{verdict} (switch at {RIGID_SUPERSTRUCTURE_RATIO:g})")
+    # every quantity carries its formula and substituted numbers (the report only renders them)
+    for name, quantity in q.items():
+        formula, substituted, _ = substitution(name, quantity, system)
+        q[name] = dataclasses.replace(quantity, formula=formula, substituted=substituted)
     return q

@@ -13,8 +13,9 @@ import numpy as np
 from numba import njit, prange
 
 from ..errors import ModelError
-from .engine import (METHOD_NAMES, N_DIAG, N_OPTIONS, N_SUMMARY, O_ATOL, O_ENERGY_STOP, O_H_MAX, O_MAX_EVENTS,
-                     O_MAX_STEPS, O_METHOD, O_RTOL, O_SCAN, O_STOP_EXCEEDED, O_T_END, integrate)
+from .engine import integrate
+from .layout import (METHOD_NAMES, N_DIAG, N_OPTIONS, N_SUMMARY, O_ATOL, O_ENERGY_STOP, O_H_MAX, O_MAX_EVENTS,
+                     O_MAX_STEPS, O_METHOD, O_RTOL, O_SCAN, O_STOP_EXCEEDED, O_T_END)
 
 
 @njit(cache=True, parallel=True)

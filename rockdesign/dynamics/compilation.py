@@ -24,10 +24,10 @@ from pathlib import Path
 # on the 2-core development machine (benchmarks/bench_check.py reports the first `check` run).
 KERNELS: dict[str, tuple[tuple[str, str], ...]] = {
     "check": (("rockdesign.dynamics.batch", "_run_batch"), ("rockdesign.dynamics.engine", "integrate"),
-              ("rockdesign.dynamics.engine", "top_displacements"),
+              ("rockdesign.dynamics.transitions", "top_displacements"),
               ("rockdesign.dynamics.linear_exact", "integrate_linear_exact"),
               ("rockdesign.motions.spectra", "spectral_displacements")),
-    "simulate": (("rockdesign.dynamics.engine", "integrate"), ("rockdesign.dynamics.engine", "top_displacements")),
+    "simulate": (("rockdesign.dynamics.engine", "integrate"), ("rockdesign.dynamics.transitions", "top_displacements")),
     "records": (("rockdesign.motions.spectra", "spectral_displacements"),),
 }
 ESTIMATE_SECONDS = {"check": 50, "simulate": 35, "records": 5}
@@ -73,9 +73,9 @@ def _warm(command: str) -> None:
     if command == "check":
         sp = system_parameters(system, ModelChoice("block", "exact"))
         run_batch(sp, [record], [1.0], [0.05], batch_options())
-        from ..bench.accuracy import accuracy_problem
-        prob = accuracy_problem()
-        simulate(prob.system, prob.motion, model="linear-exact", t_end=0.05)
+        from .accuracy import accuracy_problem
+        system_b1, pulse = accuracy_problem()
+        simulate(system_b1, pulse, model="linear-exact", t_end=0.05)
     if command in ("check", "records"):
         from ..motions.spectra import sd_max
         sd_max(record)

@@ -27,95 +27,23 @@ from numba import njit
 
 from ..motions.excitation import excitation_end, ground_acceleration, ground_acceleration_right, next_breakpoint
 from .eom import (rhs_given_acceleration, P_BETA, P_CR, P_HYST, P_OVERTURN, P_RADIUS, P_REST_V, P_R, P_THETA_C, P_TWO_DOF,
-                  normalised_kinematics, potential_energy, rhs, total_energy, uplift_condition)
+                  uplift_condition)
 from .events import next_threshold_crossing, root_on_dense
+from .transitions import (change_phase, crossing_event, energy_bound, enter_overturn, enter_uplift, impact, phase_of,
+                          store_event, top_displacement)
 from .dop853 import ERROR_EXPONENT_853, FSAL_ROW_853, N_STAGES_EXTENDED, dop853_dense, dop853_error_norm, dop853_step
 from .rk import (ERROR_EXPONENT, MAX_FACTOR, MIN_FACTOR, SAFETY, dense_coefficients, dense_value,
                  dp5_step, error_norm, initial_step)
 
-# event kinds
-EV_UPLIFT = 1
-EV_IMPACT = 2
-EV_PHASE_ROCKING = 3   # |θ| rises through β: rolling → rocking about the extension edge
-EV_PHASE_ROLLING = 4   # |θ| falls through β
-EV_REST = 5
-EV_OVERTURN = 6        # dynamic: |θ| reaches π/2
-EV_EXCEEDED = 7        # static: |θ| reaches θc for the first time
-EVENT_NAMES = {EV_UPLIFT: "uplift", EV_IMPACT: "impact", EV_PHASE_ROCKING: "phase-rocking",
-               EV_PHASE_ROLLING: "phase-rolling", EV_REST: "rest", EV_OVERTURN: "overturn",
-               EV_EXCEEDED: "capacity-exceeded"}
-
-# status codes
-ST_OK = 0
-ST_OVERTURNED = 1
-ST_STEP_COLLAPSE = 2
-ST_TOO_MANY_STEPS = 3
-ST_ENERGY_BOUND = 4    # stopped early: the remaining energy cannot change θ_max or the verdict
-ST_STOPPED_EXCEEDED = 5
-ST_TOO_MANY_EVENTS = 6
-STATUS_NAMES = {ST_OK: "completed", ST_OVERTURNED: "overturned (|θ| = π/2)",
-                ST_STEP_COLLAPSE: "step size collapsed", ST_TOO_MANY_STEPS: "step limit reached",
-                ST_ENERGY_BOUND: "stopped: energy bound reached", ST_STOPPED_EXCEEDED: "stopped at θc",
-                ST_TOO_MANY_EVENTS: "event limit reached"}
-
-# options array
-O_T_END = 0
-O_RTOL = 1
-O_ATOL = 2
-O_H_MAX = 3
-O_MAX_STEPS = 4
-O_ENERGY_STOP = 5
-O_STOP_EXCEEDED = 6
-O_SCAN = 7
-O_MAX_EVENTS = 8
-O_METHOD = 9           # METHOD_* (0: chosen per system by the work-precision data)
-N_OPTIONS = 10
-
-# steppers
-METHOD_AUTO = 0        # DOP853 for the 2DOF podium at rtol < DOP853_BELOW_RTOL, DP5(4) otherwise
-METHOD_DP5 = 5         # Dormand–Prince 5(4), 4th-order dense output
-METHOD_DOP853 = 8      # Dormand–Prince 8(5,3), 7th-order dense output
-METHOD_NAMES = {METHOD_AUTO: "auto", METHOD_DP5: "dp5", METHOD_DOP853: "dop853"}
-DOP853_BELOW_RTOL = 5e-8
-"""The automatic choice uses DOP853 for a 2DOF podium when rtol is below this: the work-precision crossover
-measured on the podium under a 30-s record (benchmarks/bench_engine.py, ``stepper_choice``).  Both methods
-then land on every record sample; DP5(4) needs ≈ 1.4–1.7 steps per sample at rtol 1e-6…1e-7 (cheaper), 2.6
-at 1e-8 and 5.3 at 1e-10, where DOP853 takes 1.07 steps per sample (and is 40× to 3000× more accurate).
-SDOF systems take about one DP5(4) step per sample down to rtol 1e-10: DP5(4) is cheaper there (equal at 1e-12)."""
-
-# summary array
-S_THETA_MAX = 0
-S_T_THETA_MAX = 1
-S_UB_MAX = 2
-S_IMPACTS = 3
-S_T_UPLIFT = 4
-S_EXCEEDED = 5
-S_T_EXCEEDED = 6
-S_DYNAMIC = 7
-S_T_OVERTURN = 8
-S_IMPACTS_BEFORE_OVERTURN = 9
-S_DRIFT_MAX = 10
-S_T_END = 11
-S_UPLIFTS = 12
-S_IMPACTS_BEFORE_EXCEEDED = 13
-S_UPLIFT_TIME = 14     # total time spent uplifted [s]
-N_SUMMARY = 15
-
-# diagnostics array
-D_STEPS = 0
-D_REJECTED = 1
-D_NFEV = 2
-D_EVENTS = 3
-D_REST = 4
-D_STATUS = 5
-D_REFINE = 6
-D_EVENTS_STORED = 7
-N_DIAG = 8
-
-
-@njit(cache=True)
-def _phase_of(abs_theta, sp):
-    return 1 if (sp[P_RADIUS] != 0.0 and abs_theta <= sp[P_BETA]) else 2
+from .layout import (DOP853_BELOW_RTOL, D_EVENTS, D_NFEV, D_REFINE, D_REJECTED, D_STATUS,
+                     D_STEPS, EV_EXCEEDED, EV_OVERTURN, EV_PHASE_ROCKING, EV_PHASE_ROLLING, METHOD_AUTO,
+                     METHOD_DOP853, METHOD_DP5, N_DIAG, N_SUMMARY, O_ATOL,
+                     O_ENERGY_STOP, O_H_MAX, O_MAX_EVENTS, O_MAX_STEPS, O_METHOD, O_RTOL, O_SCAN,
+                     O_STOP_EXCEEDED, O_T_END, ST_ENERGY_BOUND, ST_OK, ST_OVERTURNED, ST_STEP_COLLAPSE, ST_STOPPED_EXCEEDED,
+                     ST_TOO_MANY_EVENTS, ST_TOO_MANY_STEPS, S_DRIFT_MAX, S_EXCEEDED, S_IMPACTS_BEFORE_EXCEEDED,
+                     S_IMPACTS_BEFORE_OVERTURN, S_THETA_MAX, S_T_END, S_T_EXCEEDED, S_T_OVERTURN,
+                     S_T_THETA_MAX, S_T_UPLIFT, S_UB_MAX, S_UPLIFTS,
+                     S_UPLIFT_TIME)
 
 
 @njit(cache=True)
@@ -135,47 +63,6 @@ def _rk_step(high, t, y, f0, h, K, y_new, ytmp, rocking, side, phase, kind, xp, 
     if high:
         return dop853_step(t, y, f0, h, K, y_new, ytmp, rocking, side, phase, kind, xp, samples, sp, n)
     return dp5_step(t, y, f0, h, K, y_new, ytmp, rocking, side, phase, kind, xp, samples, sp, n)
-
-
-@njit(cache=True, inline="always")
-def _store_event(ev_t, ev_kind, ev_y, diag, kind, t, y):
-    diag[D_EVENTS] += 1
-    k = diag[D_EVENTS_STORED]
-    if k < ev_t.shape[0]:
-        ev_t[k] = t
-        ev_kind[k] = kind
-        for i in range(4):
-            ev_y[k, i] = y[i]
-        diag[D_EVENTS_STORED] = k + 1
-
-
-@njit(cache=True)
-def _top_displacement(abs_theta, sp):
-    U0, _, _, _, _, _ = normalised_kinematics(abs_theta, 1.0, _phase_of(abs_theta, sp), sp)
-    return 2.0 * sp[P_R] * U0
-
-
-@njit(cache=True)
-def _energy_bound(y, rocking, side, phase, theta_max, sp):
-    """True when the mechanical energy can no longer lift |θ| to θ_max (docs/early_termination.md).
-
-    Valid once the ground is at rest: E never increases, and the potential is increasing in |θ| on
-    [0, θc], so E < V(θ_max) < V(θc) means neither θ_max nor θc (nor overturning) can be reached.
-    """
-    if theta_max >= sp[P_THETA_C]:
-        return False
-    return total_energy(y, rocking, side, phase, sp) < potential_energy(theta_max, 1.0, _phase_of(theta_max, sp), sp)
-
-
-@njit(cache=True)
-def top_displacements(theta, sp):
-    """Column-top displacement u_B(θ) [m] for an array of tilts (sign of θ = side), model kinematics."""
-    out = np.empty(theta.shape[0])
-    for i in range(theta.shape[0]):
-        a = abs(theta[i])
-        u = _top_displacement(min(a, sp[P_OVERTURN]), sp)
-        out[i] = u if theta[i] >= 0.0 else -u
-    return out
 
 
 @njit(cache=True)
@@ -250,6 +137,128 @@ def _refine_event(high, t, y, f0, x_e, h, level, sgn, K, y_e, ytmp, rocking, sid
 
 
 @njit(cache=True)
+def _scan_podium_uplift(t, h, y, y_new, Q, m_scan, hyst, kind, xp, samples, sp):
+    """Scan an accepted step of the fixed-base 2DOF podium (at rest, Eq 4.3) for uplift (Eq 4.7 above
+    the hysteresis, either side) at ``m_scan`` points of the dense output, and bisect the first one.
+    Returns (its position x ∈ [0, 1] in the step, or −1.0 for none; the side it uplifts to)."""
+    ev_x = -1.0
+    ev_side = 0.0
+    x_prev = 0.0
+    for k in range(1, m_scan + 1):
+        x = k / m_scan
+        tx = t + x * h
+        ag = ground_acceleration(tx, kind, xp, samples)
+        ut = y_new[2] if k == m_scan else dense_value(y, Q, h, x, 2)
+        utd = y_new[3] if k == m_scan else dense_value(y, Q, h, x, 3)
+        cp = uplift_condition(1.0, ag, ut, utd, sp) - hyst
+        cm = uplift_condition(-1.0, ag, ut, utd, sp) - hyst
+        if cp >= 0.0 or cm >= 0.0:
+            s_up = 1.0 if cp >= 0.0 else -1.0
+            xa = x_prev
+            xb = x
+            for _ in range(100):  # bisection on the dense output
+                xm = 0.5 * (xa + xb)
+                agm = ground_acceleration(t + xm * h, kind, xp, samples)
+                cm_ = uplift_condition(s_up, agm, dense_value(y, Q, h, xm, 2),
+                                       dense_value(y, Q, h, xm, 3), sp) - hyst
+                if cm_ >= 0.0:
+                    xb = xm
+                else:
+                    xa = xm
+                if xb - xa < 1e-15:
+                    break
+            ev_x = xb
+            ev_side = s_up
+            break
+        x_prev = x
+    return ev_x, ev_side
+
+
+@njit(cache=True)
+def _scan_rocking_step(t, h, y, y_new, Q, ytmp, m_scan, side, phase, curved, beta, theta_ot, theta_c, two_dof,
+                       drift_slope, impacts, stop_exceeded, c_theta, c_rate, summary, ev_t, ev_kind, ev_y, diag, sp):
+    """Scan an accepted rocking step's dense output at ``m_scan`` points for the first event.
+
+    Each sub-interval splits at an extremum of sθ (where θ̇ changes sign) into monotone pieces, each
+    classified by :func:`~.transitions.crossing_event`; the first exceedance of θc is recorded on the
+    way (terminal only with ``stop_exceeded``), and the peak |θ| and the superstructure drift are
+    updated.  Returns (event kind, its position x ∈ [0, 1] in the step, its level [rad]); kind 0: none,
+    −1: stop at θc.
+    """
+    ev_type = 0
+    ev_x = 2.0
+    ev_level = 0.0
+    x_a = 0.0
+    sa = side * y[0]
+    va = side * y[1]
+    for k in range(1, m_scan + 1):
+        x_b = k / m_scan
+        if k == m_scan:
+            sb = side * y_new[0]
+            vb = side * y_new[1]
+        else:
+            sb = side * dense_value(y, Q, h, x_b, 0)
+            vb = side * dense_value(y, Q, h, x_b, 1)
+        # split at an extremum of sθ (θ̇ changes sign)
+        n_piece = 1
+        x_mid = x_b
+        s_mid = sb
+        if (va > 0.0 and vb < 0.0) or (va < 0.0 and vb > 0.0):
+            x_mid = root_on_dense(y, Q, h, c_rate, side, 0.0, x_a, x_b)
+            s_mid = side * dense_value(y, Q, h, x_mid, 0)
+            n_piece = 2
+        px0 = x_a
+        ps0 = sa
+        for piece in range(n_piece):
+            if piece == 0:
+                px1 = x_mid
+                ps1 = s_mid
+            else:
+                px0 = x_mid
+                ps0 = s_mid
+                px1 = x_b
+                ps1 = sb
+            ev_type, ev_level = crossing_event(ps0, ps1, curved, phase, beta, theta_ot)
+            if ps1 > ps0:
+                # rising: the exceedance of θc (non-terminal unless stop_exceeded) may come first
+                if summary[S_EXCEEDED] == 0.0 and ps0 < theta_c <= ps1:
+                    xc = root_on_dense(y, Q, h, c_theta, side, theta_c, px0, px1)
+                    if ev_type == 0 or xc <= root_on_dense(y, Q, h, c_theta, side, ev_level, px0, px1):
+                        summary[S_EXCEEDED] = 1.0
+                        summary[S_T_EXCEEDED] = t + xc * h
+                        summary[S_IMPACTS_BEFORE_EXCEEDED] = impacts
+                        for i in range(4):
+                            ytmp[i] = dense_value(y, Q, h, xc, i)
+                        store_event(ev_t, ev_kind, ev_y, diag, EV_EXCEEDED, t + xc * h, ytmp)
+                        if stop_exceeded:
+                            ev_type = -1
+                            ev_x = xc
+                            break
+            if ev_type > 0:
+                if ps0 == ev_level:
+                    ev_x = px0
+                else:
+                    ev_x = root_on_dense(y, Q, h, c_theta, side, ev_level, px0, px1)
+                break
+            # peak candidate at the end of a piece
+            if ps1 > summary[S_THETA_MAX]:
+                summary[S_THETA_MAX] = ps1
+                summary[S_T_THETA_MAX] = t + px1 * h
+        if ev_type != 0:
+            break
+        if two_dof:
+            ut_b = y_new[2] if k == m_scan else dense_value(y, Q, h, x_b, 2)
+            if abs(ut_b) + drift_slope * abs(sb) > summary[S_DRIFT_MAX]:
+                rel = abs(ut_b - side * top_displacement(sb, sp))
+                if rel > summary[S_DRIFT_MAX]:
+                    summary[S_DRIFT_MAX] = rel
+        x_a = x_b
+        sa = sb
+        va = vb
+    return ev_type, ev_x, ev_level
+
+
+@njit(cache=True)
 def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, ev_t, ev_kind, ev_y):
     """Run one time-history analysis.
 
@@ -287,7 +296,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
     theta_ot = sp[P_OVERTURN]
     beta = sp[P_BETA]
     curved = sp[P_RADIUS] != 0.0
-    c_r = sp[P_CR]
+    sqrt_cr = math.sqrt(sp[P_CR])
     v_rest = sp[P_REST_V]
     hyst = sp[P_HYST]
     # |u_B(θ)| ≤ 2R(1 + 2r/R)|θ| (|dU/dθ| ≤ 1 + 2r/R for every contact phase): scan points whose bound
@@ -333,7 +342,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
             side = 1.0 if y[0] > 0.0 else -1.0
         else:
             side = 1.0 if y[1] > 0.0 else -1.0
-    phase = _phase_of(abs(y[0]), sp)
+    phase = phase_of(abs(y[0]), sp)
     impacts = 0
     i_out = 0
     n_out = t_out.shape[0]
@@ -374,12 +383,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
             rocking = True
             side = s_up
             phase = 1
-            y[0] = 0.0
-            y[1] = 0.0
-            _store_event(ev_t, ev_kind, ev_y, diag, EV_UPLIFT, t, y)
-            summary[S_UPLIFTS] += 1.0
-            if math.isnan(summary[S_T_UPLIFT]):
-                summary[S_T_UPLIFT] = t
+            enter_uplift(y, t, summary, ev_t, ev_kind, ev_y, diag)
             t_rock_start = t
             need_start = True
             fresh_start = True
@@ -438,41 +442,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
 
         # ------------------------------------------------------------ rest of a 2DOF podium
         if not rocking:
-            ev_x = -1.0
-            ev_side = 0.0
-            x_prev = 0.0
-            cp_prev = uplift_condition(1.0, ground_acceleration(t, kind, xp, samples), y[2], y[3], sp) - hyst
-            cm_prev = uplift_condition(-1.0, ground_acceleration(t, kind, xp, samples), y[2], y[3], sp) - hyst
-            for k in range(1, m_scan + 1):
-                x = k / m_scan
-                tx = t + x * h
-                ag = ground_acceleration(tx, kind, xp, samples)
-                ut = y_new[2] if k == m_scan else dense_value(y, Q, h, x, 2)
-                utd = y_new[3] if k == m_scan else dense_value(y, Q, h, x, 3)
-                cp = uplift_condition(1.0, ag, ut, utd, sp) - hyst
-                cm = uplift_condition(-1.0, ag, ut, utd, sp) - hyst
-                if cp >= 0.0 or cm >= 0.0:
-                    s_up = 1.0 if cp >= 0.0 else -1.0
-                    fa = cp_prev if s_up > 0 else cm_prev
-                    xa = x_prev
-                    xb = x
-                    for _ in range(100):  # bisection on the dense output
-                        xm = 0.5 * (xa + xb)
-                        agm = ground_acceleration(t + xm * h, kind, xp, samples)
-                        cm_ = uplift_condition(s_up, agm, dense_value(y, Q, h, xm, 2),
-                                               dense_value(y, Q, h, xm, 3), sp) - hyst
-                        if cm_ >= 0.0:
-                            xb = xm
-                        else:
-                            xa = xm
-                        if xb - xa < 1e-15:
-                            break
-                    ev_x = xb
-                    ev_side = s_up
-                    break
-                x_prev = x
-                cp_prev = cp
-                cm_prev = cm
+            ev_x, ev_side = _scan_podium_uplift(t, h, y, y_new, Q, m_scan, hyst, kind, xp, samples, sp)
             if ev_x >= 0.0:
                 he = ev_x * h
                 if he > 0.0:
@@ -487,15 +457,10 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
                 t = t_e
                 for i in range(4):
                     y[i] = y_e[i]
-                y[0] = 0.0
-                y[1] = 0.0
                 rocking = True
                 side = ev_side
                 phase = 1
-                _store_event(ev_t, ev_kind, ev_y, diag, EV_UPLIFT, t, y)
-                summary[S_UPLIFTS] += 1.0
-                if math.isnan(summary[S_T_UPLIFT]):
-                    summary[S_T_UPLIFT] = t
+                enter_uplift(y, t, summary, ev_t, ev_kind, ev_y, diag)
                 t_rock_start = t
                 need_start = True
                 fresh_start = True
@@ -504,102 +469,23 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
                              phase, kind, xp, samples, sp, diag)
             t = t_new
             h = h_next
-            if energy_stop and t >= t_exc and _energy_bound(y, rocking, side, phase + 0, summary[S_THETA_MAX], sp):
+            if energy_stop and t >= t_exc and energy_bound(y, rocking, side, phase + 0, summary[S_THETA_MAX], sp):
                 status = ST_ENERGY_BOUND
                 break
             continue
 
         # ------------------------------------------------------------ rocking: scan for events
-        ev_type = 0
-        ev_x = 2.0
-        ev_level = 0.0
-        x_a = 0.0
-        sa = side * y[0]
-        va = side * y[1]
-        for k in range(1, m_scan + 1):
-            x_b = k / m_scan
-            if k == m_scan:
-                sb = side * y_new[0]
-                vb = side * y_new[1]
-            else:
-                sb = side * dense_value(y, Q, h, x_b, 0)
-                vb = side * dense_value(y, Q, h, x_b, 1)
-            # split at an extremum of sθ (θ̇ changes sign)
-            n_piece = 1
-            x_mid = x_b
-            s_mid = sb
-            if (va > 0.0 and vb < 0.0) or (va < 0.0 and vb > 0.0):
-                x_mid = root_on_dense(y, Q, h, c_rate, side, 0.0, x_a, x_b)
-                s_mid = side * dense_value(y, Q, h, x_mid, 0)
-                n_piece = 2
-            px0 = x_a
-            ps0 = sa
-            for piece in range(n_piece):
-                if piece == 0:
-                    px1 = x_mid
-                    ps1 = s_mid
-                else:
-                    px0 = x_mid
-                    ps0 = s_mid
-                    px1 = x_b
-                    ps1 = sb
-                if ps1 > ps0:
-                    # rising: phase I→II at β, exceedance of θc (non-terminal), overturning
-                    if curved and phase == 1 and ps0 < beta <= ps1:
-                        ev_type = EV_PHASE_ROCKING
-                        ev_level = beta
-                    elif ps1 >= theta_ot:
-                        ev_type = EV_OVERTURN
-                        ev_level = theta_ot
-                    if summary[S_EXCEEDED] == 0.0 and ps0 < theta_c <= ps1:
-                        xc = root_on_dense(y, Q, h, c_theta, side, theta_c, px0, px1)
-                        if ev_type == 0 or xc <= root_on_dense(y, Q, h, c_theta, side, ev_level, px0, px1):
-                            summary[S_EXCEEDED] = 1.0
-                            summary[S_T_EXCEEDED] = t + xc * h
-                            summary[S_IMPACTS_BEFORE_EXCEEDED] = impacts
-                            for i in range(4):
-                                ytmp[i] = dense_value(y, Q, h, xc, i)
-                            _store_event(ev_t, ev_kind, ev_y, diag, EV_EXCEEDED, t + xc * h, ytmp)
-                            if stop_exceeded:
-                                ev_type = -1
-                                ev_x = xc
-                                break
-                elif ps1 < ps0:
-                    # falling: phase II→I at β, impact at 0
-                    if curved and phase == 2 and ps1 <= beta < ps0:
-                        ev_type = EV_PHASE_ROLLING
-                        ev_level = beta
-                    elif ps1 <= 0.0:
-                        ev_type = EV_IMPACT
-                        ev_level = 0.0
-                if ev_type > 0:
-                    if ps0 == ev_level:
-                        ev_x = px0
-                    else:
-                        ev_x = root_on_dense(y, Q, h, c_theta, side, ev_level, px0, px1)
-                    break
-                # peak candidate at the end of a piece
-                if ps1 > summary[S_THETA_MAX]:
-                    summary[S_THETA_MAX] = ps1
-                    summary[S_T_THETA_MAX] = t + px1 * h
-            if ev_type != 0:
-                break
-            if two_dof:
-                ut_b = y_new[2] if k == m_scan else dense_value(y, Q, h, x_b, 2)
-                if abs(ut_b) + drift_slope * abs(sb) > summary[S_DRIFT_MAX]:
-                    rel = abs(ut_b - side * _top_displacement(sb, sp))
-                    if rel > summary[S_DRIFT_MAX]:
-                        summary[S_DRIFT_MAX] = rel
-            x_a = x_b
-            sa = sb
-            va = vb
+        ev_type, ev_x, ev_level = _scan_rocking_step(t, h, y, y_new, Q, ytmp, m_scan, side, phase, curved, beta,
+                                                     theta_ot, theta_c, two_dof, drift_slope, impacts,
+                                                     stop_exceeded, c_theta, c_rate, summary, ev_t, ev_kind, ev_y,
+                                                     diag, sp)
 
         if ev_type == 0:
             i_out = _advance(t_out, out_y, i_out, t, t_new, tb, y, y_new, Q, h, K, fsal, f0, rocking, side,
                              phase, kind, xp, samples, sp, diag)
             t = t_new
             h = h_next
-            if energy_stop and t >= t_exc and _energy_bound(y, rocking, side, phase + 0, summary[S_THETA_MAX], sp):
+            if energy_stop and t >= t_exc and energy_bound(y, rocking, side, phase + 0, summary[S_THETA_MAX], sp):
                 status = ST_ENERGY_BOUND
                 summary[S_UPLIFT_TIME] += t - t_rock_start
                 break
@@ -625,42 +511,23 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
             summary[S_UPLIFT_TIME] += t - t_rock_start
             break
         if ev_type == EV_OVERTURN:
-            y[0] = side * theta_ot
-            summary[S_DYNAMIC] = 1.0
-            summary[S_T_OVERTURN] = t
-            summary[S_IMPACTS_BEFORE_OVERTURN] = impacts
-            if theta_ot > summary[S_THETA_MAX]:
-                summary[S_THETA_MAX] = theta_ot
-                summary[S_T_THETA_MAX] = t
-            _store_event(ev_t, ev_kind, ev_y, diag, EV_OVERTURN, t, y)
+            enter_overturn(y, side, theta_ot, t, impacts, summary, ev_t, ev_kind, ev_y, diag)
             status = ST_OVERTURNED
             summary[S_UPLIFT_TIME] += t - t_rock_start
             break
         if ev_type == EV_PHASE_ROCKING or ev_type == EV_PHASE_ROLLING:
-            y[0] = side * beta
-            phase = 2 if ev_type == EV_PHASE_ROCKING else 1
-            _store_event(ev_t, ev_kind, ev_y, diag, ev_type, t, y)
+            phase = change_phase(y, side, beta, ev_type, t, ev_t, ev_kind, ev_y, diag)
             need_start = True
             continue
         # impact
-        y[0] = 0.0
-        _store_event(ev_t, ev_kind, ev_y, diag, EV_IMPACT, t, y)
-        impacts += 1
-        summary[S_IMPACTS] = impacts
-        y[1] = math.sqrt(c_r) * y[1]
-        if abs(y[1]) < v_rest:
-            y[1] = 0.0
-            rocking = False
-            phase = 1
-            diag[D_REST] += 1
-            _store_event(ev_t, ev_kind, ev_y, diag, EV_REST, t, y)
-            summary[S_UPLIFT_TIME] += t - t_rock_start
-            fresh_start = True
-        else:
+        rocking, impacts = impact(y, sqrt_cr, v_rest, impacts, t, t_rock_start, summary, ev_t, ev_kind, ev_y, diag)
+        phase = 1
+        if rocking:
             side = -side
-            phase = 1
+        else:
+            fresh_start = True
         need_start = True
-        if energy_stop and t >= t_exc and _energy_bound(y, rocking, side, phase + 0, summary[S_THETA_MAX], sp):
+        if energy_stop and t >= t_exc and energy_bound(y, rocking, side, phase + 0, summary[S_THETA_MAX], sp):
             status = ST_ENERGY_BOUND
             if rocking:
                 summary[S_UPLIFT_TIME] += t - t_rock_start
@@ -675,6 +542,6 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
             out_y[i_out, i] = y[i]
         i_out += 1
     summary[S_T_END] = t
-    summary[S_UB_MAX] = _top_displacement(min(summary[S_THETA_MAX], theta_ot), sp)
+    summary[S_UB_MAX] = top_displacement(min(summary[S_THETA_MAX], theta_ot), sp)
     diag[D_STATUS] = status
     return summary, diag, i_out

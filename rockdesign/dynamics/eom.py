@@ -21,7 +21,7 @@ import numpy as np
 from numba import njit
 
 from ..motions.excitation import ground_acceleration
-from .kinematics import unit_centre_kinematics
+from ..design.kinematics import unit_centre_kinematics
 
 # Layout of the system parameter array ``sp`` (float64) --------------------------------------
 P_R = 0            # R used by the EOM [m] (R' for flat extensions)

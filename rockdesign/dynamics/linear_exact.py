@@ -20,15 +20,15 @@ from numba import njit
 
 from ..motions.excitation import (EXC_NONE, excitation_end, ground_acceleration, ground_acceleration_right,
                                   next_breakpoint)
-from .engine import (D_EVENTS, D_REST, D_STATUS, D_STEPS, EV_EXCEEDED, EV_IMPACT, EV_OVERTURN,
-                     EV_PHASE_ROCKING, EV_PHASE_ROLLING, EV_REST, EV_UPLIFT, N_DIAG, N_SUMMARY, S_DYNAMIC,
-                     S_EXCEEDED, S_IMPACTS, S_IMPACTS_BEFORE_EXCEEDED, S_IMPACTS_BEFORE_OVERTURN, S_T_END,
-                     S_T_EXCEEDED, S_T_OVERTURN, S_T_THETA_MAX, S_T_UPLIFT, S_THETA_MAX, S_UB_MAX,
-                     S_UPLIFT_TIME, S_UPLIFTS, ST_ENERGY_BOUND, ST_OK, ST_OVERTURNED, ST_STOPPED_EXCEEDED,
-                     ST_TOO_MANY_EVENTS, _energy_bound, _store_event, _top_displacement)
+from .layout import (D_EVENTS, D_STATUS, D_STEPS, EV_EXCEEDED, EV_OVERTURN, EV_PHASE_ROCKING, EV_PHASE_ROLLING, N_DIAG,
+                     N_SUMMARY, ST_ENERGY_BOUND, ST_OK, ST_OVERTURNED, ST_STOPPED_EXCEEDED, ST_TOO_MANY_EVENTS, S_EXCEEDED, S_IMPACTS_BEFORE_EXCEEDED,
+                     S_IMPACTS_BEFORE_OVERTURN, S_THETA_MAX, S_T_END, S_T_EXCEEDED, S_T_OVERTURN,
+                     S_T_THETA_MAX, S_T_UPLIFT, S_UB_MAX, S_UPLIFTS, S_UPLIFT_TIME)
 from .eom import (P_ALPHA, P_BETA, P_CR, P_G, P_GAMMA, P_HYST, P_LAM, P_OVERTURN, P_R, P_RADIUS, P_REST_V,
-                  P_THETA_C, P_TWO_DOF, P_TWO_RHO, potential_energy, total_energy, uplift_condition)
+                  P_THETA_C, P_TWO_RHO, potential_energy, total_energy, uplift_condition)
 from .events import next_threshold_crossing
+from .transitions import (change_phase, crossing_event, energy_bound, enter_overturn, enter_uplift, impact,
+                          store_event, top_displacement)
 
 PULSE_SAMPLES_PER_PERIOD = 64000
 """Analytic pulses are sampled at T_p/64000 for the closed form, which is exact for that piecewise-linear
@@ -285,12 +285,7 @@ def integrate_linear_exact(sp, kind, xp, samples, y_init, side_init, t0, t_end, 
             phase = 1
             th = 0.0
             v = 0.0
-            ystate[0] = 0.0
-            ystate[1] = 0.0
-            _store_event(ev_t, ev_kind, ev_y, diag, EV_UPLIFT, t, ystate)
-            summary[S_UPLIFTS] += 1.0
-            if math.isnan(summary[S_T_UPLIFT]):
-                summary[S_T_UPLIFT] = t
+            enter_uplift(ystate, t, summary, ev_t, ev_kind, ev_y, diag)
             t_rock = t
             continue
         te = min(next_breakpoint(t, kind, xp, samples), t_end, t + chunk)
@@ -317,13 +312,9 @@ def integrate_linear_exact(sp, kind, xp, samples, y_init, side_init, t0, t_end, 
         for piece in range(n_ext + 1):
             pb = ext[piece] if piece < n_ext else T
             sb = side * _theta(pb, mode, om, A, B, p0, p1)
+            ev_type, ev_level = crossing_event(sa, sb, curved, phase, beta, theta_ot)
             if sb > sa:
-                if curved and phase == 1 and sa < beta <= sb:
-                    ev_type = EV_PHASE_ROCKING
-                    ev_level = beta
-                elif sb >= theta_ot:
-                    ev_type = EV_OVERTURN
-                    ev_level = theta_ot
+                # rising: the exceedance of θc (non-terminal unless stop_exceeded) may come first
                 if summary[S_EXCEEDED] == 0.0 and sa < theta_c <= sb:
                     tc = _level_root(pa, pb, theta_c, side, mode, om, A, B, p0, p1)
                     if ev_type == 0 or tc <= _level_root(pa, pb, ev_level, side, mode, om, A, B, p0, p1):
@@ -332,18 +323,11 @@ def integrate_linear_exact(sp, kind, xp, samples, y_init, side_init, t0, t_end, 
                         summary[S_IMPACTS_BEFORE_EXCEEDED] = impacts
                         ystate[0] = _theta(tc, mode, om, A, B, p0, p1)
                         ystate[1] = _thetadot(tc, mode, om, A, B, p0, p1)
-                        _store_event(ev_t, ev_kind, ev_y, diag, EV_EXCEEDED, t + tc, ystate)
+                        store_event(ev_t, ev_kind, ev_y, diag, EV_EXCEEDED, t + tc, ystate)
                         if stop_exceeded:
                             ev_type = -1
                             ev_tau = tc
                             break
-            elif sb < sa:
-                if curved and phase == 2 and sb <= beta < sa:
-                    ev_type = EV_PHASE_ROLLING
-                    ev_level = beta
-                elif sb <= 0.0:
-                    ev_type = EV_IMPACT
-                    ev_level = 0.0
             if ev_type > 0:
                 ev_tau = pa if sa == ev_level else _level_root(pa, pb, ev_level, side, mode, om, A, B, p0, p1)
                 break
@@ -383,41 +367,24 @@ def integrate_linear_exact(sp, kind, xp, samples, y_init, side_init, t0, t_end, 
         ystate[0] = th
         ystate[1] = v
         if ev_type == EV_OVERTURN:
-            th = side * theta_ot
-            ystate[0] = th
-            summary[S_DYNAMIC] = 1.0
-            summary[S_T_OVERTURN] = t
-            summary[S_IMPACTS_BEFORE_OVERTURN] = impacts
-            summary[S_THETA_MAX] = max(summary[S_THETA_MAX], theta_ot)
-            _store_event(ev_t, ev_kind, ev_y, diag, EV_OVERTURN, t, ystate)
+            enter_overturn(ystate, side, theta_ot, t, impacts, summary, ev_t, ev_kind, ev_y, diag)
+            th = ystate[0]
             status = ST_OVERTURNED
             break
         if ev_type == EV_PHASE_ROCKING or ev_type == EV_PHASE_ROLLING:
-            th = side * beta
-            ystate[0] = th
-            phase = 2 if ev_type == EV_PHASE_ROCKING else 1
-            _store_event(ev_t, ev_kind, ev_y, diag, ev_type, t, ystate)
+            phase = change_phase(ystate, side, beta, ev_type, t, ev_t, ev_kind, ev_y, diag)
+            th = ystate[0]
             continue
-        th = 0.0
-        ystate[0] = 0.0
-        _store_event(ev_t, ev_kind, ev_y, diag, EV_IMPACT, t, ystate)
-        impacts += 1
-        summary[S_IMPACTS] = impacts
-        v = sqrt_cr * v
-        if abs(v) < v_rest:
-            v = 0.0
-            rocking = False
-            diag[D_REST] += 1
-            ystate[1] = 0.0
-            _store_event(ev_t, ev_kind, ev_y, diag, EV_REST, t, ystate)
-            summary[S_UPLIFT_TIME] += t - t_rock
-        else:
+        rocking, impacts = impact(ystate, sqrt_cr, v_rest, impacts, t, t_rock, summary, ev_t, ev_kind, ev_y, diag)
+        th = ystate[0]
+        v = ystate[1]
+        if rocking:
             side = -side
             phase = 1
             if energy_stop and t >= t_exc:
                 ystate[0] = th
                 ystate[1] = v
-                if _energy_bound(ystate, True, side, phase, summary[S_THETA_MAX], sp):
+                if energy_bound(ystate, True, side, phase, summary[S_THETA_MAX], sp):
                     status = ST_ENERGY_BOUND
                     break
     if rocking:
@@ -427,7 +394,7 @@ def integrate_linear_exact(sp, kind, xp, samples, y_init, side_init, t0, t_end, 
         out_y[i_out, 1] = v
         i_out += 1
     summary[S_T_END] = t
-    summary[S_UB_MAX] = _top_displacement(min(summary[S_THETA_MAX], theta_ot), sp)
+    summary[S_UB_MAX] = top_displacement(min(summary[S_THETA_MAX], theta_ot), sp)
     diag[D_STATUS] = status
     return summary, diag, i_out
 

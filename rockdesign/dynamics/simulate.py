@@ -9,12 +9,13 @@ from ..design.geometry import displacement_capacity, rocking_geometry, slenderne
 from ..errors import ModelError
 from ..motions.motion import GroundMotion, no_motion
 from ..systems import RockingSystem
-from .engine import (D_EVENTS, D_EVENTS_STORED, D_NFEV, D_REFINE, D_REJECTED, D_REST, D_STATUS, D_STEPS,
-                     EVENT_NAMES, O_T_END, S_DRIFT_MAX, S_DYNAMIC, S_EXCEEDED,
-                     S_IMPACTS, S_IMPACTS_BEFORE_EXCEEDED, S_IMPACTS_BEFORE_OVERTURN, S_T_END,
-                     S_T_THETA_MAX, S_T_UPLIFT, S_THETA_MAX, S_UB_MAX, S_UPLIFT_TIME, STATUS_NAMES,
-                     integrate)
-from .model import REST_VELOCITY, ModelChoice, default_structure, resolve_structure, system_parameters
+from .engine import integrate
+from .layout import (D_EVENTS, D_EVENTS_STORED, D_NFEV, D_REFINE, D_REJECTED, D_REST, D_STATUS, D_STEPS, EVENT_NAMES,
+                     O_T_END, STATUS_NAMES, S_DRIFT_MAX, S_IMPACTS, S_THETA_MAX, S_T_END, S_T_THETA_MAX, S_T_UPLIFT,
+                     S_UB_MAX, S_UPLIFT_TIME)
+from .model import REST_VELOCITY, ModelChoice, resolve_structure, system_parameters
+from .eom import P_THETA_C, P_TWO_DOF
+from .overturning import classify
 from .response import Event, Response
 
 DEFAULT_RTOL = 1e-10
@@ -73,7 +74,7 @@ def simulate(system: RockingSystem, motion: GroundMotion | None = None, *, model
     y0 = np.array([theta0, thetadot0, 0.0, 0.0])
     if theta0 != 0.0 and structure == "podium-2dof":
         # a tilted podium released from rest: the superstructure starts undeformed on the tilted frame
-        from .kinematics import top_displacement
+        from ..design.kinematics import top_displacement
         geo = rocking_geometry(system.column)
         y0[2] = math.copysign(top_displacement(abs(theta0), 1.0, 2 if geo.radius > 0 and abs(theta0) > geo.beta
                                                else 1, geo.R, geo.alpha, geo.radius, geo.beta), theta0)
@@ -164,7 +165,7 @@ def _output_times(motion: GroundMotion, t_end: float, output_dt: float | None) -
 
 def _build_response(system, motion, sp, model, label, summary, diag, t_out, out_y, ev_t, ev_kind, ev_y,
                     overturn) -> Response:
-    from .engine import top_displacements
+    from .transitions import top_displacements
     n_ev = int(diag[D_EVENTS_STORED])
     events = [Event(EVENT_NAMES[int(ev_kind[i])], float(ev_t[i]), tuple(float(v) for v in ev_y[i]))
               for i in range(n_ev)]
@@ -175,20 +176,12 @@ def _build_response(system, motion, sp, model, label, summary, diag, t_out, out_
     t, y = t[order], y[order]
     theta = y[:, 0]
     u_b = top_displacements(np.ascontiguousarray(theta), sp)
-    u_t = y[:, 2] if sp[15] != 0.0 else u_b.copy()
+    u_t = y[:, 2] if sp[P_TWO_DOF] != 0.0 else u_b.copy()
     ag = motion.acceleration(t) if t.size else np.zeros(0)
     alpha = slenderness_angle(system.column.half_width, system.column.half_height)
-    theta_c = float(sp[12])
-    dynamic = summary[S_DYNAMIC] != 0.0
-    exceeded = summary[S_THETA_MAX] >= theta_c or dynamic
-    mode = "dynamic" if dynamic else ("exceeded" if exceeded else "none")
-    overturned = mode != "none" if overturn == "static" else dynamic
-    if dynamic:
-        before = int(summary[S_IMPACTS_BEFORE_OVERTURN])
-    elif exceeded:
-        before = int(summary[S_IMPACTS_BEFORE_EXCEEDED]) if summary[S_IMPACTS_BEFORE_EXCEEDED] >= 0 else None
-    else:
-        before = None
+    theta_c = float(sp[P_THETA_C])
+    outcome = classify(summary, theta_c, overturn)
+    mode, overturned, before = outcome.mode, outcome.overturned, outcome.impacts_before
     t_up = float(summary[S_T_UPLIFT])
     diagnostics = {"steps": int(diag[D_STEPS]), "rejected_steps": int(diag[D_REJECTED]),
                    "function_evaluations": int(diag[D_NFEV]), "events": int(diag[D_EVENTS]),

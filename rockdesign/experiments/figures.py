@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..report.plots import STYLE, plt
+from ..plots import STYLE, plt
 
 
 def calibration_figure(history, cal, simulated=None, title: str = ""):

@@ -12,7 +12,7 @@ import jinja2
 
 from .. import __version__
 from ..paths import templates_dir
-from ..report.plots import plt
+from ..plots import plt
 from ..report.render import environment, html_to_pdf
 from .figures import validation_figure
 

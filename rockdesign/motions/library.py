@@ -293,31 +293,3 @@ def record_summary(record_id: str, motion: GroundMotion | None = None, row: dict
     return {"id": record_id, "event": row["event"], "year": row["year"], "station": row["station"],
             "rsn": row["rsn"], "component": _short_component(row["component_name"]), "dt": row["dt"],
             "npts": row["npts"], "pga": row["pga_g"] * gravity}
-
-
-def list_records(suite: str | None = None, *, gravity: float = 9.81, records_dir=None) -> list[dict]:
-    """Records as ``records list --json`` entries: ``id, event, year, station, rsn, component, dt,
-    npts, pga`` (pga in m/s² with g = ``gravity``).
-
-    Without ``suite``: all built-in records (from the metadata table, no samples loaded). With a
-    suite name or path: its records in manifest order; records that cannot be found carry
-    ``dt``/``npts``/``pga`` = None and ``missing`` = the reason.
-    """
-    if suite is None:
-        return [record_summary(rid, row=row, gravity=gravity) for rid, row in _catalogue().items()]
-    from .suites import load_suite
-    loaded = load_suite(suite, gravity=gravity, records_dir=records_dir)
-    out = []
-    for entry in loaded.entries:
-        if entry.motion is not None:
-            item = record_summary(entry.id, motion=entry.motion)
-        else:
-            meta = entry.meta
-            item = {"id": entry.id, "event": meta.get("event"), "year": meta.get("year"),
-                    "station": meta.get("station"), "rsn": meta.get("rsn"),
-                    "component": meta.get("component"), "dt": None, "npts": None, "pga": None,
-                    "missing": entry.reason}
-        if entry.meta.get("label"):
-            item["label"] = entry.meta["label"]
-        out.append(item)
-    return out

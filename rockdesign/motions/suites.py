@@ -32,7 +32,7 @@ import numpy as np
 
 from ..errors import MotionError, RecordError
 from ..paths import ground_motions_dir
-from .library import builtin_for_rsn, find_record_file, load_record
+from .library import builtin_for_rsn, builtin_ids, builtin_info, find_record_file, load_record, record_summary
 from .motion import GroundMotion, record_motion
 from .records import acceleration_factor, read_record_file
 from .scaling import ScaleRule, parse_scale_rule
@@ -316,3 +316,30 @@ def save_suite(path, motions: list[GroundMotion], *, name: str | None = None, de
     path.write_text("\n".join(lines))
     _npz.cache_clear()
     return path
+
+
+def list_records(suite: str | None = None, *, gravity: float = 9.81, records_dir=None) -> list[dict]:
+    """Records as ``records list --json`` entries: ``id, event, year, station, rsn, component, dt,
+    npts, pga`` (pga in m/s² with g = ``gravity``).
+
+    Without ``suite``: all built-in records (from the metadata table, no samples loaded). With a
+    suite name or path: its records in manifest order; records that cannot be found carry
+    ``dt``/``npts``/``pga`` = None and ``missing`` = the reason.
+    """
+    if suite is None:
+        return [record_summary(rid, row=builtin_info(rid), gravity=gravity) for rid in builtin_ids()]
+    loaded = load_suite(suite, gravity=gravity, records_dir=records_dir)
+    out = []
+    for entry in loaded.entries:
+        if entry.motion is not None:
+            item = record_summary(entry.id, motion=entry.motion)
+        else:
+            meta = entry.meta
+            item = {"id": entry.id, "event": meta.get("event"), "year": meta.get("year"),
+                    "station": meta.get("station"), "rsn": meta.get("rsn"),
+                    "component": meta.get("component"), "dt": None, "npts": None, "pga": None,
+                    "missing": entry.reason}
+        if entry.meta.get("label"):
+            item["label"] = entry.meta["label"]
+        out.append(item)
+    return out

@@ -23,6 +23,7 @@ from ..errors import MotionError
 from .motion import GroundMotion, record_motion
 from .spectra import DEFAULT_BAND, DEFAULT_DAMPING, motion_spectrum, sd_max
 from .suites import save_suite
+from ..jsonable import json_ready
 
 SCALE_CHOICES = ("sdmax", "spectrum", "none")
 
@@ -35,16 +36,6 @@ def _sgsim():
                           expected="sgsim installed (pip install 'rockdesign[synth]')",
                           found="sgsim not importable") from None
     return sgsim
-
-
-def _to_builtin(value):
-    if isinstance(value, dict):
-        return {k: _to_builtin(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_to_builtin(v) for v in value]
-    if isinstance(value, np.generic):
-        return value.item()
-    return value
 
 
 def fit_model(seed: GroundMotion, *, modulating: str = "dual"):
@@ -189,6 +180,6 @@ def synthesize(seed: GroundMotion, n: int, out_dir, *, seed_value: int = 1, scal
                       scale={"method": "factor", "value": 1.0},
                       meta={"seed_record": seed_id, "seed_value": int(seed_value), "generator": "sgsim",
                             "ensemble_factor": match.factor, "ensemble_scaling": scale_to})
-    (out / "model.json").write_text(json.dumps(_to_builtin(model.params), indent=2))
-    (out / "match.json").write_text(json.dumps(_to_builtin(asdict(match)), indent=2))
+    (out / "model.json").write_text(json.dumps(json_ready(model.params), indent=2))
+    (out / "match.json").write_text(json.dumps(json_ready(asdict(match)), indent=2))
     return path, match

@@ -6,7 +6,6 @@ construction.  Text (formulas, assumptions, record metadata) comes from the resu
 """
 from __future__ import annotations
 
-import math
 import os
 import platform
 import re
@@ -15,8 +14,6 @@ from importlib import metadata
 from pathlib import Path
 
 from .. import __version__
-from ..design.geometry import rocking_geometry, slenderness_angle
-from ..design.quantities import effective_gamma
 
 SOFTWARE = ("rockdesign", "numpy", "scipy", "numba", "matplotlib", "weasyprint", "jinja2", "pint", "pypdf")
 """Packages whose versions the report lists (besides Python)."""
@@ -36,179 +33,13 @@ def pretty_exponents(text: str) -> str:
     return _E_NOTATION.sub(repl, text or "")
 
 
-def _s(x: float) -> str:
-    """Inputs inside substituted formulas (5 significant digits, as rockdesign.design.quantities)."""
-    if math.isinf(x):
-        return "∞"
-    return f"{x:.5g}"
+def _lambda_source(project) -> str:
+    """Where λ of the report's quantity table came from: the project file's own value, or the section."""
+    table = (project.raw or {}).get(project.system.kind, {})
+    if "mass_distribution" in table:
+        return "project input (mass_distribution)"
+    return "composite section with steel end plates (Table 3.1, Fig 3.6)"
 
-
-# ---------------------------------------------------------------------------------------------------
-# formulas and substitutions the design module leaves empty (each also recomputes the value, which the
-# tests compare with the quantity: the substituted line must evaluate to the printed result)
-# ---------------------------------------------------------------------------------------------------
-
-def supplement_formula(name: str, quantity, system, raw: dict | None = None) -> tuple[str, str, float | None]:
-    """(formula, substituted, value recomputed from the substitution or None) for ``quantity``.
-
-    Returns the quantity's own formula/substitution where it has them.
-    """
-    formula, substituted = quantity.formula, quantity.substituted
-    c = system.column
-    H, B = c.half_height, c.half_width
-    alpha = slenderness_angle(B, H)
-    geo = rocking_geometry(c)
-    lam = c.mass_distribution
-    g = system.g
-    value = None
-    if name == "lambda" and not formula:
-        formula = "λ = I_C/(m_C R²)"
-        table = (raw or {}).get(system.kind, {})
-        if "mass_distribution" in table:
-            substituted = "project input (mass_distribution)"
-        else:
-            substituted = "composite section with steel end plates (Table 3.1, Fig 3.6)"
-        value = lam
-    elif name == "theta_c" and not substituted:
-        if c.extension == "curved":
-            rho = c.curvature
-            from ..design.geometry import critical_curvature
-            rho_c = critical_curvature(c.tan_alpha, c.tan_alpha_ext)
-            if rho <= rho_c:
-                substituted = f"atan({_s(c.tan_alpha)}/(1 − 2·{_s(rho)}))  (ρ ≤ ρc)"
-                value = math.atan2(c.tan_alpha, 1.0 - 2.0 * rho)
-            else:
-                substituted = (f"atan({_s(c.tan_alpha_ext)}/(1 − 2·{_s(rho)}·(1 − cos {_s(geo.beta)})))"
-                               f"  (ρ > ρc)")
-                value = math.atan2(c.tan_alpha_ext, 1.0 - 2.0 * rho * (1.0 - math.cos(geo.beta)))
-        elif c.extension == "flat":
-            substituted = f"atan({_s(c.half_width_ext)} m / {_s(H)} m)"
-            value = math.atan2(c.half_width_ext, H)
-        else:
-            substituted = f"atan({_s(B)} m / {_s(H)} m)"
-            value = alpha
-    elif name == "k_phase2" and not substituted:
-        substituted = "−1 (independent of the geometry)"
-        value = -1.0
-    elif name == "c_r" and not formula:
-        formula, substituted, value = _restitution_formula(quantity, system, alpha, lam)
-    elif name == "uplift_force" and not substituted:
-        gh = effective_gamma(system)
-        tan_up = c.tan_alpha_ext if c.extension == "flat" else c.tan_alpha
-        substituted = (f"(1 + 2·{_s(gh)})·{system.n_columns}·{_s(c.mass)} kg·{_s(g)} m/s²·{_s(tan_up)}")
-        value = (1 + 2 * gh) * system.n_columns * c.mass * g * tan_up
-    elif name == "p_hat" and not formula:
-        formula, substituted, value = _p_hat_formula(quantity, system, alpha, geo)
-    elif name == "R_hat" and not substituted:
-        gh = effective_gamma(system)
-        ratio = 1.0
-        if quantity.equation in ("Eq 3.71", "Eq 3.90"):
-            ratio = slenderness_angle(c.half_width_ext, H) / alpha
-        lam_r = geo.lam
-        substituted = (f"(1+{_s(lam_r)}+4·{_s(gh)})/((1+2·{_s(gh)})(1+{_s(lam_r)}))·{_s(ratio)}·{_s(geo.R)} m")
-        value = (1 + lam_r + 4 * gh) / ((1 + 2 * gh) * (1 + lam_r)) * ratio * geo.R
-    elif name == "uplift_superstructure_factor" and not substituted:
-        gm, eta = system.gamma, system.eta
-        substituted = f"2·{_s(gm)}·{_s(eta)}/(2·{_s(gm)} + 1)"
-        value = 2 * gm * eta / (2 * gm + 1)
-    elif name == "omega_s" and not formula:
-        s = system.superstructure
-        formula = "ω_s = 2π/T_s"
-        substituted = f"2π/{_s(2 * math.pi / s.omega_s)} s"
-        value = s.omega_s
-    elif name == "S_r" and not substituted:
-        gm, eta = system.gamma, system.eta
-        substituted = (f"√((1+{_s(lam)}+4·{_s(gm)}·(1+{_s(eta)}))/(1+{_s(lam)}+4·{_s(gm)}·(1+{_s(eta)}·"
-                       f"sin²{_s(alpha)})))")
-        value = math.sqrt((1 + lam + 4 * gm * (1 + eta)) / (1 + lam + 4 * gm * (1 + eta * math.sin(alpha) ** 2)))
-    elif name == "u_capacity" and not substituted:
-        if c.extension == "none":
-            substituted = f"2B = 2·{_s(B)} m"
-            value = 2 * B
-        elif c.extension == "flat":
-            substituted = f"2B' = 2·{_s(c.half_width_ext)} m"
-            value = 2 * c.half_width_ext
-        else:
-            r, beta, R, th = geo.radius, geo.beta, geo.R, geo.theta_c
-            if th > beta:
-                substituted = (f"2[R sin α − R sin(α − θc) + r(β − sin(β − θc) − sin θc)] = "
-                               f"2[{_s(R)}·sin {_s(alpha)} − {_s(R)}·sin({_s(alpha)} − {_s(th)}) + {_s(r)}·"
-                               f"({_s(beta)} − sin({_s(beta)} − {_s(th)}) − sin {_s(th)})] m  (phase II, Eq 3.51)")
-                value = 2 * (R * math.sin(alpha) - R * math.sin(alpha - th)
-                             + r * (beta - math.sin(beta - th) - math.sin(th)))
-            else:
-                substituted = (f"2[R sin α − R sin(α − θc) + r(θc − sin θc)] = 2[{_s(R)}·sin {_s(alpha)} − "
-                               f"{_s(R)}·sin({_s(alpha)} − {_s(th)}) + {_s(r)}·({_s(th)} − sin {_s(th)})] m"
-                               f"  (phase I, Eq 3.46)")
-                value = 2 * (R * math.sin(alpha) - R * math.sin(alpha - th) + r * (th - math.sin(th)))
-    return formula, substituted, value
-
-
-def _restitution_formula(quantity, system, alpha, lam):
-    c = system.column
-    eq = quantity.equation
-    if system.restitution is not None:
-        return "c_r measured", f"{_s(system.restitution)} (project file)", system.restitution
-    if c.extension == "flat":
-        ae = slenderness_angle(c.half_width_ext, c.half_height)
-        gh = effective_gamma(system)
-        lam_e = lam * math.cos(ae) ** 2 / math.cos(alpha) ** 2
-        printed = "printed" in eq
-        a_used = alpha if printed else ae
-        formula = ("c_r = (1 − 2(1+4γ̂) sin²α/(1+λ'+4γ̂))², λ' = λ cos²α'/cos²α" if printed else
-                   "c_r = (1 − 2(1+4γ̂) sin²α'/(1+λ'+4γ̂))², λ' = λ cos²α'/cos²α")
-        sub = f"(1 − 2(1+4·{_s(gh)})·sin²{_s(a_used)}/(1+{_s(lam_e)}+4·{_s(gh)}))²"
-        return formula, sub, (1 - 2 * (1 + 4 * gh) * math.sin(a_used) ** 2 / (1 + lam_e + 4 * gh)) ** 2
-    if eq == "Eq 4.20":
-        gm, eta = system.gamma, system.eta
-        formula = "c_r = (1 − 2 sin²α (1+4γ+4γη)/(1+λ+4γ+4γη))²"
-        sub = (f"(1 − 2·sin²{_s(alpha)}·(1+4·{_s(gm)}+4·{_s(gm)}·{_s(eta)})/"
-               f"(1+{_s(lam)}+4·{_s(gm)}+4·{_s(gm)}·{_s(eta)}))²")
-        g4 = 4 * gm * (1 + eta)
-        return formula, sub, (1 - 2 * math.sin(alpha) ** 2 * (1 + g4) / (1 + lam + g4)) ** 2
-    if eq == "Eq 3.80":
-        gm = system.gamma
-        formula = "c_r = (1 − 2(1+4γ)/(1+λ+4γ) sin²α)²"
-        sub = f"(1 − 2(1+4·{_s(gm)})/(1+{_s(lam)}+4·{_s(gm)})·sin²{_s(alpha)})²"
-        return formula, sub, (1 - 2 * (1 + 4 * gm) / (1 + lam + 4 * gm) * math.sin(alpha) ** 2) ** 2
-    formula = "c_r = (1 − 2 sin²α/(1+λ))²"
-    sub = f"(1 − 2·sin²{_s(alpha)}/(1+{_s(lam)}))²"
-    return formula, sub, (1 - 2 * math.sin(alpha) ** 2 / (1 + lam)) ** 2
-
-
-def _p_hat_formula(quantity, system, alpha, geo):
-    c = system.column
-    eq = quantity.equation
-    g = system.g
-    R, lam = geo.R, geo.lam
-    if eq == "Eq 4.32":
-        gm, eta = system.gamma, system.eta
-        ratio = 1.0
-        from ..design.quantities import at_critical_curvature
-        if at_critical_curvature(system):
-            ratio = alpha / slenderness_angle(c.half_width_ext, c.half_height)
-        formula = "p̂ = √(g/R · (1+2γ+2γη)/(1+λ+4γ) · α/α')"
-        sub = (f"√({_s(g)}/{_s(R)} · (1+2·{_s(gm)}+2·{_s(gm)}·{_s(eta)})/(1+{_s(lam)}+4·{_s(gm)}) · "
-               f"{_s(ratio)})")
-        return formula, sub, math.sqrt(g / R * (1 + 2 * gm + 2 * gm * eta) / (1 + lam + 4 * gm) * ratio)
-    gh = effective_gamma(system)
-    if eq in ("Eq 3.94", "Eq 3.74"):
-        ae = slenderness_angle(c.half_width_ext, c.half_height)
-        formula = "p̂ = √((1+2γ̂)/(1+λ+4γ̂) · g/R · α/α')"
-        sub = f"√((1+2·{_s(gh)})/(1+{_s(lam)}+4·{_s(gh)}) · {_s(g)}/{_s(R)} · {_s(alpha)}/{_s(ae)})"
-        return formula, sub, math.sqrt((1 + 2 * gh) / (1 + lam + 4 * gh) * g / R * alpha / ae)
-    if c.extension == "flat":
-        formula = "p̂ = √((1+2γ̂)/(1+λ'+4γ̂) · g/R'), R' = R cos α/cos α', λ' = λ cos²α'/cos²α"
-    else:
-        formula = "p̂ = √((1+2γ̂)/(1+λ+4γ̂) · g/R)"
-    formula += ", γ̂ = γ(1+η)" if system.superstructure is not None else ""
-    sub = f"√((1+2·{_s(gh)})/(1+{_s(lam)}+4·{_s(gh)}) · {_s(g)}/{_s(R)})"
-    return formula, sub, math.sqrt((1 + 2 * gh) / (1 + lam + 4 * gh) * g / R)
-
-
-# ---------------------------------------------------------------------------------------------------
-# the report context
-# ---------------------------------------------------------------------------------------------------
 
 def software_versions() -> list[tuple[str, str]]:
     """(name, version) of Python and the packages of :data:`SOFTWARE` that are installed."""
@@ -288,8 +119,8 @@ def build_context(result, *, figures: dict | None = None, verification: dict | N
     q_rows = []
     for name, qj in data["quantities"].items():
         q = result.quantities[name]
-        formula, substituted, _ = supplement_formula(name, q, system, project.raw)
-        q_rows.append({"name": name, "symbol": q.symbol, "description": q.description, "formula": formula,
+        substituted = q.substituted if name != "lambda" else _lambda_source(project)
+        q_rows.append({"name": name, "symbol": q.symbol, "description": q.description, "formula": q.formula,
                        "substituted": pretty_exponents(substituted), "value": qj["value"], "unit": qj["unit"],
                        "equation": qj["equation"], "note": q.note})
     records = []

@@ -136,7 +136,7 @@ def write_cylinder_folder(result, out_dir, *, pdf: bool = True, html: bool = Tru
     from ..checks.cylinder_check import write_cylinder_results
     from ..cylinder.figures import wobbling_figure
     from ..outdir import OutputFolder
-    from .plots import save
+    from ..plots import save
     folder = out_dir if isinstance(out_dir, OutputFolder) else cylinder_output_folder(out_dir)
     with folder.staging() as tmp:
         write_cylinder_results(result.as_json(), tmp)

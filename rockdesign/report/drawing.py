@@ -17,7 +17,7 @@ from matplotlib.patches import Polygon, Rectangle  # noqa: E402
 
 from ..design.geometry import rocking_geometry  # noqa: E402
 from .formatting import fmt  # noqa: E402
-from .plots import STYLE  # noqa: E402
+from ..plots import STYLE  # noqa: E402
 
 CONCRETE = "#d9d9d9"
 STEEL = "#8fa8c8"

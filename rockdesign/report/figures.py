@@ -18,13 +18,11 @@ import numpy as np  # noqa: E402
 from ..checks.polyakov import CLASS_MEANING, CLASSES  # noqa: E402
 from ..design.geometry import rocking_geometry  # noqa: E402
 from ..design.pushover import pushover_curve  # noqa: E402
-from ..motions.spectra import motion_spectrum, period_grid  # noqa: E402
 from .formatting import fmt, number  # noqa: E402
-from .plots import STYLE, time_history_figure  # noqa: E402
+from ..plots import STYLE, time_history_figure  # noqa: E402
 
 SVG_SALT = "rockdesign-report"
 CLASS_COLOURS = {"a1": "#2c7fb8", "a2": "#7fcdbb", "b": "#d7301f", "c": "#fdae61", "d": "#7f2704"}
-SPECTRUM_PERIODS = 160
 """Periods of the plotted elastic spectra (log grid over the SD_max band)."""
 RASTER_POINTS = 400
 """Lines with more points than this are rasterized inside the SVG (at RASTER_DPI)."""
@@ -88,18 +86,10 @@ def pushover_figure(system):
         return fig
 
 
-def spectra_data(result, n_periods: int = SPECTRUM_PERIODS):
-    """(periods [s], SD [m] per record) of the scaled records at the rule's damping and band."""
-    rule = result.rule
-    periods = period_grid(rule.band, n_periods)
-    sds = [motion_spectrum(o.motion, periods, rule.damping)[0] for o in result.records]
-    return periods, np.array(sds)
-
-
 def spectra_figure(result):
     """Elastic SD spectra of the scaled records (ζ, band stated) with the capacity line u_B(θc)."""
     rule = result.rule
-    periods, sds = spectra_data(result)
+    periods, sds = result.elastic_spectra()
     with plt.rc_context(STYLE):
         fig, ax = plt.subplots(figsize=(6.6, 3.8))
         for k, sd in enumerate(sds):

@@ -9,7 +9,7 @@ from scipy.stats import norm
 from .. import mplfig as plt  # pyplot-free Figures: importing never switches the backend
 
 from .formatting import fmt  # noqa: E402
-from .plots import STYLE  # noqa: E402
+from ..plots import STYLE  # noqa: E402
 
 UNIT_LABELS = {"m/s^2": "m/s²", "m": "m"}
 

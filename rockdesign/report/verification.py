@@ -4,7 +4,7 @@ The linearized SDOF equations have an exact event-driven solution (SPEC §3.8,
 :mod:`rockdesign.dynamics.linear_exact`).  The report runs the engine's integrator (the one that also
 integrates the exact equations) on such a case at the tolerance of the check and states its error
 against the closed form: the largest |Δθ| over the history and the largest difference of the impact
-times, measured by ``rockdesign.bench.accuracy.engine_accuracy`` (one implementation for the
+times, measured by ``rockdesign.dynamics.accuracy.engine_accuracy`` (one implementation for the
 benchmark and the report).
 """
 from __future__ import annotations
@@ -33,7 +33,7 @@ def normalise(statement: dict) -> dict:
         return dict(statement)
     out = {"case": statement.get("case", CASE), "rtol": statement.get("rtol"), "atol": statement.get("atol"),
            "reference": statement.get("reference", "closed-form solution of the linearized equations (docs/model.md §4)"),
-           "source": statement.get("source", "rockdesign.bench.accuracy.engine_accuracy")}
+           "source": statement.get("source", "rockdesign.dynamics.accuracy.engine_accuracy")}
     for theirs, ours in BENCH_KEYS.items():
         if theirs in statement:
             out[ours] = statement[theirs]
@@ -48,8 +48,8 @@ def normalise(statement: dict) -> dict:
 @functools.lru_cache(maxsize=8)
 def engine_accuracy_statement(rtol: float, atol: float = 1e-12) -> dict:
     """The verification statement at the check's tolerance, in the report's keys."""
-    from ..bench.accuracy import engine_accuracy
+    from ..dynamics.accuracy import engine_accuracy
     out = dict(engine_accuracy(rtol, atol))
     out.setdefault("rtol", float(rtol))
-    out.setdefault("source", "rockdesign.bench.accuracy.engine_accuracy")
+    out.setdefault("source", "rockdesign.dynamics.accuracy.engine_accuracy")
     return normalise(out)

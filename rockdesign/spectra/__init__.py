@@ -2,17 +2,15 @@
 
 * :mod:`.axes` — ``AXIS:lo:hi:n`` axes and their normalisations (ω_p/p, ω_p/p̂, T_p; a_p/(g tan α), a_p/g).
 * :mod:`.kernel` — the numba job kernel (one analysis per grid point, prange), importable on workers.
-* :mod:`.executor` — a generic chunked executor: local (in-process or process pool) or
-  dask.distributed; :mod:`.store` — fingerprints and the resumable chunk files.
+* :mod:`rockdesign.execution` — the chunked executor the spectra run on (shared with the checks).
 * :mod:`.spectrum` — :func:`compute_spectrum` → :class:`RockingSpectrum`.
-* :mod:`.batches` — :func:`~.batches.run_motions`: record suites / scale factors (``run_batch``) on
-  the same executor.
+* :func:`rockdesign.dynamics.parallel.run_motions` — record suites / scale factors on the same executor.
 * :mod:`.lines`, :mod:`.polyakov` — overturning map by impacts, limit-state lines (Table 3.5),
   minimum overturning line, relative spectra (Eq 3.64), equivalent size (Eq 3.65), Polyakov's line.
 * :mod:`.output`, :mod:`.figures` — spectrum.npz, summary.json, PNG/SVG figures (CONTRACT §4).
 """
 from .axes import DEFAULT_X, DEFAULT_Y, Axis, SpectrumScales, parse_axis, spectrum_scales
-from .executor import ChunkRun, ChunkStore, DaskExecutor, LocalExecutor, fingerprint, make_executor, run_chunks
+from ..execution.executor import ChunkRun, ChunkStore, DaskExecutor, LocalExecutor, fingerprint, make_executor, run_chunks
 from .spectrum import RockingSpectrum, SpectrumRequest, compute_spectrum, request_from_project
 
 __all__ = ["Axis", "DEFAULT_X", "DEFAULT_Y", "SpectrumScales", "parse_axis", "spectrum_scales", "ChunkRun",

@@ -21,9 +21,12 @@ import time
 import numpy as np
 from numba import njit, prange
 
-from ..dynamics.engine import (D_STATUS, D_STEPS, O_T_END, S_DYNAMIC, S_IMPACTS, S_IMPACTS_BEFORE_EXCEEDED,
-                               S_IMPACTS_BEFORE_OVERTURN, S_T_END, S_T_UPLIFT, S_THETA_MAX, integrate)
+from ..dynamics.engine import integrate
+from ..dynamics.layout import (D_STATUS, D_STEPS, O_T_END, S_DYNAMIC, S_IMPACTS, S_IMPACTS_BEFORE_EXCEEDED,
+                               S_IMPACTS_BEFORE_OVERTURN, S_THETA_MAX, S_T_END, S_T_UPLIFT)
 from ..dynamics.eom import P_THETA_C
+from ..dynamics.overturning import capacity_exceeded
+from ..kernel_cache import sources_digest
 from ..motions.excitation import (EXC_CYCLOIDAL_A, EXC_CYCLOIDAL_B, EXC_CYCLOIDAL_C, EXC_RICKER_ANTI,
                                   EXC_RICKER_SYM, EXC_SINE, excitation_end)
 from ..motions.motion import PULSE_KINDS, cycloidal_c_phase
@@ -95,7 +98,7 @@ def run_pulse(sp, kind, shape, T_p, a_p, opts, t_free, out):
     summ, diag, _ = integrate(sp, kind, xp, samples, y0, 1.0, 0.0, o, t_out, out_y, ev_t, ev_k, ev_y)
     dynamic = summ[S_DYNAMIC] != 0.0
     out[OUT_THETA_MAX] = summ[S_THETA_MAX]
-    out[OUT_EXCEEDED] = 1.0 if (summ[S_THETA_MAX] >= sp[P_THETA_C] or dynamic) else 0.0
+    out[OUT_EXCEEDED] = 1.0 if capacity_exceeded(summ[S_THETA_MAX], sp[P_THETA_C], dynamic) else 0.0
     out[OUT_DYNAMIC] = 1.0 if dynamic else 0.0
     out[OUT_IMPACTS_BEFORE_DYNAMIC] = summ[S_IMPACTS_BEFORE_OVERTURN]
     out[OUT_IMPACTS_BEFORE_EXCEEDED] = summ[S_IMPACTS_BEFORE_EXCEEDED]
@@ -187,51 +190,10 @@ def spectrum_rows(sp: np.ndarray, kind: int, shape: np.ndarray, periods: np.ndar
     return {"out": out}
 
 
-_DEPENDENCIES = ("dynamics/engine.py", "dynamics/eom.py", "dynamics/rk.py", "dynamics/events.py",
-                 "dynamics/kinematics.py", "motions/excitation.py", "spectra/kernel.py")
-"""Sources compiled into :func:`spectrum_kernel` (numba inlines callees into the caller's machine code)."""
+SOURCE_DIGEST = sources_digest()
+"""Identifies the engine that computes spectra (every kernel source, :mod:`rockdesign.kernel_cache`): part
+of every chunk fingerprint, so chunks computed by another version of the engine are never resumed."""
 
-
-def _source_digest() -> str:
-    """SHA-256 of the sources compiled into the kernel ('' if they cannot be read)."""
-    import hashlib
-    from pathlib import Path
-    root = Path(__file__).resolve().parent.parent
-    h = hashlib.sha256()
-    for rel in _DEPENDENCIES:
-        try:
-            h.update((root / rel).read_bytes())
-        except OSError:
-            return ""
-    return h.hexdigest()
-
-
-SOURCE_DIGEST = _source_digest()
-"""Identifies the engine that computes spectra: part of every chunk fingerprint, so chunks computed by
-another version of the engine are never resumed."""
-
-
-def _refresh_stale_cache() -> None:
-    """Drop numba's cached kernels when any source they are compiled from has changed.
-
-    numba's cache checks only the timestamp of the file that defines a function, not of the
-    functions it calls; a kernel cached before an edit of the engine would silently keep the old
-    engine. :data:`SOURCE_DIGEST`, stored beside the cache, detects that.
-    """
-    from pathlib import Path
-    if not SOURCE_DIGEST:
-        return
-    try:
-        cache = spectrum_kernel._cache
-        stamp = Path(cache._cache_path) / "kernel.spectrum_kernel.deps"
-        if stamp.exists() and stamp.read_text() == SOURCE_DIGEST:
-            return
-        for f in (spectrum_kernel, pulse_parameters, run_pulse, points_kernel):
-            f._cache.flush()
-        stamp.parent.mkdir(parents=True, exist_ok=True)
-        stamp.write_text(SOURCE_DIGEST)
-    except (AttributeError, OSError):  # no cache (read-only install, other numba internals): compile afresh
-        return
 
 
 def pulse_points(sp: np.ndarray, kind: int, shape: np.ndarray, periods: np.ndarray, amplitudes: np.ndarray,
@@ -249,7 +211,6 @@ def pulse_points(sp: np.ndarray, kind: int, shape: np.ndarray, periods: np.ndarr
         return points_kernel(*args)
 
 
-_refresh_stale_cache()
 _WARM = False
 
 
@@ -276,6 +237,3 @@ def warm_up(points: bool = False) -> float:
     return time.perf_counter() - t0
 
 
-def warm_up_points() -> float:
-    """:func:`warm_up` including the scattered-points kernel (a module-level function for workers)."""
-    return warm_up(points=True)

@@ -16,18 +16,18 @@ equivalent size); :func:`write_outputs` writes
 from __future__ import annotations
 
 import json
-import math
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from ..dynamics.engine import STATUS_NAMES
+from ..dynamics.layout import STATUS_NAMES
 from .axes import y_unit
 from .lines import (LIMIT_STATES, capped_ratio, contour_paths, default_ordinates, display_cap, equivalent_size,
                     join_paths, limit_state_lines, minimum_overturning_line, overturning_classes, relative_spectrum)
 from .spectrum import RockingSpectrum
+from ..jsonable import json_ready
 
 PULSE_DEFINITIONS = {
     "ricker-anti": "antisymmetric Ricker wavelet (Eq A.2), centred at t_m",
@@ -125,24 +125,6 @@ def analyse(spectrum: RockingSpectrum, reference: RockingSpectrum | None = None,
 
 
 # ----------------------------------------------------------------------------------------- JSON
-def _clean(v):
-    """JSON-safe: NaN/inf → None, numpy scalars → Python."""
-    if isinstance(v, dict):
-        return {k: _clean(x) for k, x in v.items()}
-    if isinstance(v, (list, tuple)):
-        return [_clean(x) for x in v]
-    if isinstance(v, np.ndarray):
-        return _clean(v.tolist())
-    if isinstance(v, (np.floating, float)):
-        f = float(v)
-        return f if math.isfinite(f) else None
-    if isinstance(v, np.integer):
-        return int(v)
-    if isinstance(v, np.bool_):
-        return bool(v)
-    return v
-
-
 def system_json(s: RockingSpectrum) -> dict:
     """The analysed system: kind, model, normalisations and key design quantities (SI)."""
     from ..design.quantities import coefficient_of_restitution
@@ -230,7 +212,7 @@ def summary_json(prod: SpectrumProducts, *, project: dict | None = None, referen
             "reference_limit_states": {name: prod.reference_limit_states[name] for name, _ in LIMIT_STATES},
         }
         out["equivalent_size"] = dict(prod.equivalent, equation="Eq 3.65: R̂ = (x_reference/x_project)² R_reference")
-    return _clean(out)
+    return json_ready(out)
 
 
 # ----------------------------------------------------------------------------------------- files

@@ -3,7 +3,7 @@
 :func:`compute_spectrum` runs one nonlinear time-history analysis per grid point (row = pulse
 amplitude a_p, column = pulse period T_p) with the engine of :mod:`rockdesign.dynamics` through the
 parallel kernel of :mod:`rockdesign.spectra.kernel`, chunked by rows over an executor of
-:mod:`rockdesign.spectra.executor` (this machine's cores, or dask.distributed), resumable from the
+:mod:`rockdesign.execution.executor` (this machine's cores, or dask.distributed), resumable from the
 chunk files of an interrupted run.
 
 Each analysis ends at the excitation end + ``t_free`` (10 s: Zhang–Makris near-threshold cases
@@ -23,11 +23,12 @@ import numpy as np
 
 from ..dynamics.batch import batch_options
 from ..dynamics.model import REST_VELOCITY, ModelChoice, resolve_structure, system_parameters
+from ..dynamics.overturning import overturned_by
 from ..errors import RockdesignError
 from ..motions.motion import PULSE_KINDS
 from ..systems import RockingSystem
 from .axes import DEFAULT_X, DEFAULT_Y, Axis, SpectrumScales, pulse_amplitudes, pulse_periods, spectrum_scales
-from .executor import ChunkStore, LocalExecutor, fingerprint, run_chunks
+from ..execution.executor import ChunkStore, LocalExecutor, fingerprint, run_chunks
 from .kernel import (N_OUT, SOURCE_DIGEST, OUT_DYNAMIC, OUT_EXCEEDED, OUT_IMPACTS, OUT_IMPACTS_BEFORE_DYNAMIC,
                      OUT_IMPACTS_BEFORE_EXCEEDED, OUT_STATUS, OUT_STEPS, OUT_T_STOP, OUT_THETA_MAX, pulse_shape,
                      spectrum_rows, warm_up)
@@ -172,7 +173,7 @@ class RockingSpectrum:
     @property
     def overturned(self) -> np.ndarray:
         """Overturning by the request's criterion (``static``: exceeded; ``dynamic``: |θ| = π/2)."""
-        return self.exceeded if self.request.overturn == "static" else self.dynamic
+        return overturned_by(self.request.overturn, self.exceeded, self.dynamic)
 
     @property
     def impacts_before_overturn(self) -> np.ndarray:
@@ -252,8 +253,8 @@ def compute_spectrum(system: RockingSystem, request: SpectrumRequest, *, executo
     Args:
         system: the rocking system (SI).
         request: pulse, axes, model and tolerances.
-        executor: :class:`~rockdesign.spectra.executor.LocalExecutor` (default: in-process, all
-            cores) or :class:`~rockdesign.spectra.executor.DaskExecutor`; not closed here.
+        executor: :class:`~rockdesign.execution.executor.LocalExecutor` (default: in-process, all
+            cores) or :class:`~rockdesign.execution.executor.DaskExecutor`; not closed here.
         store_dir: folder for chunk files; completed chunks are saved there as they arrive, and a
             rerun with identical inputs resumes from them. None: no chunk files.
         resume: reuse matching chunks in ``store_dir``.

@@ -6,8 +6,9 @@ import math
 import numpy as np
 import pytest
 
-from rockdesign.bench import metrics
-from rockdesign.bench.runner import json_ready, problem_summary
+from rockdesign.dynamics import metrics
+from rockdesign.bench.runner import problem_summary
+from rockdesign.jsonable import json_ready
 from rockdesign.bench.timing import TimingPolicy, time_call
 
 

@@ -11,7 +11,8 @@ from typer.testing import CliRunner
 from rockdesign.bench.methods import METHODS, method
 from rockdesign.bench.problems import make_problem, problem_set
 from rockdesign.bench.reference import build_reference, engine_history_at
-from rockdesign.bench.runner import json_ready, run_study
+from rockdesign.bench.runner import run_study
+from rockdesign.jsonable import json_ready
 from rockdesign.cli import app
 from rockdesign.dynamics.simulate import simulate
 

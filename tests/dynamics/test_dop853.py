@@ -13,7 +13,8 @@ import pytest
 
 from support import G, block_from_p, reference_podium, table34_column
 from rockdesign.dynamics.dop853 import A853, B853, C853
-from rockdesign.dynamics.engine import DOP853_BELOW_RTOL, METHOD_DOP853, METHOD_DP5, resolve_method
+from rockdesign.dynamics.engine import resolve_method
+from rockdesign.dynamics.layout import DOP853_BELOW_RTOL, METHOD_DOP853, METHOD_DP5
 from rockdesign.dynamics.linear_exact import sampled_pulse
 from rockdesign.dynamics.simulate import simulate
 from rockdesign.errors import ModelError

@@ -13,7 +13,8 @@ import math
 import numpy as np
 import pytest
 
-from rockdesign.motions.library import builtin_ids, builtin_info, list_records, load_record
+from rockdesign.motions.library import builtin_ids, builtin_info, load_record
+from rockdesign.motions.suites import list_records
 from rockdesign.motions.records import read_record_file
 from rockdesign.motions.spectra import response_spectrum, sd_max
 from rockdesign.paths import ground_motions_dir

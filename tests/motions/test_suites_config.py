@@ -7,7 +7,8 @@ import pytest
 
 from rockdesign.errors import MotionError, ProjectError
 from rockdesign.motions.config import default_excitation, parse_excitation, resolve_motions
-from rockdesign.motions.library import list_records, load_record
+from rockdesign.motions.library import load_record
+from rockdesign.motions.suites import list_records
 from rockdesign.motions.motion import record_motion
 from rockdesign.motions.spectra import sd_max
 from rockdesign.motions.suites import list_suites, load_suite, save_suite

@@ -14,10 +14,10 @@ from casedata import expected
 from rockdesign.design.restitution import restitution_flat_extensions
 
 from rockdesign.motions.motion import no_motion
-from rockdesign.reference import simulate_scipy
-from rockdesign.reference.equations import (accelerations_exact, accelerations_linear,
+from rockdesign.bench.baseline import simulate_scipy
+from rockdesign.bench.baseline.equations import (accelerations_exact, accelerations_linear,
                                             cap_beam_kinematics)
-from rockdesign.reference.parameters import (model_parameters, restitution_coefficient,
+from rockdesign.bench.baseline.parameters import (model_parameters, restitution_coefficient,
                                              rotation_capacity, uplift_thresholds,
                                              uplifted_frequency_ratio, wedge_angle)
 from rockdesign.systems import Column, RockingSystem, Superstructure

@@ -12,8 +12,8 @@ import pytest
 from casedata import case, expected
 
 from rockdesign.motions.motion import pulse_motion
-from rockdesign.reference import simulate_scipy
-from rockdesign.reference.parameters import uplift_thresholds, model_parameters
+from rockdesign.bench.baseline import simulate_scipy
+from rockdesign.bench.baseline.parameters import uplift_thresholds, model_parameters
 from rockdesign.systems import Column, RockingSystem, Superstructure
 
 G, H, TAN_A, GAMMA, ETA, N, M_C = 9.81, 1.5, 0.15, 10.0, 5.0, 4, 1000.0

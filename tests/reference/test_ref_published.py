@@ -14,7 +14,7 @@ from casedata import expected
 from rockdesign.design.restitution import restitution_flat_extensions
 
 from rockdesign.motions.motion import no_motion, pulse_motion
-from rockdesign.reference import model_parameters, simulate_scipy
+from rockdesign.bench.baseline import model_parameters, simulate_scipy
 from rockdesign.systems import Column, RockingSystem, block
 
 G = 9.81

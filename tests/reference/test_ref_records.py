@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from rockdesign.motions.motion import record_motion
-from rockdesign.reference import simulate_scipy
+from rockdesign.bench.baseline import simulate_scipy
 from rockdesign.systems import Column, RockingSystem, Superstructure, block
 
 G = 9.81

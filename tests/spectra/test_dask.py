@@ -87,7 +87,7 @@ def test_suite_batches_on_the_cluster(cluster):
     from rockdesign.dynamics.batch import batch_options, run_batch
     from rockdesign.dynamics.model import ModelChoice, system_parameters
     from rockdesign.motions.library import load_record
-    from rockdesign.spectra.batches import run_motions
+    from rockdesign.dynamics.parallel import run_motions
     system = table34_column("B1")
     sp = system_parameters(system, ModelChoice("block", "exact"))
     rec = load_record("p695-ff/11a")

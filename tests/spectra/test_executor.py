@@ -131,7 +131,7 @@ def test_record_suite_batches_equal_run_batch(tmp_path):
     from rockdesign.motions.library import load_record
     from rockdesign.motions.motion import pulse_motion
     from rockdesign.dynamics.model import ModelChoice, system_parameters
-    from rockdesign.spectra.batches import run_motions
+    from rockdesign.dynamics.parallel import run_motions
     system = table34_column("B2ec")
     sp = system_parameters(system, ModelChoice("block", "exact"))
     rec = load_record("p695-ff/11a")

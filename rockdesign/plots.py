@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 
-from .. import mplfig as plt  # noqa: E402  (pyplot-free Figures: importing never switches the backend)
+from . import mplfig as plt  # noqa: E402  (pyplot-free Figures: importing never switches the backend)
 import numpy as np  # noqa: E402
 
 STYLE = {"figure.dpi": 110, "font.size": 9, "axes.grid": True, "grid.alpha": 0.3, "axes.spines.top": False,

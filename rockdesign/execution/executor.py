@@ -11,7 +11,7 @@ function on many independent chunks of jobs".  This module runs such work:
   (``tcp://host:8786``).  The batch function must be importable on the workers (a module-level
   function of an installed package); a ``warm_up`` function is run on every worker first so that
   no chunk pays numba's compilation or cache load.
-* :class:`~rockdesign.spectra.store.ChunkStore` (re-exported here) — chunk results as ``.npz``
+* :class:`~rockdesign.execution.store.ChunkStore` (re-exported here) — chunk results as ``.npz``
   files in a folder, written atomically as each chunk completes, with a manifest holding the
   fingerprint of the inputs.  A rerun with the same
   fingerprint loads the completed chunks and computes only the missing ones (resume after an

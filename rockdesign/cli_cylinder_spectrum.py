@@ -10,10 +10,10 @@ import numpy as np
 
 def cylinder_spectrum_command(project, project_path, record, x, y, relative, out, as_json, figures, console) -> None:
     """Compute the cylinder spectrum (and the reference's for ``--relative``), write npz/json/figures."""
-    from ..motions.pairs import parse_pair
-    from ..project import load_project
-    from ..report.plots import save
-    from .spectrum import CylinderSpectrumError, cylinder_spectrum, parse_cylinder_axis, spectrum_figure
+    from .motions.pairs import parse_pair
+    from .project import load_project
+    from .plots import save
+    from .cylinder.spectrum import CylinderSpectrumError, cylinder_spectrum, parse_cylinder_axis, spectrum_figure
     if not record:
         raise CylinderSpectrumError("a cylinder spectrum needs a record pair", key="--record",
                                     expected="--record p695-ff/11 (or any record/files motion string)", found="none")

@@ -1,7 +1,7 @@
 """Large batches of time-history analyses (record suites, scale factors of margins) on the chunked executor.
 
 :func:`run_motions` is :func:`rockdesign.dynamics.batch.run_batch` cut into chunks of jobs and mapped
-over an executor of :mod:`rockdesign.spectra.executor` — in this process on all cores, or on
+over an executor of :mod:`rockdesign.execution.executor` — in this process on all cores, or on
 dask.distributed — optionally resumable from chunk files. The sample arrays of the records travel
 once (broadcast to the workers); each job carries its excitation code, parameter row and the slice
 of the samples it uses. Results are identical to ``run_batch`` bit for bit.
@@ -12,8 +12,9 @@ from typing import Callable, Sequence
 
 import numpy as np
 
-from ..dynamics.batch import pack_motions, _run_batch
-from .executor import ChunkStore, LocalExecutor, fingerprint, run_chunks
+from .batch import pack_motions, _run_batch
+from ..kernel_cache import sources_digest
+from ..execution.executor import ChunkStore, LocalExecutor, fingerprint, run_chunks
 
 
 def motion_rows(sp: np.ndarray, samples: np.ndarray, opts: np.ndarray, kinds: np.ndarray, xps: np.ndarray,
@@ -32,8 +33,8 @@ def run_motions(sp: np.ndarray, motions: Sequence, scales, t_ends, opts: np.ndar
 
     Args:
         sp: system parameters; motions, scales, t_ends [s], opts, y0s: as ``run_batch``.
-        executor: :class:`~rockdesign.spectra.executor.LocalExecutor` (default) or
-            :class:`~rockdesign.spectra.executor.DaskExecutor`.
+        executor: :class:`~rockdesign.execution.executor.LocalExecutor` (default) or
+            :class:`~rockdesign.execution.executor.DaskExecutor`.
         chunk_jobs: jobs per chunk.
         store_dir: chunk folder (resumable), or None; deleted after success unless ``keep_chunks``.
         progress: called with the number of jobs of every finished chunk.
@@ -49,8 +50,7 @@ def run_motions(sp: np.ndarray, motions: Sequence, scales, t_ends, opts: np.ndar
     tasks = [(kinds[a:b], xps[a:b], offsets[a:b], lengths[a:b], t_ends[a:b], y0[a:b]) for a, b in bounds]
     store = None
     if store_dir is not None:
-        from .kernel import SOURCE_DIGEST
-        store = ChunkStore(store_dir, fingerprint("motion-rows-1", SOURCE_DIGEST, sp, samples, opts, kinds, xps,
+        store = ChunkStore(store_dir, fingerprint("motion-rows-1", sources_digest(), sp, samples, opts, kinds, xps,
                                                   offsets, lengths, t_ends, y0, int(chunk_jobs)))
 
     def on_chunk(i, resumed):
@@ -63,7 +63,7 @@ def run_motions(sp: np.ndarray, motions: Sequence, scales, t_ends, opts: np.ndar
     if store is not None and not keep_chunks:
         store.clear()
     if not run.results:
-        from ..dynamics.engine import N_DIAG, N_SUMMARY
+        from .layout import N_DIAG, N_SUMMARY
         return np.zeros((0, N_SUMMARY)), np.zeros((0, N_DIAG), dtype=np.int64)
     return (np.concatenate([r["summaries"] for r in run.results]),
             np.concatenate([r["diagnostics"] for r in run.results]))

@@ -97,11 +97,6 @@ def restitution_coefficient(system: RockingSystem, rule: str | float | None = No
     return housner_restitution(sin_used ** 2, lam_ext, gamma_hat)
 
 
-def superstructure_frequency_ratio(sin2_alpha: float, lam: float, gamma: float, eta: float) -> float:
-    """S_r = ω_su/ω_s = √((1+λ+4γ(1+η))/(1+λ+4γ(1+η sin²α))) (Eq 4.25)."""
-    return math.sqrt((1.0 + lam + 4.0 * gamma * (1.0 + eta)) / (1.0 + lam + 4.0 * gamma * (1.0 + eta * sin2_alpha)))
-
-
 def _superstructure_mass(system: RockingSystem) -> float:
     return 0.0 if system.superstructure is None else system.superstructure.mass
 

@@ -7,7 +7,7 @@ import sys
 
 def quantities_command(project, console, as_json: bool, units, curve) -> None:
     """Print the cylinder's quantities (or JSON); ``--pushover F`` writes the wobbling-period curve (Fig 5.2)."""
-    from .commands import quantities_json, quantities_table, write_wobbling
+    from .cylinder.commands import quantities_json, quantities_table, write_wobbling
     if curve is not None:
         write_wobbling(project, curve)
     if as_json:
@@ -18,14 +18,14 @@ def quantities_command(project, console, as_json: bool, units, curve) -> None:
 
 def simulate_command(project, motion, model, as_json, plot, csv, t_end, rtol, records_dir, console) -> None:
     """Run one cylinder analysis; JSON, CSV and the time-history/orbit figure on request."""
-    from .commands import response_table, simulate_project, write_history_csv
+    from .cylinder.commands import response_table, simulate_project, write_history_csv
     result = simulate_project(project, motion, model=model, t_end=t_end, rtol=rtol,
                               records_dir=str(records_dir) if records_dir else None)
     if csv:
         write_history_csv(result.response, csv)
     if plot:
-        from ..report.plots import save
-        from .figures import cylinder_history_figure
+        from .plots import save
+        from .cylinder.figures import cylinder_history_figure
         save(cylinder_history_figure(result.response, project.system.g, f"{project.name} — {motion}",
                                      result.pair), plot)
     if as_json:

@@ -1,0 +1,267 @@
+"""What every project file shares, planar or cylinder: the [project] and [analysis] tables, the
+key-tracking table reader behind the precise error messages, and the loaded :class:`Project`
+(docs/project-file.md).  :mod:`rockdesign.project` (columns, frames, podiums) and
+:mod:`rockdesign.cylinder.project` (the 3D cylinder) both build on it.
+"""
+from __future__ import annotations
+
+import difflib
+import math
+import re
+import tomllib
+from dataclasses import dataclass, field
+
+from .errors import ProjectError
+from .systems import RockingSystem
+from .units import G_DEFAULT, QuantityParseError, parse_quantity
+
+PROJECT_KEYS = ("name", "engineer", "checker", "job", "client", "notes")
+
+
+ANALYSIS_KEYS = ("model", "equations", "rtol", "atol", "overturn", "g", "rest_velocity", "sdmax_damping",
+                 "sdmax_band", "linearization_tolerance", "restitution_variation", "margin_precision",
+                 "margin_max_scale", "free_vibration", "rigid_superstructure_ratio", "scan_rtol",
+                 "overturn_probability_limit", "fragility_im", "fragility_period", "quality", "ensemble_size", "seed")
+
+
+MODELS = ("auto", "rigid-superstructure", "podium-2dof", "block", "frame")
+
+
+EQUATIONS = ("auto", "exact", "linear")
+
+
+OVERTURN = ("static", "dynamic")
+
+
+RESTITUTION_RULES = ("theory", "thesis-eq-3.39")
+
+
+@dataclass(frozen=True)
+class AnalysisSettings:
+    """The ``[analysis]`` table in SI (CONTRACT §1, plus documented extensions)."""
+
+    model: str = "auto"
+    equations: str = "auto"
+    rtol: float = 1e-8      # docs/tolerances.md: the loosest rtol at which the verdict's statistics are converged
+    atol: float = 1e-10
+    overturn: str = "static"
+    g: float = G_DEFAULT
+    rest_velocity: float = 5e-4
+    sdmax_damping: float = 0.02
+    sdmax_band: tuple[float, float] = (0.05, 10.0)
+    linearization_tolerance: float = 0.02
+    restitution_variation: float = 0.02
+    margin_precision: float = 0.01
+    margin_max_scale: float = 8.0
+    free_vibration: float = 10.0
+    rigid_superstructure_ratio: float = 10.0
+    scan_rtol: float = 1e-6
+    overturn_probability_limit: float = 0.10
+    # fragility, collapse margin and perturbation ensembles (SPEC §11; parsed by _parse_fragility)
+    fragility_im: str = "pga"
+    fragility_period: float | None = None
+    quality: tuple[tuple[str, str], ...] = (("design_requirements", "B"), ("test_data", "B"), ("modeling", "B"))
+    ensemble_size: int = 8
+    seed: int = 20090601
+
+
+@dataclass(frozen=True)
+class Project:
+    """A loaded project: the system in SI, analysis settings, the raw input for the report's echo."""
+
+    path: str
+    name: str
+    system: RockingSystem
+    analysis: AnalysisSettings
+    info: dict = field(default_factory=dict)
+    excitation_raw: dict | None = None
+    raw: dict = field(default_factory=dict)
+    source_text: str = ""
+    sha256: str = ""
+    warnings: tuple[str, ...] = ()
+
+
+class _Table:
+    """Reads one TOML table, tracking which keys were used, for precise error messages."""
+
+    def __init__(self, data: dict, section: str, allowed: tuple[str, ...], file: str, gravity: float):
+        self.data, self.section, self.allowed, self.file, self.gravity = data, section, allowed, file, gravity
+        if not isinstance(data, dict):
+            raise ProjectError("must be a table", file=file, key=section, expected=f"a [{section}] table",
+                               found=repr(data))
+        for key in data:
+            if key not in allowed:
+                close = difflib.get_close_matches(key, allowed, n=1, cutoff=0.5)
+                raise ProjectError("unknown key", file=file, key=f"{section}.{key}",
+                                   expected="one of " + ", ".join(allowed),
+                                   found=f"'{key}'", hint=f"did you mean '{close[0]}'?" if close else None)
+
+    def key(self, name: str) -> str:
+        return f"{self.section}.{name}"
+
+    def has(self, name: str) -> bool:
+        return name in self.data
+
+    def error(self, name: str, detail: str, expected: str | None = None, found=None) -> ProjectError:
+        return ProjectError(detail, file=self.file, key=self.key(name), expected=expected,
+                            found=None if found is None else (repr(found) if not isinstance(found, str) else f"'{found}'"))
+
+    def quantity(self, name: str, dimension: str, *, positive: bool = True, default=None, required=False):
+        if name not in self.data:
+            if required:
+                raise self.error(name, "missing required value", expected=f"{'an' if dimension[0] in 'aeiou' else 'a'} {dimension}")
+            return default
+        raw = self.data[name]
+        try:
+            value = parse_quantity(raw, dimension, gravity=self.gravity)
+        except QuantityParseError as exc:
+            raise ProjectError(f"expects {exc}", file=self.file, key=self.key(name)) from None
+        if not math.isfinite(value):
+            raise self.error(name, "must be finite", expected=f"a finite {dimension}", found=raw)
+        if positive and value <= 0.0:
+            raise self.error(name, "must be positive", expected=f"{'an' if dimension[0] in 'aeiou' else 'a'} {dimension} > 0",
+                             found=raw)
+        return value
+
+    def choice(self, name: str, options: tuple[str, ...], default: str) -> str:
+        raw = self.data.get(name, default)
+        if not isinstance(raw, str) or raw not in options:
+            close = difflib.get_close_matches(str(raw), options, n=1, cutoff=0.5)
+            raise ProjectError("invalid value", file=self.file, key=self.key(name),
+                               expected="one of " + ", ".join(f"'{o}'" for o in options), found=repr(raw),
+                               hint=f"did you mean '{close[0]}'?" if close else None)
+        return raw
+
+    def number(self, name: str, *, default=None, low=None, high=None, low_open=True, high_open=False,
+               required=False, integer=False):
+        if name not in self.data:
+            if required:
+                raise self.error(name, "missing required value", expected="a number")
+            return default
+        raw = self.data[name]
+        if isinstance(raw, bool) or not isinstance(raw, (int, float)) or (integer and not isinstance(raw, int)):
+            raise self.error(name, "wrong type", expected="an integer" if integer else "a plain number",
+                             found=raw)
+        value = float(raw)
+        lo_bad = low is not None and (value <= low if low_open else value < low)
+        hi_bad = high is not None and (value >= high if high_open else value > high)
+        if lo_bad or hi_bad or not math.isfinite(value):
+            lo = "" if low is None else (f"> {low:g}" if low_open else f"≥ {low:g}")
+            hi = "" if high is None else (f"< {high:g}" if high_open else f"≤ {high:g}")
+            raise self.error(name, "out of range", expected="a number " + " and ".join(x for x in (lo, hi) if x),
+                             found=raw)
+        return int(raw) if integer else value
+
+    def one_of(self, *names: str, required: bool = True) -> str | None:
+        present = [n for n in names if n in self.data]
+        if len(present) > 1:
+            raise ProjectError("conflicting alternatives", file=self.file, key=self.key(present[1]),
+                               expected="only one of " + " or ".join(f"'{n}'" for n in names),
+                               found="both " + " and ".join(f"'{n}'" for n in present))
+        if not present and required:
+            raise ProjectError("missing required value", file=self.file, key=self.key(names[0]),
+                               expected="one of " + " or ".join(f"'{n}'" for n in names), found="none")
+        return present[0] if present else None
+
+
+def _toml_error(path: str, exc: tomllib.TOMLDecodeError) -> ProjectError:
+    m = re.search(r"line (\d+)", str(exc))
+    return ProjectError(f"malformed TOML: {exc}", file=path, line=int(m.group(1)) if m else None,
+                        expected="valid TOML (strings with units in quotes, e.g. height = \"3.0 m\")")
+
+
+def _parse_analysis(data: dict, file: str) -> AnalysisSettings:
+    t = _Table(data, "analysis", ANALYSIS_KEYS, file, G_DEFAULT)
+    g = G_DEFAULT
+    if t.has("g"):
+        raw = t.data["g"]
+        if isinstance(raw, str) and re.search(r"(?<![A-Za-z_])g(?![A-Za-z_0-9])", raw):
+            raise t.error("g", "g cannot be defined in terms of itself", expected="e.g. g = \"9.81 m/s^2\"", found=raw)
+        g = t.quantity("g", "acceleration")
+        if not 9.7 <= g <= 9.9:
+            raise t.error("g", "out of range", expected="a gravitational acceleration 9.7–9.9 m/s²", found=raw)
+    t.gravity = g
+    band = (0.05, 10.0)
+    if t.has("sdmax_band"):
+        raw = t.data["sdmax_band"]
+        if not (isinstance(raw, list) and len(raw) == 2):
+            raise t.error("sdmax_band", "wrong type", expected="two periods, e.g. [\"0.05 s\", \"10 s\"]", found=raw)
+        try:
+            band = tuple(parse_quantity(x, "time") for x in raw)
+        except QuantityParseError as exc:
+            raise ProjectError(f"expects {exc}", file=file, key="analysis.sdmax_band") from None
+        if not 0.0 < band[0] < band[1]:
+            raise t.error("sdmax_band", "out of range", expected="0 < T_min < T_max", found=raw)
+    damping = t.quantity("sdmax_damping", "dimensionless", default=0.02)
+    if not 0.0 < damping < 1.0:
+        raise t.error("sdmax_damping", "out of range", expected="0 < ζ < 1 (e.g. \"2 %\")", found=t.data["sdmax_damping"])
+    return AnalysisSettings(
+        model=t.choice("model", MODELS, "auto"),
+        equations=t.choice("equations", EQUATIONS, "auto"),
+        rtol=t.number("rtol", default=1e-8, low=0.0, high=1e-3),
+        atol=t.number("atol", default=1e-10, low=0.0, high=1e-3),
+        overturn=t.choice("overturn", OVERTURN, "static"),
+        g=g,
+        rest_velocity=t.quantity("rest_velocity", "frequency", default=5e-4) if isinstance(
+            t.data.get("rest_velocity"), str) else t.number("rest_velocity", default=5e-4, low=0.0, high=0.1),
+        sdmax_damping=damping,
+        sdmax_band=band,
+        linearization_tolerance=t.number("linearization_tolerance", default=0.02, low=0.0, high=1.0),
+        restitution_variation=t.number("restitution_variation", default=0.02, low=0.0, high=0.5),
+        margin_precision=t.number("margin_precision", default=0.01, low=0.0, high=0.5),
+        margin_max_scale=t.number("margin_max_scale", default=8.0, low=1.0, high=1000.0),
+        free_vibration=_free_vibration(t),
+        rigid_superstructure_ratio=t.number("rigid_superstructure_ratio", default=10.0, low=0.0),
+        scan_rtol=t.number("scan_rtol", default=1e-6, low=0.0, high=1e-3),
+        overturn_probability_limit=t.quantity("overturn_probability_limit", "dimensionless", default=0.10)
+        if isinstance(t.data.get("overturn_probability_limit"), str)
+        else t.number("overturn_probability_limit", default=0.10, low=0.0, high=1.0),
+        **_parse_fragility(t),
+    )
+
+
+def _free_vibration(t: _Table) -> float:
+    value = t.quantity("free_vibration", "time", default=10.0, positive=False)
+    if value < 0.0:
+        raise t.error("free_vibration", "out of range", expected="a time ≥ 0 s analysed after the motion ends "
+                      "(e.g. \"10 s\")", found=t.data["free_vibration"])
+    return value
+
+
+QUALITY_RATINGS = ("A", "B", "C", "D")
+
+
+def _parse_fragility(t: _Table) -> dict:
+    """The fragility, collapse-margin and ensemble keys of ``[analysis]`` (SPEC §11, docs/project-file.md)."""
+    im = t.choice("fragility_im", ("pga", "sa", "sdmax"), "pga")
+    period = t.quantity("fragility_period", "time")
+    if (im == "sa") != (period is not None):
+        raise t.error("fragility_period", "needed with fragility_im = \"sa\" and only then",
+                      expected="fragility_period = \"1.0 s\" together with fragility_im = \"sa\"",
+                      found=f"fragility_im = \"{im}\" and " + ("no fragility_period" if period is None else
+                                                            f"fragility_period = {t.data['fragility_period']!r}"))
+    raw = t.data.get("quality", {})
+    q = _Table(raw, "analysis.quality", ("design_requirements", "test_data", "modeling"), t.file, t.gravity)
+    quality = tuple((k, q.choice(k, QUALITY_RATINGS, "B")) for k in q.allowed)
+    return {"fragility_im": im, "fragility_period": period, "quality": quality,
+            "ensemble_size": t.number("ensemble_size", default=8, low=0, low_open=False, high=1000, integer=True),
+            "seed": t.number("seed", default=20090601, low=0, low_open=False, integer=True)}
+
+
+def project_info(raw: dict, file: str, g: float, example: str = "5-storey block") -> dict:
+    """The ``[project]`` table (name required, engineer/notes optional; all strings) of any project file."""
+    section = raw.get("project", {})
+    if not isinstance(section, dict):
+        raise ProjectError("wrong type", file=file, key="project", expected="a [project] table with name = \"...\"",
+                           found=section)
+    info_t = _Table(section, "project", PROJECT_KEYS, file, g)
+    if "name" not in section:
+        raise ProjectError("missing required value", file=file, key="project.name",
+                           expected=f"a project name, e.g. name = \"{example}\"", found="none")
+    info = {}
+    for k in PROJECT_KEYS:
+        if k in info_t.data:
+            if not isinstance(info_t.data[k], str):
+                raise info_t.error(k, "wrong type", expected="a string", found=info_t.data[k])
+            info[k] = info_t.data[k]
+    return info

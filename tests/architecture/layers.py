@@ -1,0 +1,147 @@
+"""The import graph of a package and its check against an ordered table of layers (docs/architecture.md).
+
+Every ``import`` and ``from … import`` is read with :mod:`ast` — at module level and inside
+functions, absolute and relative — so a lazy import cannot hide an upward dependency.
+"""
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
+    ("base", ("rockdesign", "rockdesign.errors", "rockdesign.units", "rockdesign.paths", "rockdesign.kernel_cache",
+              "rockdesign.jsonable", "rockdesign.systems", "rockdesign.mplfig", "rockdesign.plots",
+              "rockdesign.progress", "rockdesign.outdir", "rockdesign.display", "rockdesign.execution")),
+    ("design", ("rockdesign.design", "rockdesign.validity", "rockdesign.cylinder.system",
+                "rockdesign.cylinder.quantities")),
+    ("motions", ("rockdesign.motions",)),
+    ("project", ("rockdesign.project", "rockdesign.project_tables", "rockdesign.cylinder.project")),
+    ("dynamics", ("rockdesign.dynamics", "rockdesign.cylinder")),
+    ("analyses", ("rockdesign.spectra", "rockdesign.checks")),
+    ("report", ("rockdesign.report",)),
+    ("experiments", ("rockdesign.experiments",)),
+    ("library", ("rockdesign.library", "rockdesign.api", "rockdesign.cylinder.commands")),
+    ("bench", ("rockdesign.bench",)),
+    ("cli", ("rockdesign.cli", "rockdesign.cli_", "rockdesign.templates")),
+)
+"""Layers, lowest first, and the modules (prefixes) in each: a module may import only from its own
+layer or a lower one.  The most specific prefix wins (``rockdesign.cylinder.project`` is in *project*
+although ``rockdesign.cylinder`` is in *dynamics*); ``rockdesign.cli_`` covers every ``cli_*`` module.
+``rockdesign`` itself (the package's ``__init__``) imports nothing at import time: its lazy
+``__getattr__`` names the library modules as strings, which this check does not read."""
+
+
+def module_files(package_dir: Path) -> dict[str, Path]:
+    """Dotted module name → file, for every ``.py`` file below ``package_dir`` (a package folder)."""
+    out = {}
+    for path in sorted(package_dir.rglob("*.py")):
+        parts = list(path.relative_to(package_dir.parent).with_suffix("").parts)
+        if parts[-1] == "__init__":
+            parts = parts[:-1]
+        out[".".join(parts)] = path
+    return out
+
+
+def imports_of(module: str, path: Path, known: dict[str, Path]) -> list[tuple[str, int]]:
+    """(imported module, line) for every import of ``module`` that names a module in ``known``."""
+    root = module.split(".")[0]
+    package = module if path.name == "__init__.py" else module.rpartition(".")[0]
+    found = []
+
+    def add(name: str, line: int) -> None:
+        while name and name not in known:
+            name = name.rpartition(".")[0]
+        if name and name != module:
+            found.append((name, line))
+
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"), str(path))):
+        if isinstance(node, ast.Import):
+            for alias in node.names:
+                if alias.name.split(".")[0] == root:
+                    add(alias.name, node.lineno)
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = package.split(".")
+                base = base[:len(base) - (node.level - 1)]
+                target = ".".join(base + ([node.module] if node.module else []))
+            else:
+                target = node.module or ""
+            if target.split(".")[0] != root:
+                continue
+            for alias in node.names:       # `from pkg import module` imports the module
+                sub = f"{target}.{alias.name}"
+                add(sub if sub in known else target, node.lineno)
+    return found
+
+
+def layer_of(module: str, layers=LAYERS) -> int | None:
+    """Index of the layer of ``module`` (most specific prefix), None when the table does not place it."""
+    best, best_len = None, -1
+    for index, (_, prefixes) in enumerate(layers):
+        for prefix in prefixes:
+            matches = (module == prefix or module.startswith(prefix + ".")
+                       or (prefix.endswith("_") and module.startswith(prefix)))
+            if matches and len(prefix) > best_len:
+                best, best_len = index, len(prefix)
+    return best
+
+
+def graph(package_dir: Path) -> tuple[dict[str, Path], dict[str, list[tuple[str, int]]]]:
+    known = module_files(package_dir)
+    return known, {m: imports_of(m, p, known) for m, p in known.items()}
+
+
+def upward_imports(package_dir: Path, layers=LAYERS) -> list[str]:
+    """``file:line: a (layer) imports b (higher layer)`` for every import against the layer order."""
+    known, edges = graph(package_dir)
+    out = []
+    for module, targets in edges.items():
+        lo = layer_of(module, layers)
+        for target, line in targets:
+            hi = layer_of(target, layers)
+            if lo is not None and hi is not None and hi > lo:
+                out.append(f"{known[module].name}:{line}: {module} ({layers[lo][0]}) imports {target} "
+                           f"({layers[hi][0]})")
+    return sorted(out)
+
+
+def unplaced(package_dir: Path, layers=LAYERS) -> list[str]:
+    return sorted(m for m in module_files(package_dir) if layer_of(m, layers) is None)
+
+
+def cycles(package_dir: Path) -> list[list[str]]:
+    """Import cycles between modules (strongly connected components of more than one module, or a
+    module importing itself through a chain), each sorted."""
+    _, edges = graph(package_dir)
+    adj = {m: sorted({t for t, _ in ts}) for m, ts in edges.items()}
+    index, low, stack, on_stack, comps, counter = {}, {}, [], set(), [], [0]
+
+    def visit(v):                      # Tarjan, iterative over an explicit stack of iterators
+        work = [(v, iter(adj.get(v, ())))]
+        index[v] = low[v] = counter[0]; counter[0] += 1; stack.append(v); on_stack.add(v)
+        while work:
+            node, it = work[-1]
+            for w in it:
+                if w not in index:
+                    index[w] = low[w] = counter[0]; counter[0] += 1; stack.append(w); on_stack.add(w)
+                    work.append((w, iter(adj.get(w, ()))))
+                    break
+                if w in on_stack:
+                    low[node] = min(low[node], index[w])
+            else:
+                work.pop()
+                if work:
+                    low[work[-1][0]] = min(low[work[-1][0]], low[node])
+                if low[node] == index[node]:
+                    comp = []
+                    while True:
+                        w = stack.pop(); on_stack.discard(w); comp.append(w)
+                        if w == node:
+                            break
+                    if len(comp) > 1:
+                        comps.append(sorted(comp))
+
+    for v in sorted(adj):
+        if v not in index:
+            visit(v)
+    return sorted(comps)
