@@ -26,6 +26,7 @@ import statistics
 from dataclasses import dataclass, field
 
 from .statistics import overturning_probability
+from ..dynamics.layout import COMPLETED_STATUSES, STATUS_NAMES
 
 GOVERNS = "governs"
 ROBUSTNESS = "robustness"
@@ -34,7 +35,7 @@ INFORMATIVE = "informative"
 ONE_SIDED_CONFIDENCE = 0.95
 """Confidence of the upper bound on P(overturn) (the upper end of the two-sided 90 % interval)."""
 
-VALID_STATUSES = ("completed", "overturned (|θ| = π/2)", "stopped: energy bound reached", "stopped at θc")
+VALID_STATUSES = tuple(STATUS_NAMES[code] for code in COMPLETED_STATUSES)
 """Engine statuses of an analysis that ran to a conclusion (see docs/engine.md).  Any other status
 (step size collapsed, step or event limit reached) means the analysis failed: the record is
 listed as failed and never counted as safe."""

@@ -66,6 +66,57 @@ def _rk_step(high, t, y, f0, h, K, y_new, ytmp, rocking, side, phase, kind, xp, 
 
 
 @njit(cache=True)
+def _new_summary():
+    """A run summary (``S_*`` layout) before the run: times of events not yet seen are NaN, counts −1."""
+    summary = np.zeros(N_SUMMARY)
+    summary[S_T_UPLIFT] = math.nan
+    summary[S_T_EXCEEDED] = math.nan
+    summary[S_T_OVERTURN] = math.nan
+    summary[S_IMPACTS_BEFORE_OVERTURN] = -1.0
+    summary[S_IMPACTS_BEFORE_EXCEEDED] = -1.0
+    return summary
+
+
+@njit(cache=True)
+def _rigid_uplift_thresholds(hyst, sp):
+    """(ü_lo, ü_hi) [m/s²]: a body at rest with a rigid superstructure uplifts to θ > 0 when ü_g ≤ ü_lo
+    and to θ < 0 when ü_g ≥ ü_hi (Eq 4.7 with u_T = u̇_T = 0 is affine in ü_g), hysteresis included."""
+    c0p = uplift_condition(1.0, 0.0, 0.0, 0.0, sp)
+    c1p = uplift_condition(1.0, 1.0, 0.0, 0.0, sp) - c0p
+    c0m = uplift_condition(-1.0, 0.0, 0.0, 0.0, sp)
+    c1m = uplift_condition(-1.0, 1.0, 0.0, 0.0, sp) - c0m
+    return (hyst - c0p) / c1p, (hyst - c0m) / c1m
+
+
+@njit(cache=True, inline="always")
+def _step_factor(high, y, y_new, K, h, rtol, atol, n, work, error_exponent, step_rejected):
+    """(accepted, factor for the next step size) from the step's error norm: a rejected step shrinks
+    (NaN errors by the largest factor); an accepted step grows at most by MAX_FACTOR, and not at all
+    right after a rejection (as scipy: avoids reject/accept oscillation)."""
+    if high:
+        err = dop853_error_norm(y, y_new, K, h, rtol, atol, n, work)
+    else:
+        err = error_norm(y, y_new, K, h, rtol, atol, n)
+    if not err <= 1.0:  # also catches NaN
+        return False, (MIN_FACTOR if not err == err else max(MIN_FACTOR, SAFETY * err ** error_exponent))
+    fac = MAX_FACTOR if err == 0.0 else min(MAX_FACTOR, SAFETY * err ** error_exponent)
+    if step_rejected:
+        fac = min(1.0, fac)
+    return True, fac
+
+
+@njit(cache=True, inline="always")
+def _step_to(high, t, y, f0, he, K, y_e, ytmp, rocking, side, phase, kind, xp, samples, sp, n, diag):
+    """State ``y_e`` at t + he by one step of the run's method (he ≥ 0; he = 0 copies ``y``)."""
+    if he > 0.0:
+        diag[D_NFEV] += _rk_step(high, t, y, f0, he, K, y_e, ytmp, rocking, side, phase, kind, xp, samples, sp, n)
+        diag[D_REFINE] += 1
+    else:
+        for i in range(4):
+            y_e[i] = y[i]
+
+
+@njit(cache=True)
 def _fill_outputs(t_out, out_y, i_out, t_hi, t0, y, Q, h, y_end, use_dense, rest):
     """Write output rows for t_out ≤ t_hi; returns the next output index."""
     n_out = t_out.shape[0]
@@ -274,12 +325,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
     Returns:
         (summary ``S_*`` array, diagnostics ``D_*`` int array, number of output rows written).
     """
-    summary = np.zeros(N_SUMMARY)
-    summary[S_T_UPLIFT] = math.nan
-    summary[S_T_EXCEEDED] = math.nan
-    summary[S_T_OVERTURN] = math.nan
-    summary[S_IMPACTS_BEFORE_OVERTURN] = -1.0
-    summary[S_IMPACTS_BEFORE_EXCEEDED] = -1.0
+    summary = _new_summary()
     diag = np.zeros(N_DIAG, dtype=np.int64)
     t_end = opts[O_T_END]
     rtol = opts[O_RTOL]
@@ -326,13 +372,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
     Q = np.zeros((4, 7 if high else 4))     # dense-output powers x¹ … x⁷ (DOP853) or x¹ … x⁴ (DP5(4))
     work = np.zeros(8)
 
-    # rigid-rest thresholds: uplift_condition is affine in ü_g when u_T = u̇_T = 0
-    c0p = uplift_condition(1.0, 0.0, 0.0, 0.0, sp)
-    c1p = uplift_condition(1.0, 1.0, 0.0, 0.0, sp) - c0p
-    c0m = uplift_condition(-1.0, 0.0, 0.0, 0.0, sp)
-    c1m = uplift_condition(-1.0, 1.0, 0.0, 0.0, sp) - c0m
-    thr_lo = (hyst - c0p) / c1p      # ü_g ≤ thr_lo → uplift to θ > 0
-    thr_hi = (hyst - c0m) / c1m      # ü_g ≥ thr_hi → uplift to θ < 0
+    thr_lo, thr_hi = _rigid_uplift_thresholds(hyst, sp)
 
     t = t0
     rocking = y[0] != 0.0 or y[1] != 0.0
@@ -415,21 +455,13 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
                 break
         diag[D_NFEV] += _rk_step(high, t, y, f0, h, K, y_new, ytmp, rocking, side, phase, kind, xp, samples, sp, n)
         diag[D_STEPS] += 1
-        if high:
-            err = dop853_error_norm(y, y_new, K, h, rtol, atol, n, work)
-        else:
-            err = error_norm(y, y_new, K, h, rtol, atol, n)
-        if not err <= 1.0:  # also catches NaN
+        accepted, fac = _step_factor(high, y, y_new, K, h, rtol, atol, n, work, error_exponent, step_rejected)
+        if not accepted:
             diag[D_REJECTED] += 1
-            fac = MIN_FACTOR if not err == err else max(MIN_FACTOR, SAFETY * err ** error_exponent)
             h *= fac
             step_rejected = True
             continue
-        fac = MAX_FACTOR if err == 0.0 else min(MAX_FACTOR, SAFETY * err ** error_exponent)
-        if step_rejected:
-            # no growth right after a rejection (as scipy): avoids reject/accept oscillation
-            fac = min(1.0, fac)
-            step_rejected = False
+        step_rejected = False
         h_next = h * fac
         t_new = t + h
         if t_new > tb - 1e-13 * max(1.0, abs(tb)) and tb < math.inf:
@@ -445,13 +477,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
             ev_x, ev_side = _scan_podium_uplift(t, h, y, y_new, Q, m_scan, hyst, kind, xp, samples, sp)
             if ev_x >= 0.0:
                 he = ev_x * h
-                if he > 0.0:
-                    diag[D_NFEV] += _rk_step(high, t, y, f0, he, K, y_e, ytmp, rocking, side, phase, kind, xp,
-                                             samples, sp, n)
-                    diag[D_REFINE] += 1
-                else:
-                    for i in range(4):
-                        y_e[i] = y[i]
+                _step_to(high, t, y, f0, he, K, y_e, ytmp, rocking, side, phase, kind, xp, samples, sp, n, diag)
                 t_e = t + he
                 i_out = _fill_outputs(t_out, out_y, i_out, t_e, t, y, Q, h, y_e, on, off)
                 t = t_e

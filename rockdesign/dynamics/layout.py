@@ -31,6 +31,10 @@ STATUS_NAMES = {ST_OK: "completed", ST_OVERTURNED: "overturned (|θ| = π/2)",
                 ST_ENERGY_BOUND: "stopped: energy bound reached", ST_STOPPED_EXCEEDED: "stopped at θc",
                 ST_TOO_MANY_EVENTS: "event limit reached"}
 
+COMPLETED_STATUSES = (ST_OK, ST_OVERTURNED, ST_ENERGY_BOUND, ST_STOPPED_EXCEEDED)
+"""Statuses of an analysis that ran to a conclusion; the others (step size collapsed, step or event
+limit reached) mean it failed, and its result must not be used (docs/engine.md)."""
+
 # options array
 O_T_END = 0
 O_RTOL = 1

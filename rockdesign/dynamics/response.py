@@ -6,6 +6,42 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .layout import (COMPLETED_STATUSES, D_EVENTS, D_EVENTS_STORED, D_NFEV, D_REFINE, D_REJECTED, D_REST, D_STEPS,
+                     ST_ENERGY_BOUND, ST_OK, ST_OVERTURNED, ST_STEP_COLLAPSE, ST_STOPPED_EXCEEDED, ST_TOO_MANY_EVENTS,
+                     ST_TOO_MANY_STEPS)
+
+
+@dataclass(frozen=True)
+class SolverStats:
+    """The work of one analysis: accepted and rejected steps, right-hand-side evaluations, events (all,
+    and those stored in the event list), rests entered after impacts, event refinements."""
+
+    steps: int
+    rejected_steps: int
+    function_evaluations: int
+    events: int
+    events_stored: int
+    rest_entries: int
+    event_refinements: int
+
+    @classmethod
+    def from_diagnostics(cls, diag) -> "SolverStats":
+        """From the engine's diagnostics array (``D_*`` layout of :mod:`.layout`)."""
+        return cls(int(diag[D_STEPS]), int(diag[D_REJECTED]), int(diag[D_NFEV]), int(diag[D_EVENTS]),
+                   int(diag[D_EVENTS_STORED]), int(diag[D_REST]), int(diag[D_REFINE]))
+
+
+_MESSAGES = {
+    ST_OK: "the analysis ran to t = {t:.6g} s",
+    ST_OVERTURNED: "the body overturned (|θ| reached π/2) at t = {t:.6g} s",
+    ST_ENERGY_BOUND: ("stopped early at t = {t:.6g} s: with the ground at rest the remaining energy cannot raise "
+                      "|θ| to θ_max again (docs/early_termination.md)"),
+    ST_STOPPED_EXCEEDED: "stopped at t = {t:.6g} s, when |θ| first reached θc (static criterion)",
+    ST_STEP_COLLAPSE: "FAILED: the step size collapsed at t = {t:.6g} s; the result must not be used",
+    ST_TOO_MANY_STEPS: "FAILED: step limit reached at t = {t:.6g} s; the result must not be used",
+    ST_TOO_MANY_EVENTS: "FAILED: event limit reached at t = {t:.6g} s (a Zeno sequence?); the result must not be used",
+}
+
 
 @dataclass(frozen=True)
 class Event:
@@ -54,6 +90,18 @@ class Response:
     model: str
     status: str
     diagnostics: dict = field(default_factory=dict)
+    status_code: int = ST_OK                 # ST_* of rockdesign.dynamics.layout
+    solver: SolverStats | None = None        # typed counters (``diagnostics`` holds them for the JSON)
+
+    @property
+    def success(self) -> bool:
+        """True when the analysis ran to a conclusion (completed, overturned, or stopped by design)."""
+        return self.status_code in COMPLETED_STATUSES
+
+    @property
+    def message(self) -> str:
+        """One sentence: how the analysis ended, and whether its result may be used."""
+        return _MESSAGES[self.status_code].format(t=self.t_end)
 
     @property
     def theta_max_over_alpha(self) -> float:

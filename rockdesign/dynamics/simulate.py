@@ -16,7 +16,7 @@ from .layout import (D_EVENTS, D_EVENTS_STORED, D_NFEV, D_REFINE, D_REJECTED, D_
 from .model import REST_VELOCITY, ModelChoice, resolve_structure, system_parameters
 from .eom import P_THETA_C, P_TWO_DOF
 from .overturning import classify
-from .response import Event, Response
+from .response import Event, Response, SolverStats
 
 DEFAULT_RTOL = 1e-10
 """Default relative tolerance of the integrator (CONTRACT §1 ``[analysis] rtol``)."""
@@ -199,4 +199,5 @@ def _build_response(system, motion, sp, model, label, summary, diag, t_out, out_
                     overturn_mode=mode, overturned=bool(overturned), overturn_criterion=overturn,
                     impacts_before_overturn=before, drift_max=float(summary[S_DRIFT_MAX]),
                     t_end=float(summary[S_T_END]), model=label, status=STATUS_NAMES[int(diag[D_STATUS])],
-                    diagnostics=diagnostics)
+                    diagnostics=diagnostics, status_code=int(diag[D_STATUS]),
+                    solver=SolverStats.from_diagnostics(diag))
