@@ -17,7 +17,7 @@ def quantities_json(project: Project) -> dict:
     if project.system.kind == "cylinder":                   # the 3D cylinder (thesis Ch. 5)
         from .cylinder.commands import quantities_json as cylinder_json
         return cylinder_json(project)
-    q = design_quantities(project.system)
+    q = design_quantities(project.system, project.analysis.rigid_superstructure_ratio)
     return {"quantities": {name: x.as_json() for name, x in q.items()}, "warnings": list(project.warnings)}
 
 
@@ -51,7 +51,7 @@ def write_pushover(system, path) -> None:
 def quantities_table(project: Project, console, units: str | None = None) -> None:
     """Print the design quantities of a project as a table."""
     from .display import quantities_table as _table
-    _table(design_quantities(project.system), console, units, project.system.g,
+    _table(design_quantities(project.system, project.analysis.rigid_superstructure_ratio), console, units, project.system.g,
            f"{project.name} — design quantities ({project.system.kind})", project.warnings)
 
 

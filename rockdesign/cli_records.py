@@ -167,6 +167,7 @@ def show_command(
 
 def _plot_history(motion, path: Path) -> None:
     from . import mplfig as plt
+    from .plots import save
 
     from .motions.measures import velocity_displacement
     t, accel = motion.sampled()
@@ -180,9 +181,7 @@ def _plot_history(motion, path: Path) -> None:
     axes[-1].set_xlabel("t [s]")
     axes[0].set_title(motion.name)
     fig.tight_layout()
-    Path(path).parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
+    save(fig, path, dpi=130)
 
 
 @app.command("spectrum")
@@ -232,6 +231,7 @@ def spectrum_command(
 
 def _plot_spectrum(result: dict, path: Path, gravity: float) -> None:
     from . import mplfig as plt
+    from .plots import save
 
     fig, (ax_sd, ax_psa) = plt.subplots(1, 2, figsize=(10, 4))
     ax_sd.plot(result["periods"], result["SD"], lw=1)
@@ -247,9 +247,7 @@ def _plot_spectrum(result: dict, path: Path, gravity: float) -> None:
         ax.grid(alpha=0.3, which="both")
     fig.suptitle(f"{result['id']} — {100 * result['damping']:g} % damping")
     fig.tight_layout()
-    Path(path).parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
+    save(fig, path, dpi=130)
 
 
 @app.command("synth")

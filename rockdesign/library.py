@@ -79,7 +79,7 @@ class Quantities(Mapping):
     def __init__(self, project: Project):
         from .design.quantities import design_quantities as _compute
         self.project = project
-        self._items: dict[str, Quantity] = dict(_compute(project.system))
+        self._items: dict[str, Quantity] = dict(_compute(project.system, project.analysis.rigid_superstructure_ratio))
 
     def __getitem__(self, name: str) -> Quantity:
         return self._items[name]

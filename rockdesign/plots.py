@@ -41,7 +41,10 @@ def time_history_figure(response, g: float, title: str = ""):
         return fig
 
 
-def save(fig, path) -> None:
-    """Save a figure (format from the extension) and close it."""
-    fig.savefig(path)
+def save(fig, path, dpi: float | None = None) -> None:
+    """Save a figure (format from the extension; raster at ``dpi``) into its folder, made if missing,
+    and close it."""
+    from pathlib import Path
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, **({"dpi": dpi} if dpi else {}))
     plt.close(fig)

@@ -103,8 +103,7 @@ def parse_project(raw: dict, *, file: str = "<project>", text: str = "") -> Proj
 
 
 def _parse_column(t: _Table) -> tuple[Column, float | None, str]:
-    hk = t.one_of("height", "half_height")
-    H = t.quantity(hk, "length") / (2.0 if hk == "height" else 1.0)
+    H = t.half_height()
     wk = t.one_of("width", "slenderness")
     if wk == "width":
         B = t.quantity("width", "length") / 2.0

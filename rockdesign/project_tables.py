@@ -11,6 +11,7 @@ import re
 import tomllib
 from dataclasses import dataclass, field
 
+from .design.quantities import RIGID_SUPERSTRUCTURE_RATIO
 from .errors import ProjectError
 from .systems import RockingSystem
 from .units import G_DEFAULT, QuantityParseError, parse_quantity
@@ -54,7 +55,7 @@ class AnalysisSettings:
     margin_precision: float = 0.01
     margin_max_scale: float = 8.0
     free_vibration: float = 10.0
-    rigid_superstructure_ratio: float = 10.0
+    rigid_superstructure_ratio: float = RIGID_SUPERSTRUCTURE_RATIO
     scan_rtol: float = 1e-6
     overturn_probability_limit: float = 0.10
     # fragility, collapse margin and perturbation ensembles (SPEC §11; parsed by _parse_fragility)
@@ -63,6 +64,10 @@ class AnalysisSettings:
     quality: tuple[tuple[str, str], ...] = (("design_requirements", "B"), ("test_data", "B"), ("modeling", "B"))
     ensemble_size: int = 8
     seed: int = 20090601
+
+
+DEFAULTS = AnalysisSettings()
+"""The ``[analysis]`` defaults: the parser fills every key the project file leaves out from here."""
 
 
 @dataclass(frozen=True)
@@ -152,6 +157,11 @@ class _Table:
                              found=raw)
         return int(raw) if integer else value
 
+    def half_height(self) -> float:
+        """H [m] from ``height`` (= 2H) or ``half_height``, whichever the table gives (exactly one)."""
+        key = self.one_of("height", "half_height")
+        return self.quantity(key, "length") / (2.0 if key == "height" else 1.0)
+
     def one_of(self, *names: str, required: bool = True) -> str | None:
         present = [n for n in names if n in self.data]
         if len(present) > 1:
@@ -172,7 +182,7 @@ def _toml_error(path: str, exc: tomllib.TOMLDecodeError) -> ProjectError:
 
 def _parse_analysis(data: dict, file: str) -> AnalysisSettings:
     t = _Table(data, "analysis", ANALYSIS_KEYS, file, G_DEFAULT)
-    g = G_DEFAULT
+    g = DEFAULTS.g
     if t.has("g"):
         raw = t.data["g"]
         if isinstance(raw, str) and re.search(r"(?<![A-Za-z_])g(?![A-Za-z_0-9])", raw):
@@ -181,7 +191,7 @@ def _parse_analysis(data: dict, file: str) -> AnalysisSettings:
         if not 9.7 <= g <= 9.9:
             raise t.error("g", "out of range", expected="a gravitational acceleration 9.7–9.9 m/s²", found=raw)
     t.gravity = g
-    band = (0.05, 10.0)
+    band = DEFAULTS.sdmax_band
     if t.has("sdmax_band"):
         raw = t.data["sdmax_band"]
         if not (isinstance(raw, list) and len(raw) == 2):
@@ -192,36 +202,40 @@ def _parse_analysis(data: dict, file: str) -> AnalysisSettings:
             raise ProjectError(f"expects {exc}", file=file, key="analysis.sdmax_band") from None
         if not 0.0 < band[0] < band[1]:
             raise t.error("sdmax_band", "out of range", expected="0 < T_min < T_max", found=raw)
-    damping = t.quantity("sdmax_damping", "dimensionless", default=0.02)
+    damping = t.quantity("sdmax_damping", "dimensionless", default=DEFAULTS.sdmax_damping)
     if not 0.0 < damping < 1.0:
         raise t.error("sdmax_damping", "out of range", expected="0 < ζ < 1 (e.g. \"2 %\")", found=t.data["sdmax_damping"])
     return AnalysisSettings(
-        model=t.choice("model", MODELS, "auto"),
-        equations=t.choice("equations", EQUATIONS, "auto"),
-        rtol=t.number("rtol", default=1e-8, low=0.0, high=1e-3),
-        atol=t.number("atol", default=1e-10, low=0.0, high=1e-3),
-        overturn=t.choice("overturn", OVERTURN, "static"),
+        model=t.choice("model", MODELS, DEFAULTS.model),
+        equations=t.choice("equations", EQUATIONS, DEFAULTS.equations),
+        rtol=t.number("rtol", default=DEFAULTS.rtol, low=0.0, high=1e-3),
+        atol=t.number("atol", default=DEFAULTS.atol, low=0.0, high=1e-3),
+        overturn=t.choice("overturn", OVERTURN, DEFAULTS.overturn),
         g=g,
-        rest_velocity=t.quantity("rest_velocity", "frequency", default=5e-4) if isinstance(
-            t.data.get("rest_velocity"), str) else t.number("rest_velocity", default=5e-4, low=0.0, high=0.1),
+        rest_velocity=t.quantity("rest_velocity", "frequency", default=DEFAULTS.rest_velocity)
+        if isinstance(t.data.get("rest_velocity"), str)
+        else t.number("rest_velocity", default=DEFAULTS.rest_velocity, low=0.0, high=0.1),
         sdmax_damping=damping,
         sdmax_band=band,
-        linearization_tolerance=t.number("linearization_tolerance", default=0.02, low=0.0, high=1.0),
-        restitution_variation=t.number("restitution_variation", default=0.02, low=0.0, high=0.5),
-        margin_precision=t.number("margin_precision", default=0.01, low=0.0, high=0.5),
-        margin_max_scale=t.number("margin_max_scale", default=8.0, low=1.0, high=1000.0),
+        linearization_tolerance=t.number("linearization_tolerance", default=DEFAULTS.linearization_tolerance,
+                                         low=0.0, high=1.0),
+        restitution_variation=t.number("restitution_variation", default=DEFAULTS.restitution_variation, low=0.0, high=0.5),
+        margin_precision=t.number("margin_precision", default=DEFAULTS.margin_precision, low=0.0, high=0.5),
+        margin_max_scale=t.number("margin_max_scale", default=DEFAULTS.margin_max_scale, low=1.0, high=1000.0),
         free_vibration=_free_vibration(t),
-        rigid_superstructure_ratio=t.number("rigid_superstructure_ratio", default=10.0, low=0.0),
-        scan_rtol=t.number("scan_rtol", default=1e-6, low=0.0, high=1e-3),
-        overturn_probability_limit=t.quantity("overturn_probability_limit", "dimensionless", default=0.10)
+        rigid_superstructure_ratio=t.number("rigid_superstructure_ratio", default=DEFAULTS.rigid_superstructure_ratio,
+                                            low=0.0),
+        scan_rtol=t.number("scan_rtol", default=DEFAULTS.scan_rtol, low=0.0, high=1e-3),
+        overturn_probability_limit=t.quantity("overturn_probability_limit", "dimensionless",
+                                              default=DEFAULTS.overturn_probability_limit)
         if isinstance(t.data.get("overturn_probability_limit"), str)
-        else t.number("overturn_probability_limit", default=0.10, low=0.0, high=1.0),
+        else t.number("overturn_probability_limit", default=DEFAULTS.overturn_probability_limit, low=0.0, high=1.0),
         **_parse_fragility(t),
     )
 
 
 def _free_vibration(t: _Table) -> float:
-    value = t.quantity("free_vibration", "time", default=10.0, positive=False)
+    value = t.quantity("free_vibration", "time", default=DEFAULTS.free_vibration, positive=False)
     if value < 0.0:
         raise t.error("free_vibration", "out of range", expected="a time ≥ 0 s analysed after the motion ends "
                       "(e.g. \"10 s\")", found=t.data["free_vibration"])
@@ -233,7 +247,7 @@ QUALITY_RATINGS = ("A", "B", "C", "D")
 
 def _parse_fragility(t: _Table) -> dict:
     """The fragility, collapse-margin and ensemble keys of ``[analysis]`` (SPEC §11, docs/project-file.md)."""
-    im = t.choice("fragility_im", ("pga", "sa", "sdmax"), "pga")
+    im = t.choice("fragility_im", ("pga", "sa", "sdmax"), DEFAULTS.fragility_im)
     period = t.quantity("fragility_period", "time")
     if (im == "sa") != (period is not None):
         raise t.error("fragility_period", "needed with fragility_im = \"sa\" and only then",
@@ -242,10 +256,11 @@ def _parse_fragility(t: _Table) -> dict:
                                                             f"fragility_period = {t.data['fragility_period']!r}"))
     raw = t.data.get("quality", {})
     q = _Table(raw, "analysis.quality", ("design_requirements", "test_data", "modeling"), t.file, t.gravity)
-    quality = tuple((k, q.choice(k, QUALITY_RATINGS, "B")) for k in q.allowed)
+    quality = tuple((k, q.choice(k, QUALITY_RATINGS, dict(DEFAULTS.quality)[k])) for k in q.allowed)
     return {"fragility_im": im, "fragility_period": period, "quality": quality,
-            "ensemble_size": t.number("ensemble_size", default=8, low=0, low_open=False, high=1000, integer=True),
-            "seed": t.number("seed", default=20090601, low=0, low_open=False, integer=True)}
+            "ensemble_size": t.number("ensemble_size", default=DEFAULTS.ensemble_size, low=0, low_open=False, high=1000,
+                                      integer=True),
+            "seed": t.number("seed", default=DEFAULTS.seed, low=0, low_open=False, integer=True)}
 
 
 def project_info(raw: dict, file: str, g: float, example: str = "5-storey block") -> dict:

@@ -210,7 +210,7 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     """
     system = project.system
     a = project.analysis
-    q = design_quantities(system)
+    q = design_quantities(system, a.rigid_superstructure_ratio)
     capacity = q["u_capacity"].value
     rule = PolyakovRule(capacity, a.sdmax_damping, tuple(a.sdmax_band))
     spec = _excitation(project)

@@ -158,16 +158,8 @@ def energy(y, par):
     """Mechanical energy per unit mass [J/kg] above the upright rest position (undamped: conserved in
     free vibration): ½(M R² θ̇² + R² J φ̇²) + g R (cos(α−θ) − cos α)
     [+ ½ẇ_T² + R sin(α−θ) θ̇ ẇ_T + ½ω_n² w_T² for the damped model]."""
-    R = par[P_R]
-    alpha = par[P_ALPHA]
-    th = y[0]
-    sth = math.sin(th)
-    sh = math.sin(0.5 * th)
-    omc = 2.0 * sh * sh
-    J = (16.0 + 5.0 * par[P_S2]) / 12.0 * sth * sth + omc * (par[P_SIN2A] * sth - 3.0 * par[P_S2] * math.cos(th))
-    # cos(α−θ) − cosα = 2 sin(α − θ/2) sin(θ/2)
-    e = 0.5 * R * R * (par[P_M] * y[1] * y[1] + J * y[3] * y[3]) + par[P_G] * R * 2.0 * math.sin(alpha - 0.5 * th) * sh
+    e = rocking_energy(y, par)
     if par[P_DAMPED] > 0.5:
         om = par[P_OMEGA]
-        e += 0.5 * y[5] * y[5] + R * math.sin(alpha - th) * y[1] * y[5] + 0.5 * om * om * y[4] * y[4]
+        e += 0.5 * y[5] * y[5] + par[P_R] * math.sin(par[P_ALPHA] - y[0]) * y[1] * y[5] + 0.5 * om * om * y[4] * y[4]
     return e

@@ -103,8 +103,7 @@ def _overturn_tilt(analysis_raw: dict, file: str) -> float:
 
 
 def _parse_cylinder(t, name: str, g: float, overturn_tilt: float) -> Cylinder:
-    hk = t.one_of("height", "half_height")
-    H = t.quantity(hk, "length") / (2.0 if hk == "height" else 1.0)
+    H = t.half_height()
     wk = t.one_of("diameter", "slenderness")
     if wk == "diameter":
         B = t.quantity("diameter", "length") / 2.0

@@ -97,8 +97,11 @@ def system_frequency_parameter(system: RockingSystem) -> tuple[float, str]:
     return frame_frequency_parameter(geo.R, geo.lam, gamma, system.g), "Eq 3.76" if gamma > 0 else "Eq 3.13"
 
 
-def design_quantities(system: RockingSystem) -> dict[str, Quantity]:
-    """Every closed-form design quantity of SPEC §2 that applies to ``system``, in report order."""
+def design_quantities(system: RockingSystem, rigid_ratio: float = RIGID_SUPERSTRUCTURE_RATIO) -> dict[str, Quantity]:
+    """Every closed-form design quantity of SPEC §2 that applies to ``system``, in report order.
+
+    ``rigid_ratio``: ω_s/p at and above which the superstructure counts as rigid (the project's
+    ``[analysis] rigid_superstructure_ratio``); it only words the note on ω_s/p."""
     c = system.column
     g = system.g
     H, B = c.half_height, c.half_width
@@ -200,10 +203,10 @@ def design_quantities(system: RockingSystem) -> dict[str, Quantity]:
             "ζ_su = S_r ζ_in", f"{_f(S_r)}·{_f(zeta_in)}",
             "input damping ζ_s/S_r (damping correction)" if s.damping_correction else "no damping correction")
         ratio = s.omega_s / p
-        verdict = ("rigid superstructure adequate (Polyakov rule 1)" if ratio >= RIGID_SUPERSTRUCTURE_RATIO
+        verdict = ("rigid superstructure adequate (Polyakov rule 1)" if ratio >= rigid_ratio
                    else "superstructure flexibility matters: 2DOF podium model")
         add("omega_s_over_p", "ω_s/p", "superstructure to rocking frequency ratio", ratio, "-", "Sec 4.2.4, docs/model.md §7",
-            "ω_s/p", f"{_f(s.omega_s)}/{_f(p)}", f"{verdict} (switch at {RIGID_SUPERSTRUCTURE_RATIO:g})")
+            "ω_s/p", f"{_f(s.omega_s)}/{_f(p)}", f"{verdict} (switch at {rigid_ratio:g})")
     # every quantity carries its formula and substituted numbers (the report only renders them)
     for name, quantity in q.items():
         formula, substituted, _ = substitution(name, quantity, system)

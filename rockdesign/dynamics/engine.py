@@ -26,10 +26,9 @@ import numpy as np
 from numba import njit
 
 from ..motions.excitation import excitation_end, ground_acceleration, ground_acceleration_right, next_breakpoint
-from .eom import (rhs_given_acceleration, P_BETA, P_CR, P_HYST, P_OVERTURN, P_RADIUS, P_REST_V, P_R, P_THETA_C, P_TWO_DOF,
-                  uplift_condition)
+from .eom import (rhs_given_acceleration, P_RADIUS, P_R, P_TWO_DOF, uplift_condition)
 from .events import next_threshold_crossing, root_on_dense
-from .transitions import (change_phase, crossing_event, energy_bound, enter_overturn, enter_uplift, impact, phase_of,
+from .transitions import (change_phase, event_levels, new_summary, crossing_event, energy_bound, enter_overturn, enter_uplift, impact, phase_of,
                           store_event, top_displacement)
 from .dop853 import ERROR_EXPONENT_853, FSAL_ROW_853, N_STAGES_EXTENDED, dop853_dense, dop853_error_norm, dop853_step
 from .rk import (ERROR_EXPONENT, MAX_FACTOR, MIN_FACTOR, SAFETY, dense_coefficients, dense_value,
@@ -37,13 +36,12 @@ from .rk import (ERROR_EXPONENT, MAX_FACTOR, MIN_FACTOR, SAFETY, dense_coefficie
 
 from .layout import (DOP853_BELOW_RTOL, D_EVENTS, D_NFEV, D_REFINE, D_REJECTED, D_STATUS,
                      D_STEPS, EV_EXCEEDED, EV_OVERTURN, EV_PHASE_ROCKING, EV_PHASE_ROLLING, METHOD_AUTO,
-                     METHOD_DOP853, METHOD_DP5, N_DIAG, N_SUMMARY, O_ATOL,
-                     O_ENERGY_STOP, O_H_MAX, O_MAX_EVENTS, O_MAX_STEPS, O_METHOD, O_RTOL, O_SCAN,
-                     O_STOP_EXCEEDED, O_T_END, ST_ENERGY_BOUND, ST_OK, ST_OVERTURNED, ST_STEP_COLLAPSE, ST_STOPPED_EXCEEDED,
-                     ST_TOO_MANY_EVENTS, ST_TOO_MANY_STEPS, S_DRIFT_MAX, S_EXCEEDED, S_IMPACTS_BEFORE_EXCEEDED,
-                     S_IMPACTS_BEFORE_OVERTURN, S_THETA_MAX, S_T_END, S_T_EXCEEDED, S_T_OVERTURN,
-                     S_T_THETA_MAX, S_T_UPLIFT, S_UB_MAX, S_UPLIFTS,
-                     S_UPLIFT_TIME)
+                     METHOD_DOP853, METHOD_DP5, N_DIAG, O_ATOL, O_ENERGY_STOP,
+                     O_H_MAX, O_MAX_EVENTS, O_MAX_STEPS, O_METHOD, O_RTOL, O_SCAN, O_STOP_EXCEEDED,
+                     O_T_END, ST_ENERGY_BOUND, ST_OK, ST_OVERTURNED, ST_STEP_COLLAPSE, ST_STOPPED_EXCEEDED, ST_TOO_MANY_EVENTS,
+                     ST_TOO_MANY_STEPS, S_DRIFT_MAX, S_EXCEEDED, S_IMPACTS_BEFORE_EXCEEDED, S_THETA_MAX,
+                     S_T_END, S_T_EXCEEDED, S_T_THETA_MAX, S_T_UPLIFT, S_UB_MAX,
+                     S_UPLIFTS, S_UPLIFT_TIME)
 
 
 @njit(cache=True)
@@ -63,18 +61,6 @@ def _rk_step(high, t, y, f0, h, K, y_new, ytmp, rocking, side, phase, kind, xp, 
     if high:
         return dop853_step(t, y, f0, h, K, y_new, ytmp, rocking, side, phase, kind, xp, samples, sp, n)
     return dp5_step(t, y, f0, h, K, y_new, ytmp, rocking, side, phase, kind, xp, samples, sp, n)
-
-
-@njit(cache=True)
-def _new_summary():
-    """A run summary (``S_*`` layout) before the run: times of events not yet seen are NaN, counts −1."""
-    summary = np.zeros(N_SUMMARY)
-    summary[S_T_UPLIFT] = math.nan
-    summary[S_T_EXCEEDED] = math.nan
-    summary[S_T_OVERTURN] = math.nan
-    summary[S_IMPACTS_BEFORE_OVERTURN] = -1.0
-    summary[S_IMPACTS_BEFORE_EXCEEDED] = -1.0
-    return summary
 
 
 @njit(cache=True)
@@ -187,7 +173,7 @@ def _refine_event(high, t, y, f0, x_e, h, level, sgn, K, y_e, ytmp, rocking, sid
     return t + he
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")   # called once per step: inlined as it was written before
 def _scan_podium_uplift(t, h, y, y_new, Q, m_scan, hyst, kind, xp, samples, sp):
     """Scan an accepted step of the fixed-base 2DOF podium (at rest, Eq 4.3) for uplift (Eq 4.7 above
     the hysteresis, either side) at ``m_scan`` points of the dense output, and bisect the first one.
@@ -225,7 +211,7 @@ def _scan_podium_uplift(t, h, y, y_new, Q, m_scan, hyst, kind, xp, samples, sp):
     return ev_x, ev_side
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")   # called once per step: inlined as it was written before
 def _scan_rocking_step(t, h, y, y_new, Q, ytmp, m_scan, side, phase, curved, beta, theta_ot, theta_c, two_dof,
                        drift_slope, impacts, stop_exceeded, c_theta, c_rate, summary, ev_t, ev_kind, ev_y, diag, sp):
     """Scan an accepted rocking step's dense output at ``m_scan`` points for the first event.
@@ -325,7 +311,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
     Returns:
         (summary ``S_*`` array, diagnostics ``D_*`` int array, number of output rows written).
     """
-    summary = _new_summary()
+    summary = new_summary()
     diag = np.zeros(N_DIAG, dtype=np.int64)
     t_end = opts[O_T_END]
     rtol = opts[O_RTOL]
@@ -338,13 +324,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
     max_events = opts[O_MAX_EVENTS]
     two_dof = sp[P_TWO_DOF] != 0.0
     n = 4 if two_dof else 2
-    theta_c = sp[P_THETA_C]
-    theta_ot = sp[P_OVERTURN]
-    beta = sp[P_BETA]
-    curved = sp[P_RADIUS] != 0.0
-    sqrt_cr = math.sqrt(sp[P_CR])
-    v_rest = sp[P_REST_V]
-    hyst = sp[P_HYST]
+    theta_c, theta_ot, beta, curved, sqrt_cr, v_rest, hyst = event_levels(sp)
     # |u_B(θ)| ≤ 2R(1 + 2r/R)|θ| (|dU/dθ| ≤ 1 + 2r/R for every contact phase): scan points whose bound
     # cannot raise the drift maximum skip the trigonometry of u_B
     drift_slope = 2.0 * sp[P_R] * (1.0 + 2.0 * sp[P_RADIUS] / sp[P_R])
@@ -419,14 +399,10 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
                 t = t_end
                 break
             i_out = _fill_outputs(t_out, out_y, i_out, tu, t, y, Q, 0.0, y, off, on)
-            t = tu
-            rocking = True
-            side = s_up
-            phase = 1
+            t = t_rock_start = tu
+            rocking, side, phase = True, s_up, 1
             enter_uplift(y, t, summary, ev_t, ev_kind, ev_y, diag)
-            t_rock_start = t
-            need_start = True
-            fresh_start = True
+            need_start = fresh_start = True
             continue
         # ---------------------------------------------------------------- a step
         if need_start:
@@ -480,40 +456,31 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
                 _step_to(high, t, y, f0, he, K, y_e, ytmp, rocking, side, phase, kind, xp, samples, sp, n, diag)
                 t_e = t + he
                 i_out = _fill_outputs(t_out, out_y, i_out, t_e, t, y, Q, h, y_e, on, off)
-                t = t_e
+                t = t_rock_start = t_e
                 for i in range(4):
                     y[i] = y_e[i]
-                rocking = True
-                side = ev_side
-                phase = 1
+                rocking, side, phase = True, ev_side, 1
                 enter_uplift(y, t, summary, ev_t, ev_kind, ev_y, diag)
-                t_rock_start = t
-                need_start = True
-                fresh_start = True
+                need_start = fresh_start = True
                 continue
-            i_out = _advance(t_out, out_y, i_out, t, t_new, tb, y, y_new, Q, h, K, fsal, f0, rocking, side,
-                             phase, kind, xp, samples, sp, diag)
-            t = t_new
-            h = h_next
-            if energy_stop and t >= t_exc and energy_bound(y, rocking, side, phase + 0, summary[S_THETA_MAX], sp):
-                status = ST_ENERGY_BOUND
-                break
-            continue
-
-        # ------------------------------------------------------------ rocking: scan for events
-        ev_type, ev_x, ev_level = _scan_rocking_step(t, h, y, y_new, Q, ytmp, m_scan, side, phase, curved, beta,
-                                                     theta_ot, theta_c, two_dof, drift_slope, impacts,
-                                                     stop_exceeded, c_theta, c_rate, summary, ev_t, ev_kind, ev_y,
-                                                     diag, sp)
-
+            ev_type = 0
+            ev_level = 0.0
+        else:
+            # -------------------------------------------------------- rocking: scan for events
+            ev_type, ev_x, ev_level = _scan_rocking_step(t, h, y, y_new, Q, ytmp, m_scan, side, phase, curved, beta,
+                                                         theta_ot, theta_c, two_dof, drift_slope, impacts,
+                                                         stop_exceeded, c_theta, c_rate, summary, ev_t, ev_kind,
+                                                         ev_y, diag, sp)
         if ev_type == 0:
+            # accept the step
             i_out = _advance(t_out, out_y, i_out, t, t_new, tb, y, y_new, Q, h, K, fsal, f0, rocking, side,
                              phase, kind, xp, samples, sp, diag)
             t = t_new
             h = h_next
             if energy_stop and t >= t_exc and energy_bound(y, rocking, side, phase + 0, summary[S_THETA_MAX], sp):
                 status = ST_ENERGY_BOUND
-                summary[S_UPLIFT_TIME] += t - t_rock_start
+                if rocking:
+                    summary[S_UPLIFT_TIME] += t - t_rock_start
                 break
             continue
 

@@ -21,13 +21,12 @@ from numba import njit
 from ..motions.excitation import (EXC_NONE, excitation_end, ground_acceleration, ground_acceleration_right,
                                   next_breakpoint)
 from .layout import (D_EVENTS, D_STATUS, D_STEPS, EV_EXCEEDED, EV_OVERTURN, EV_PHASE_ROCKING, EV_PHASE_ROLLING, N_DIAG,
-                     N_SUMMARY, ST_ENERGY_BOUND, ST_OK, ST_OVERTURNED, ST_STOPPED_EXCEEDED, ST_TOO_MANY_EVENTS, S_EXCEEDED, S_IMPACTS_BEFORE_EXCEEDED,
-                     S_IMPACTS_BEFORE_OVERTURN, S_THETA_MAX, S_T_END, S_T_EXCEEDED, S_T_OVERTURN,
-                     S_T_THETA_MAX, S_T_UPLIFT, S_UB_MAX, S_UPLIFTS, S_UPLIFT_TIME)
-from .eom import (P_ALPHA, P_BETA, P_CR, P_G, P_GAMMA, P_HYST, P_LAM, P_OVERTURN, P_R, P_RADIUS, P_REST_V,
-                  P_THETA_C, P_TWO_RHO, potential_energy, total_energy, uplift_condition)
+                     ST_ENERGY_BOUND, ST_OK, ST_OVERTURNED, ST_STOPPED_EXCEEDED, ST_TOO_MANY_EVENTS, S_EXCEEDED, S_IMPACTS_BEFORE_EXCEEDED, S_THETA_MAX,
+                     S_T_END, S_T_EXCEEDED, S_T_THETA_MAX, S_T_UPLIFT, S_UB_MAX,
+                     S_UPLIFTS, S_UPLIFT_TIME)
+from .eom import (P_ALPHA, P_BETA, P_G, P_GAMMA, P_LAM, P_R, P_RADIUS, P_TWO_RHO, potential_energy, total_energy, uplift_condition)
 from .events import next_threshold_crossing
-from .transitions import (change_phase, crossing_event, energy_bound, enter_overturn, enter_uplift, impact,
+from .transitions import (change_phase, event_levels, new_summary, crossing_event, energy_bound, enter_overturn, enter_uplift, impact,
                           store_event, top_displacement)
 
 PULSE_SAMPLES_PER_PERIOD = 64000
@@ -215,20 +214,9 @@ def _level_root(ta, tb, level, sgn, mode, om, A, B, p0, p1):
 def integrate_linear_exact(sp, kind, xp, samples, y_init, side_init, t0, t_end, t_out, out_y, ev_t, ev_kind,
                            ev_y, max_events, stop_exceeded, energy_stop):
     """Exact event-driven solution of the linearized SDOF equations (same outputs as ``engine.integrate``)."""
-    summary = np.zeros(N_SUMMARY)
-    summary[S_T_UPLIFT] = math.nan
-    summary[S_T_EXCEEDED] = math.nan
-    summary[S_T_OVERTURN] = math.nan
-    summary[S_IMPACTS_BEFORE_OVERTURN] = -1.0
-    summary[S_IMPACTS_BEFORE_EXCEEDED] = -1.0
+    summary = new_summary()
     diag = np.zeros(N_DIAG, dtype=np.int64)
-    theta_c = sp[P_THETA_C]
-    theta_ot = sp[P_OVERTURN]
-    beta = sp[P_BETA]
-    curved = sp[P_RADIUS] != 0.0
-    sqrt_cr = math.sqrt(sp[P_CR])
-    v_rest = sp[P_REST_V]
-    hyst = sp[P_HYST]
+    theta_c, theta_ot, beta, curved, sqrt_cr, v_rest, hyst = event_levels(sp)
     gam = sp[P_GAMMA]
     P = sp[P_G] / sp[P_R] * (1.0 + 2.0 * gam) / (sp[P_LAM] + 1.0 + 4.0 * gam)
     chunk = 0.5 / math.sqrt(P * max(1.0, abs(1.0 - sp[P_TWO_RHO])))

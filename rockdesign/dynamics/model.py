@@ -8,7 +8,7 @@ import numpy as np
 
 from ..design.frequencies import frequency_parameter, uplifted_frequency_ratio
 from ..design.geometry import rocking_geometry, slenderness_angle
-from ..design.quantities import coefficient_of_restitution, effective_gamma
+from ..design.quantities import RIGID_SUPERSTRUCTURE_RATIO, coefficient_of_restitution, effective_gamma
 from ..errors import ModelError
 from ..systems import RockingSystem
 from .eom import pack_parameters
@@ -33,7 +33,7 @@ class ModelChoice:
         return f"{self.structure}/{self.equations}"
 
 
-def default_structure(system: RockingSystem, rigid_ratio: float = 10.0) -> tuple[str, str]:
+def default_structure(system: RockingSystem, rigid_ratio: float = RIGID_SUPERSTRUCTURE_RATIO) -> tuple[str, str]:
     """(structure, reason): the simplest structural model SPEC §6 allows for ``system``."""
     if system.kind == "column":
         return "block", "solitary column: one rocking body (SDOF)"
@@ -52,7 +52,7 @@ def default_structure(system: RockingSystem, rigid_ratio: float = 10.0) -> tuple
                            "overturning acceleration by up to −12 % (docs/model.md §7): 2DOF podium")
 
 
-def resolve_structure(system: RockingSystem, structure: str, rigid_ratio: float = 10.0) -> str:
+def resolve_structure(system: RockingSystem, structure: str, rigid_ratio: float = RIGID_SUPERSTRUCTURE_RATIO) -> str:
     """Validate an explicit structure or resolve ``auto``."""
     if structure == "auto":
         return default_structure(system, rigid_ratio)[0]

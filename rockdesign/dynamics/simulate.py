@@ -17,6 +17,7 @@ from .model import REST_VELOCITY, ModelChoice, resolve_structure, system_paramet
 from .eom import P_THETA_C, P_TWO_DOF
 from .overturning import classify
 from .response import Event, Response, SolverStats
+from ..design.quantities import RIGID_SUPERSTRUCTURE_RATIO
 
 DEFAULT_RTOL = 1e-10
 """Default relative tolerance of the integrator (CONTRACT §1 ``[analysis] rtol``)."""
@@ -33,7 +34,7 @@ def simulate(system: RockingSystem, motion: GroundMotion | None = None, *, model
              overturn: str = "static", rest_velocity: float = REST_VELOCITY, output_dt: float | None = None,
              energy_stop: bool = False, stop_at_capacity: bool = False, max_steps: int = 20_000_000,
              scan_points: int = 8, max_events: int = 1_000_000, event_capacity: int = 100_000,
-             record_history: bool = True, rigid_ratio: float = 10.0, method: str = "auto") -> Response:
+             record_history: bool = True, rigid_ratio: float = RIGID_SUPERSTRUCTURE_RATIO, method: str = "auto") -> Response:
     """Time-history response of ``system`` to ``motion`` (SPEC §3).
 
     Args:

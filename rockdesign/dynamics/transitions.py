@@ -13,10 +13,22 @@ import math
 import numpy as np
 from numba import njit
 
-from .eom import P_BETA, P_OVERTURN, P_R, P_RADIUS, P_THETA_C, normalised_kinematics, potential_energy, total_energy
-from .layout import (D_EVENTS, D_EVENTS_STORED, D_REST, EV_IMPACT, EV_OVERTURN, EV_PHASE_ROCKING, EV_PHASE_ROLLING,
+from .eom import P_BETA, P_CR, P_HYST, P_OVERTURN, P_R, P_RADIUS, P_REST_V, P_THETA_C, normalised_kinematics, potential_energy, total_energy
+from .layout import (N_SUMMARY, S_IMPACTS_BEFORE_EXCEEDED, S_T_EXCEEDED, D_EVENTS, D_EVENTS_STORED, D_REST, EV_IMPACT, EV_OVERTURN, EV_PHASE_ROCKING, EV_PHASE_ROLLING,
                      EV_REST, EV_UPLIFT, S_DYNAMIC, S_IMPACTS, S_IMPACTS_BEFORE_OVERTURN, S_T_OVERTURN,
                      S_T_THETA_MAX, S_T_UPLIFT, S_THETA_MAX, S_UPLIFT_TIME, S_UPLIFTS)
+
+
+@njit(cache=True)
+def new_summary():
+    """A run summary (``S_*`` layout) before the run: times of events not yet seen are NaN, counts −1."""
+    summary = np.zeros(N_SUMMARY)
+    summary[S_T_UPLIFT] = math.nan
+    summary[S_T_EXCEEDED] = math.nan
+    summary[S_T_OVERTURN] = math.nan
+    summary[S_IMPACTS_BEFORE_OVERTURN] = -1.0
+    summary[S_IMPACTS_BEFORE_EXCEEDED] = -1.0
+    return summary
 
 
 @njit(cache=True, inline="always")
@@ -66,6 +78,14 @@ def energy_bound(y, rocking, side, phase, theta_max, sp):
     if theta_max >= sp[P_THETA_C]:
         return False
     return total_energy(y, rocking, side, phase, sp) < potential_energy(theta_max, 1.0, phase_of(theta_max, sp), sp)
+
+
+@njit(cache=True, inline="always")
+def event_levels(sp):
+    """The levels and constants of the transitions: (θc [rad], |θ| of overturning [rad], β [rad], curved
+    extensions?, √c_r, rest velocity [rad/s], uplift hysteresis [rad/s²]) — ``sp`` in the eom layout."""
+    return (sp[P_THETA_C], sp[P_OVERTURN], sp[P_BETA], sp[P_RADIUS] != 0.0, math.sqrt(sp[P_CR]), sp[P_REST_V],
+            sp[P_HYST])
 
 
 @njit(cache=True, inline="always")

@@ -27,6 +27,7 @@ from ..errors import MotionError
 from ..units import QuantityParseError, parse_quantity
 from .excitation import EXC_NONE, EXC_SAMPLES, excitation_end, ground_acceleration_array
 from .motion import PULSE_KINDS, GroundMotion, no_motion
+from .parse import scale_factor
 
 _EMPTY = np.zeros(0)
 _PAIR_ID = re.compile(r"^(p695-(?:ff|nfp|nfnp))/(\d+)$", re.I)
@@ -211,14 +212,7 @@ def _apply_scaling(pair: MotionPair, named: dict, text: str, gravity: float, upl
     if "azimuth" in named:
         pair = pair.rotated(_angle(text, named["azimuth"]))
     if "scale" in named:
-        try:
-            factor = float(named["scale"])
-        except ValueError:
-            raise MotionError("scale must be a number", key="--motion", expected="scale=1.5",
-                              found=f"'{text}'") from None
-        if not factor > 0:
-            raise MotionError("scale must be positive", key="--motion", expected="scale > 0", found=f"'{text}'")
-        pair = pair.scaled(factor)
+        pair = pair.scaled(scale_factor(text, named["scale"]))
     if "resultant_pga" in named:
         value = named["resultant_pga"].strip()
         m = re.match(r"^([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*up$", value)

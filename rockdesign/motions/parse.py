@@ -89,6 +89,18 @@ def _quantity(text: str, name: str, value: str, dimension: str, scales: SystemSc
         raise MotionError(f"parameter '{name}' expects {exc}{extra}", key="--motion", found=f"'{text}'") from None
 
 
+def scale_factor(text: str, raw: str) -> float:
+    """The ``scale=`` of a motion string: a finite number > 0 (``text``, the whole string, for messages)."""
+    try:
+        scale = float(raw)
+    except ValueError:
+        raise MotionError("scale must be a number", key="--motion", expected="scale=1.5", found=f"'{text}'") from None
+    if not (math.isfinite(scale) and scale > 0):
+        raise MotionError("scale must be positive", key="--motion", expected="a finite scale > 0",
+                                  found=f"'{text}'")
+    return scale
+
+
 def parse_motion(text: str, scales: SystemScales, *, records_dir: str | None = None) -> MotionSpec:
     """Parse a motion string of CONTRACT §2 for a system with the given ``scales``."""
     if ":" not in text:
@@ -151,16 +163,7 @@ def parse_motion(text: str, scales: SystemScales, *, records_dir: str | None = N
         parts = body.split(",")
         ident = parts[0].strip()
         f = _fields(text, ",".join(parts[1:]), ("scale", "units", "dt"))
-        scale = 1.0
-        if "scale" in f:
-            try:
-                scale = float(f["scale"])
-            except ValueError:
-                raise MotionError("scale must be a number", key="--motion", expected="scale=1.5",
-                                  found=f"'{text}'") from None
-            if not (math.isfinite(scale) and scale > 0):
-                raise MotionError("scale must be positive", key="--motion", expected="a finite scale > 0",
-                                  found=f"'{text}'")
+        scale = scale_factor(text, f["scale"]) if "scale" in f else 1.0
         try:
             if kind == "record":
                 from .library import load_record

@@ -26,6 +26,7 @@ from ..dynamics.model import REST_VELOCITY, ModelChoice, resolve_structure, syst
 from ..dynamics.overturning import overturned_by
 from ..errors import RockdesignError
 from ..motions.motion import PULSE_KINDS
+from ..design.quantities import RIGID_SUPERSTRUCTURE_RATIO
 from ..systems import RockingSystem
 from .axes import DEFAULT_X, DEFAULT_Y, Axis, SpectrumScales, pulse_amplitudes, pulse_periods, spectrum_scales
 from ..execution.executor import ChunkStore, LocalExecutor, fingerprint, run_chunks
@@ -76,7 +77,7 @@ class SpectrumRequest:
     t_free: float = 10.0
     tm_ratio: float = 1.5
     energy_stop: bool = True
-    rigid_ratio: float = 10.0
+    rigid_ratio: float = RIGID_SUPERSTRUCTURE_RATIO
     stop_at_capacity: bool = False
 
     def validate(self) -> None:
