@@ -7,7 +7,7 @@ import sys
 
 def quantities_command(project, console, as_json: bool, units, curve) -> None:
     """Print the cylinder's quantities (or JSON); ``--pushover F`` writes the wobbling-period curve (Fig 5.2)."""
-    from .cylinder.commands import quantities_json, quantities_table, write_wobbling
+    from .cylinder.commands import quantities_json, write_wobbling
     if curve is not None:
         write_wobbling(project, curve)
     if as_json:
@@ -18,7 +18,7 @@ def quantities_command(project, console, as_json: bool, units, curve) -> None:
 
 def simulate_command(project, motion, model, as_json, plot, csv, t_end, rtol, records_dir, console) -> None:
     """Run one cylinder analysis; JSON, CSV and the time-history/orbit figure on request."""
-    from .cylinder.commands import response_table, simulate_project, write_history_csv
+    from .cylinder.commands import simulate_project, write_history_csv
     result = simulate_project(project, motion, model=model, t_end=t_end, rtol=rtol,
                               records_dir=str(records_dir) if records_dir else None)
     if csv:
@@ -48,3 +48,38 @@ def check_summary(data: dict, out_dir, console) -> None:
     console.print(table)
     colour = "green" if data["verdict"] == "PASS" else "red"
     console.print(f"verdict: [bold {colour}]{data['verdict']}[/]   output: {escape(str(out_dir))}", highlight=False)
+
+
+def quantities_table(project, console, units: str | None = None) -> None:
+    """Print the cylinder's quantities with their thesis equations."""
+    from .cylinder.quantities import cylinder_quantities
+    from .display import quantities_table as table
+    table(cylinder_quantities(project.system), console, units, project.system.g,
+          f"{project.name} — design quantities (cylinder, {project.system.contact} contact)", project.warnings)
+
+
+def response_table(result, console) -> None:
+    """Print the summary of one cylinder analysis."""
+    from rich.table import Table
+
+    from .display import format_value
+    r = result.response
+    table = Table(title=f"{result.project.name} — {result.motion_text}", title_justify="left")
+    for col in ("quantity", "value", "unit"):
+        table.add_column(col, justify="right" if col == "value" else "left")
+    j = r.as_json()
+    rows = [("model", j["model"], ""), ("θ_max", format_value(r.theta_max), "rad"),
+            ("θ_max/α", format_value(r.theta_max / r.alpha), "-"),
+            ("first uplift", "none" if r.uplift_time is None else format_value(r.uplift_time), "s"),
+            ("quasi-impacts", str(r.quasi_impacts), ""), ("max |φ̇|", format_value(j["phidot_max"]), "rad/s"),
+            ("φ at the end", format_value(j["phi_end"]), "rad"),
+            (f"overturned (θ ≥ θ_ot = {r.theta_overturn:.4g} rad)", "YES" if r.overturned else "no", ""),
+            ("analysed until", format_value(float(r.t[-1])), "s")]
+    if r.damped:
+        rows.append(("min contact force N/(m g)", format_value(r.min_contact_force_over_weight), "-"))
+    s = r.solver
+    rows.append(("solver", f"{s['steps']} steps, {s['rejected_steps']} rejected, {s['rhs_evaluations']} evaluations"
+                           f" — {r.status}", ""))
+    for row in rows:
+        table.add_row(*row)
+    console.print(table)

@@ -1,4 +1,5 @@
-"""The CLI/API face of the cylinder: ``quantities`` and ``simulate`` for a ``[cylinder]`` project."""
+"""The library face of the cylinder: ``quantities`` and ``simulate`` for a ``[cylinder]`` project (the
+console tables that print them live in rockdesign.cli_cylinder)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -10,13 +11,6 @@ from .engine import CylinderResponse, simulate_cylinder
 from .quantities import cylinder_quantities, frequency_parameter, quantities_json  # noqa: F401 (re-exported)
 
 CYLINDER_MODELS = ("auto", "undamped", "damped")
-
-
-def quantities_table(project, console, units: str | None = None) -> None:
-    """Print the cylinder's quantities with their thesis equations."""
-    from ..display import quantities_table as table
-    table(cylinder_quantities(project.system), console, units, project.system.g,
-          f"{project.name} — design quantities (cylinder, {project.system.contact} contact)", project.warnings)
 
 
 def write_wobbling(project, path) -> None:
@@ -92,30 +86,3 @@ def write_history_csv(response: CylinderResponse, path) -> None:
     cols.append(response.contact_force)
     header += ",contact_force_over_weight"
     np.savetxt(path, np.column_stack(cols), delimiter=",", header=header, comments="", fmt="%.12g")
-
-
-def response_table(result: CylinderSimulation, console) -> None:
-    """Print the summary of one cylinder analysis."""
-    from rich.table import Table
-
-    from ..display import format_value
-    r = result.response
-    table = Table(title=f"{result.project.name} — {result.motion_text}", title_justify="left")
-    for col in ("quantity", "value", "unit"):
-        table.add_column(col, justify="right" if col == "value" else "left")
-    j = r.as_json()
-    rows = [("model", j["model"], ""), ("θ_max", format_value(r.theta_max), "rad"),
-            ("θ_max/α", format_value(r.theta_max / r.alpha), "-"),
-            ("first uplift", "none" if r.uplift_time is None else format_value(r.uplift_time), "s"),
-            ("quasi-impacts", str(r.quasi_impacts), ""), ("max |φ̇|", format_value(j["phidot_max"]), "rad/s"),
-            ("φ at the end", format_value(j["phi_end"]), "rad"),
-            (f"overturned (θ ≥ θ_ot = {r.theta_overturn:.4g} rad)", "YES" if r.overturned else "no", ""),
-            ("analysed until", format_value(float(r.t[-1])), "s")]
-    if r.damped:
-        rows.append(("min contact force N/(m g)", format_value(r.min_contact_force_over_weight), "-"))
-    s = r.solver
-    rows.append(("solver", f"{s['steps']} steps, {s['rejected_steps']} rejected, {s['rhs_evaluations']} evaluations"
-                           f" — {r.status}", ""))
-    for row in rows:
-        table.add_row(*row)
-    console.print(table)

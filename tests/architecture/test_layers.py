@@ -92,3 +92,33 @@ def test_a_check_never_imports_the_benchmarks_or_the_scipy_baseline(tmp_path):
     assert any(line.startswith("EXIT 1") or line.startswith("EXIT 0") for line in lines), proc.stderr[-2000:]
     assert "LOADED []" in lines, [line for line in lines if line.startswith("LOADED")]
     assert (tmp_path / "out" / "results.json").is_file()
+
+
+@pytest.mark.slow
+def test_a_library_check_never_imports_the_benchmarks_or_the_scipy_baseline(tmp_path):
+    """``rd.check`` + ``rd.write_report`` (docs/api.md), in a fresh interpreter so that no other test's
+    imports count, leave no rockdesign.bench module loaded; nor does importing the cylinder check path."""
+    script = textwrap.dedent(f"""
+        import sys
+        import rockdesign as rd
+        result = rd.check(rd.load_project("examples/bridge_pier.toml"), margins=False)
+        rd.write_report(result, {str(tmp_path / 'out')!r}, pdf=False)
+        import rockdesign.checks.cylinder_check, rockdesign.report.cylinder_report  # noqa: E401
+        print("VERDICT", result.verdict)
+        print("LOADED", sorted(m for m in sys.modules if m.startswith("rockdesign.bench")))
+        """)
+    proc = subprocess.run([sys.executable, "-c", script], cwd=PACKAGE.parent, capture_output=True, text=True,
+                          timeout=900)
+    lines = proc.stdout.splitlines()
+    assert any(line in ("VERDICT PASS", "VERDICT FAIL") for line in lines), proc.stderr[-2000:]
+    assert "LOADED []" in lines, [line for line in lines if line.startswith("LOADED")]
+    assert (tmp_path / "out" / "results.json").is_file()
+
+
+def test_the_runtime_check_would_see_a_benchmark_import(tmp_path):
+    """The sys.modules probe used above is not vacuous: importing the scipy baseline shows up in it."""
+    script = ("import sys, rockdesign.bench.baseline.scipy_engine\n"
+              "print(sorted(m for m in sys.modules if m.startswith('rockdesign.bench')))\n")
+    proc = subprocess.run([sys.executable, "-c", script], cwd=PACKAGE.parent, capture_output=True, text=True,
+                          timeout=300)
+    assert "rockdesign.bench.baseline.scipy_engine" in proc.stdout, proc.stderr[-2000:]
