@@ -5,15 +5,14 @@ import json
 import sys
 from pathlib import Path
 
-import numpy as np
 
 
 def cylinder_spectrum_command(project, project_path, record, x, y, relative, out, as_json, figures, console) -> None:
     """Compute the cylinder spectrum (and the reference's for ``--relative``), write npz/json/figures."""
     from .motions.pairs import parse_pair
     from .project import load_project
-    from .plots import save
-    from .cylinder.spectrum import CylinderSpectrumError, cylinder_spectrum, parse_cylinder_axis, spectrum_figure
+    from .cylinder.spectrum_output import write_cylinder_spectrum
+    from .cylinder.spectrum import CylinderSpectrumError, cylinder_spectrum, parse_cylinder_axis
     if not record:
         raise CylinderSpectrumError("a cylinder spectrum needs a record pair", key="--record",
                                     expected="--record p695-ff/11 (or any record/files motion string)", found="none")
@@ -37,28 +36,8 @@ def cylinder_spectrum_command(project, project_path, record, x, y, relative, out
                                 free_vibration=other.analysis.free_vibration,
                                 rest_velocity=other.analysis.rest_velocity)
     out_dir = Path(out) if out is not None else Path(f"{Path(project_path).stem}-spectrum-{pair.name.replace('/', '-')}")
-    out_dir.mkdir(parents=True, exist_ok=True)
-    arrays = {"x": spec.x, "y": spec.y, "theta_max_over_alpha": spec.theta_max_over_alpha,
-              "overturned": spec.overturned, "quasi_impacts": spec.quasi_impacts}
-    if ref is not None:
-        arrays.update(reference_theta_max_over_alpha=ref.theta_max_over_alpha, reference_overturned=ref.overturned,
-                      relative=spec.theta_max_over_alpha - ref.theta_max_over_alpha)
-    np.savez_compressed(out_dir / "spectrum.npz", **arrays)
-    summary = {"system": "cylinder", "project": project.name, "record": text, "model": spec.model,
-               "axes": {"x": {"name": "R", "unit": "m", "values": [float(v) for v in spec.x]},
-                        "y": {"name": "pga/up", "definition": "max √(ü_gx² + ü_gy²) / (g tan α) (Eq 5.43)",
-                              "values": [float(v) for v in spec.y]}},
-           "n_points": int(spec.x.size * spec.y.size), "n_overturned": int(spec.overturned.sum()),
-           "seconds": spec.seconds, "reference": None if ref is None else {
-               "project": str(relative), "model": ref.model, "seconds": ref.seconds,
-               "n_overturned": int(ref.overturned.sum()),
-               "n_outcome_differs": int((spec.overturned != ref.overturned).sum())}}
-    (out_dir / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
-    if figures:
-        save(spectrum_figure(spec, f"{project.name} — {text}", overturn_tilt=cyl.overturn_tilt),
-             out_dir / "spectrum.png")
-        if ref is not None:
-            save(spectrum_figure(spec, f"relative: {project.name} vs {relative}", ref), out_dir / "relative.png")
+    summary = write_cylinder_spectrum(out_dir, spec, ref, project_name=project.name, record_text=text,
+                                      relative=relative, overturn_tilt=cyl.overturn_tilt, figures=figures)
     if as_json:
         sys.stdout.write(json.dumps(summary, indent=2) + "\n")
     else:

@@ -33,8 +33,8 @@ from .polyakov import CLASS_MEANING, CLASSES, PolyakovRule, classify
 from .runner import RunSummary, run_jobs
 from .selection import ModelSelection, select_model
 from .statistics import empirical_cdf, overturning_probability
+from .governing import history_records
 
-GOVERNING_HISTORIES = 3
 
 
 @dataclass
@@ -147,6 +147,7 @@ class CheckResult:
     fragility: dict | None = None          # checks/fragility.py (docs/fragility.md)
     collapse_margin: dict | None = None    # checks/collapse_margin.py
     ensemble: dict | None = None           # checks/ensemble.py
+    governing_check: str | None = None     # criterion key of the governing check (criteria.decide)
 
     def as_json(self) -> dict:
         p = self.project
@@ -307,8 +308,7 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     verdict = decision.verdict
     histories = {}
     from ..dynamics.simulate import simulate
-    governing = sorted(valid, key=lambda o: -min(o.run.theta_max_over_theta_c, 2.0))[:GOVERNING_HISTORIES]
-    for o in governing:
+    for o in (valid[i] for i in history_records([o.run.theta_max_over_theta_c for o in valid])):
         histories[o.id] = simulate(system, o.motion, model=chosen.equations, structure=chosen.structure, rtol=a.rtol,
                                    atol=a.atol, t_end=o.motion.duration + a.free_vibration, overturn=a.overturn,
                                    rest_velocity=a.rest_velocity)
@@ -336,7 +336,7 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     return CheckResult(project, q, rule, selection, outcomes, resolved.missing, resolved.scale_description,
                        resolved.default_used or spec.default_used, resolved.suites, stats, checks, verdict, histories,
                        sensitivity, settings, decision.reason, decision.robust, intensity, fragility, margin_fema,
-                       ens_json)
+                       ens_json, decision.governing)
 
 
 def _statistics(outcomes: list[RecordOutcome], a, with_margins: bool) -> dict:

@@ -451,6 +451,7 @@ class Verdict:
     reason: str
     robust: bool
     not_covered: tuple[str, ...] = ()
+    governing: str | None = None     # key of the governing check: the largest utilisation among those that decide
 
     def as_json(self) -> dict:
         return {"verdict": self.verdict, "verdict_reason": self.reason, "verdict_robust": self.robust}
@@ -506,4 +507,6 @@ def decide(items: list[CheckItem], skipped=()) -> Verdict:
         reason = ("PASS, not robust: " + "; ".join(fragile)) if fragile else "PASS: " + "; ".join(governing)
     if not_covered:
         reason += " (not covered: " + "; ".join(not_covered) + ")"
-    return Verdict(word, reason, robust, not_covered)
+    deciding = [i for i in items if i.governs_verdict]
+    governing = max(deciding, key=lambda i: i.utilisation).key if deciding else None
+    return Verdict(word, reason, robust, not_covered, governing)

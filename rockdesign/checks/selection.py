@@ -14,9 +14,7 @@ from dataclasses import dataclass, field
 
 from ..dynamics.model import ModelChoice, default_structure, resolve_structure
 from .runner import RunSummary, run_jobs
-
-GOVERNING = 4
-"""Number of records (largest θ_max/θc) re-run with the full model."""
+from .governing import capped_ratio, model_check_records
 
 
 @dataclass
@@ -32,10 +30,6 @@ class ModelSelection:
     max_difference: float = 0.0          # max |Δ(θ_max/θc)| chosen vs full on the governing records
     verdict_changes: int = 0
     rejected: list[str] = field(default_factory=list)
-
-
-def _capped(r: RunSummary) -> float:
-    return min(r.theta_max_over_theta_c, 1.0) if r.overturned else min(r.theta_max_over_theta_c, 1.5)
 
 
 def select_model(system, analysis, motions, run_kw, *, progress=None) -> tuple[ModelSelection, list[RunSummary]]:
@@ -59,7 +53,7 @@ def select_model(system, analysis, motions, run_kw, *, progress=None) -> tuple[M
     rejected = []
     while True:
         results = run_jobs(system, chosen, motions, [1.0] * len(motions), progress=progress, **run_kw)
-        order = sorted(range(len(motions)), key=lambda i: -_capped(results[i]))[:GOVERNING]
+        order = model_check_records([r.theta_max_over_theta_c for r in results], [r.overturned for r in results])
         if chosen == full:
             selection = ModelSelection(chosen, full, "", s_reason, e_reason, rejected=rejected)
             sub = [results[i] for i in order]
@@ -104,7 +98,8 @@ def _verify(selection, system, motions, chosen_results, full_results, run_kw, id
         rows.append({"record": m.name, "index": ids[k] if ids is not None else k,
                      "theta_max_over_theta_c": r.theta_max_over_theta_c,
                      "theta_max_over_theta_c_full": f.theta_max_over_theta_c,
-                     "difference": abs(_capped(r) - _capped(f)),
+                     "difference": abs(capped_ratio(r.theta_max_over_theta_c, r.overturned)
+                                       - capped_ratio(f.theta_max_over_theta_c, f.overturned)),
                      "overturned": r.overturned, "overturned_full": f.overturned})
     selection.verification = rows
     selection.max_difference = max((r["difference"] for r in rows), default=0.0)

@@ -88,11 +88,10 @@ def _processing_note(meta: dict) -> str:
     return "; ".join(parts)
 
 
-def _order_checks(checks: list[dict]) -> list[dict]:
-    """Governing check first (largest utilisation among those that decide the verdict), then the rest
-    by decreasing utilisation."""
-    governing = [c for c in checks if c.get("governs_verdict")]
-    top = max(governing, key=lambda c: c["utilisation"]) if governing else None
+def _order_checks(checks: list[dict], governing: str | None) -> list[dict]:
+    """The governing check (decided by the library: ``CheckResult.governing_check``) first, then the
+    rest by decreasing utilisation."""
+    top = next((c for c in checks if c["criterion"] == governing), None)
     rest = sorted((c for c in checks if c is not top), key=lambda c: -c["utilisation"])
     return ([dict(top, governing=True)] if top else []) + [dict(c, governing=False) for c in rest]
 
@@ -137,7 +136,7 @@ def build_context(result, *, figures: dict | None = None, verification: dict | N
     credits = sorted({r["credit"] for r in records if r.get("credit")})
     builtin = any("p695" in (r.get("suite") or "") or "FEMA P695" in (r.get("credit") or "") for r in records)
     summary = data["summary"]
-    checks = _order_checks(data["checks"])
+    checks = _order_checks(data["checks"], result.governing_check)
     governing = checks[0] if checks else None
     crit = data["settings"]["overturn_criterion"]
     histories = []
