@@ -12,15 +12,13 @@ from dataclasses import dataclass
 from ..systems import RockingSystem
 from .equivalence import (CRITICAL_CURVATURE_TOLERANCE, at_critical_curvature,  # noqa: F401 (re-exported)
                           effective_gamma, equivalent_size)
-from .frequencies import (critical_rolling_frequency_parameter, frame_frequency_parameter,
-                          frequency_parameter, podium_frequency_parameter, rocking_period,
+from .frequencies import (frequency_parameter, frequency_parameter_derivation, rocking_period,
                           uplifted_damping, uplifted_frequency_ratio)
 from .geometry import (critical_curvature, critical_curvature_linear, displacement_capacity,
                        rocking_geometry, slenderness_angle, wedge_angle, wedge_angle_linear)
 from .pushover import post_uplift_stiffness_linear
 from .substitutions import substitution
-from .restitution import (restitution_block, restitution_flat_extensions, restitution_frame,
-                          restitution_podium)
+from .restitution import restitution_derivation
 from .uplift import (podium_uplift_factor, uplift_acceleration, uplift_acceleration_linear,
                      uplift_force)
 
@@ -59,42 +57,12 @@ def _f(x: float) -> str:
 
 def coefficient_of_restitution(system: RockingSystem) -> tuple[float, str]:
     """(c_r, equation) of the system: measured value, or CoAM per system type (SPEC §2)."""
-    if system.restitution is not None:
-        return system.restitution, "measured (project file)"
-    c = system.column
-    alpha = slenderness_angle(c.half_width, c.half_height)
-    lam = c.mass_distribution
-    gamma = system.gamma
-    if c.extension == "flat":
-        alpha_e = slenderness_angle(c.half_width_ext, c.half_height)
-        printed = system.restitution_rule == "thesis-eq-3.39"
-        g_hat = effective_gamma(system)
-        eq = "Eq 3.39 as printed (sin²α)" if printed else "Eq 3.39 corrected (CoAM about 2B', docs/model.md §9)"
-        return restitution_flat_extensions(alpha, alpha_e, lam, g_hat, printed), eq
-    if system.superstructure is not None:
-        return restitution_podium(alpha, lam, gamma, system.eta), "Eq 4.20"
-    if gamma > 0.0:
-        return restitution_frame(alpha, lam, gamma), "Eq 3.80"
-    return restitution_block(alpha, lam), "Eq 3.14"
+    return restitution_derivation(system)[:2]
 
 
 def system_frequency_parameter(system: RockingSystem) -> tuple[float, str]:
     """(p̂, equation): the frequency parameter of the system as modelled (SPEC §2)."""
-    c = system.column
-    geo = rocking_geometry(c)
-    alpha = slenderness_angle(c.half_width, c.half_height)
-    ratio = 1.0
-    if at_critical_curvature(system):
-        ratio = alpha / slenderness_angle(c.half_width_ext, c.half_height)
-    if system.has_elastic_superstructure:
-        return podium_frequency_parameter(geo.R, geo.lam, system.gamma, system.eta, system.g, ratio), "Eq 4.32"
-    gamma = effective_gamma(system)
-    if ratio != 1.0:
-        return critical_rolling_frequency_parameter(geo.R, geo.lam, gamma, alpha, alpha / ratio, system.g), \
-            "Eq 3.94" if gamma > 0 else "Eq 3.74"
-    if c.extension == "flat":
-        return frame_frequency_parameter(geo.R, geo.lam, gamma, system.g), "Eq 3.38 (R', λ'; frames Eq 3.76)"
-    return frame_frequency_parameter(geo.R, geo.lam, gamma, system.g), "Eq 3.76" if gamma > 0 else "Eq 3.13"
+    return frequency_parameter_derivation(system)[:2]
 
 
 def design_quantities(system: RockingSystem, rigid_ratio: float = RIGID_SUPERSTRUCTURE_RATIO) -> dict[str, Quantity]:
@@ -155,8 +123,8 @@ def design_quantities(system: RockingSystem, rigid_ratio: float = RIGID_SUPERSTR
         f"{_f(g)}·{_f(tan_up)}")
     add("uplift_acceleration_linear", "g α", "linearized uplift acceleration", uplift_acceleration_linear(alpha_up, g),
         "m/s^2", "Eq 2.17", "ü_g,up ≈ g α", f"{_f(g)}·{_f(alpha_up)}")
-    c_r, c_r_eq = coefficient_of_restitution(system)
-    add("c_r", "c_r", "coefficient of restitution", c_r, "-", c_r_eq)
+    c_r, c_r_eq, c_r_formula, c_r_sub = restitution_derivation(system)
+    add("c_r", "c_r", "coefficient of restitution", c_r, "-", c_r_eq, c_r_formula, c_r_sub)
     add("u_capacity", "u_B(θc)", "column-top displacement capacity (Polyakov's 2B)", displacement_capacity(c), "m",
         "Eqs 3.46/3.51, 3.83 at θc", "u_B = 2u_C(θc)", "",
         "2B" if ext == "none" else ("2B'" if ext == "flat" else "generalized capacity (ours, docs/model.md §6)"))
@@ -173,9 +141,9 @@ def design_quantities(system: RockingSystem, rigid_ratio: float = RIGID_SUPERSTR
         add("uplift_force", "F_up", "static horizontal uplift force (superstructure rigid)",
             uplift_force(system.n_columns, c.mass, g_hat, tan_up, g), "N", "Eq 3.78",
             "F_up = (1+2γ̂) N m_C g tan α, γ̂ = γ(1+η)")
-    p_hat, p_hat_eq = system_frequency_parameter(system)
+    p_hat, p_hat_eq, p_hat_formula, p_hat_sub = frequency_parameter_derivation(system)
     if p_hat_eq != "Eq 3.13":
-        add("p_hat", "p̂", "frequency parameter of the system", p_hat, "1/s", p_hat_eq)
+        add("p_hat", "p̂", "frequency parameter of the system", p_hat, "1/s", p_hat_eq, p_hat_formula, p_hat_sub)
     crit = at_critical_curvature(system)
     if g_hat > 0.0 or crit or ext == "flat":
         ratio = (slenderness_angle(c.half_width_ext, H) / alpha) if crit else 1.0

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 
-from .equivalence import at_critical_curvature, effective_gamma
+from .equivalence import effective_gamma
 from .geometry import rocking_geometry, slenderness_angle
 
 
@@ -57,15 +57,11 @@ def substitution(name: str, quantity, system) -> tuple[str, str, float | None]:
     elif name == "k_phase2" and not substituted:
         substituted = "−1 (independent of the geometry)"
         value = -1.0
-    elif name == "c_r" and not formula:
-        formula, substituted, value = _restitution_formula(quantity, system, alpha, lam)
     elif name == "uplift_force" and not substituted:
         gh = effective_gamma(system)
         tan_up = c.tan_alpha_ext if c.extension == "flat" else c.tan_alpha
         substituted = (f"(1 + 2·{_s(gh)})·{system.n_columns}·{_s(c.mass)} kg·{_s(g)} m/s²·{_s(tan_up)}")
         value = (1 + 2 * gh) * system.n_columns * c.mass * g * tan_up
-    elif name == "p_hat" and not formula:
-        formula, substituted, value = _p_hat_formula(quantity, system, alpha, geo)
     elif name == "R_hat" and not substituted:
         gh = effective_gamma(system)
         ratio = 1.0
@@ -109,69 +105,3 @@ def substitution(name: str, quantity, system) -> tuple[str, str, float | None]:
                                f"  (phase I, Eq 3.46)")
                 value = 2 * (R * math.sin(alpha) - R * math.sin(alpha - th) + r * (th - math.sin(th)))
     return formula, substituted, value
-
-
-def _restitution_formula(quantity, system, alpha, lam):
-    c = system.column
-    eq = quantity.equation
-    if system.restitution is not None:
-        return "c_r measured", f"{_s(system.restitution)} (project file)", system.restitution
-    if c.extension == "flat":
-        ae = slenderness_angle(c.half_width_ext, c.half_height)
-        gh = effective_gamma(system)
-        lam_e = lam * math.cos(ae) ** 2 / math.cos(alpha) ** 2
-        printed = "printed" in eq
-        a_used = alpha if printed else ae
-        formula = ("c_r = (1 − 2(1+4γ̂) sin²α/(1+λ'+4γ̂))², λ' = λ cos²α'/cos²α" if printed else
-                   "c_r = (1 − 2(1+4γ̂) sin²α'/(1+λ'+4γ̂))², λ' = λ cos²α'/cos²α")
-        sub = f"(1 − 2(1+4·{_s(gh)})·sin²{_s(a_used)}/(1+{_s(lam_e)}+4·{_s(gh)}))²"
-        return formula, sub, (1 - 2 * (1 + 4 * gh) * math.sin(a_used) ** 2 / (1 + lam_e + 4 * gh)) ** 2
-    if eq == "Eq 4.20":
-        gm, eta = system.gamma, system.eta
-        formula = "c_r = (1 − 2 sin²α (1+4γ+4γη)/(1+λ+4γ+4γη))²"
-        sub = (f"(1 − 2·sin²{_s(alpha)}·(1+4·{_s(gm)}+4·{_s(gm)}·{_s(eta)})/"
-               f"(1+{_s(lam)}+4·{_s(gm)}+4·{_s(gm)}·{_s(eta)}))²")
-        g4 = 4 * gm * (1 + eta)
-        return formula, sub, (1 - 2 * math.sin(alpha) ** 2 * (1 + g4) / (1 + lam + g4)) ** 2
-    if eq == "Eq 3.80":
-        gm = system.gamma
-        formula = "c_r = (1 − 2(1+4γ)/(1+λ+4γ) sin²α)²"
-        sub = f"(1 − 2(1+4·{_s(gm)})/(1+{_s(lam)}+4·{_s(gm)})·sin²{_s(alpha)})²"
-        return formula, sub, (1 - 2 * (1 + 4 * gm) / (1 + lam + 4 * gm) * math.sin(alpha) ** 2) ** 2
-    formula = "c_r = (1 − 2 sin²α/(1+λ))²"
-    sub = f"(1 − 2·sin²{_s(alpha)}/(1+{_s(lam)}))²"
-    return formula, sub, (1 - 2 * math.sin(alpha) ** 2 / (1 + lam)) ** 2
-
-
-def _p_hat_formula(quantity, system, alpha, geo):
-    c = system.column
-    eq = quantity.equation
-    g = system.g
-    R, lam = geo.R, geo.lam
-    if eq == "Eq 4.32":
-        gm, eta = system.gamma, system.eta
-        ratio = 1.0
-        if at_critical_curvature(system):
-            ratio = alpha / slenderness_angle(c.half_width_ext, c.half_height)
-        formula = "p̂ = √(g/R · (1+2γ+2γη)/(1+λ+4γ) · α/α')"
-        sub = (f"√({_s(g)}/{_s(R)} · (1+2·{_s(gm)}+2·{_s(gm)}·{_s(eta)})/(1+{_s(lam)}+4·{_s(gm)}) · "
-               f"{_s(ratio)})")
-        return formula, sub, math.sqrt(g / R * (1 + 2 * gm + 2 * gm * eta) / (1 + lam + 4 * gm) * ratio)
-    gh = effective_gamma(system)
-    if eq in ("Eq 3.94", "Eq 3.74"):
-        ae = slenderness_angle(c.half_width_ext, c.half_height)
-        formula = "p̂ = √((1+2γ̂)/(1+λ+4γ̂) · g/R · α/α')"
-        sub = f"√((1+2·{_s(gh)})/(1+{_s(lam)}+4·{_s(gh)}) · {_s(g)}/{_s(R)} · {_s(alpha)}/{_s(ae)})"
-        return formula, sub, math.sqrt((1 + 2 * gh) / (1 + lam + 4 * gh) * g / R * alpha / ae)
-    if c.extension == "flat":
-        formula = "p̂ = √((1+2γ̂)/(1+λ'+4γ̂) · g/R'), R' = R cos α/cos α', λ' = λ cos²α'/cos²α"
-    else:
-        formula = "p̂ = √((1+2γ̂)/(1+λ+4γ̂) · g/R)"
-    formula += ", γ̂ = γ(1+η)" if system.superstructure is not None else ""
-    sub = f"√((1+2·{_s(gh)})/(1+{_s(lam)}+4·{_s(gh)}) · {_s(g)}/{_s(R)})"
-    return formula, sub, math.sqrt((1 + 2 * gh) / (1 + lam + 4 * gh) * g / R)
-
-
-# ---------------------------------------------------------------------------------------------------
-# the report context
-# ---------------------------------------------------------------------------------------------------
