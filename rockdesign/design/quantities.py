@@ -106,9 +106,9 @@ def design_quantities(system: RockingSystem, rigid_ratio: float = RIGID_SUPERSTR
         add("rho_c", "ρc", "critical curvature (zero rolling stiffness)", rho_c, "-", "Eq 3.55",
             "ρc = ½(1 − tan α/tan α')", f"½(1 − {_f(c.tan_alpha)}/{_f(c.tan_alpha_ext)})",
             f"linearized ½(1 − α/α') = {_f(critical_curvature_linear(alpha, alpha_e))} (Eq 3.68)")
-        regime = ("ρ < ρc: unstable while rolling" if rho < rho_c else "ρ > ρc: unstable while rocking")
+        regime = ("unstable while rolling (θc ≤ β)" if geo.theta_c <= beta else "unstable while rocking (θc > β)")
         add("theta_c", "θc", "rotation capacity (F_R = 0)", geo.theta_c, "rad", "Eq 3.56 (corrected)",
-            "atan(tan α/(1−2ρ)) if ρ ≤ ρc, else atan(tan α'/(1−2ρ(1−cos β)))", "", regime)
+            "atan(tan α/(1−2ρ)) if ≤ β (always for ρ ≤ ρc), else atan(tan α'/(1−2ρ(1−cos β)))", "", regime)
         add("k_phase1", "k*_I", "linearized post-uplift stiffness, rolling phase", post_uplift_stiffness_linear(rho, 1),
             "-", "Eq 3.50", "k*_I = 2ρ − 1", f"2·{_f(rho)} − 1")
     else:

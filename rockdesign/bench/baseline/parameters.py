@@ -47,7 +47,8 @@ def critical_curvature(tan_alpha: float, tan_alpha_ext: float) -> float:
 def rotation_capacity(tan_alpha: float, tan_alpha_ext: float, rho: float, extension: str) -> float:
     """θc [rad]: tilt at which the static restoring force vanishes (corrected Eq 3.56, SPEC §2).
 
-    ``extension`` is ``"none"`` (θc = α), ``"flat"`` (θc = α') or ``"curved"``.
+    ``extension`` is ``"none"`` (θc = α), ``"flat"`` (θc = α') or ``"curved"`` (the first zero of F_R, in
+    the phase where it lies: docs/model.md §2).
     """
     if extension == "none":
         return math.atan(tan_alpha)
@@ -56,6 +57,9 @@ def rotation_capacity(tan_alpha: float, tan_alpha_ext: float, rho: float, extens
     if rho <= critical_curvature(tan_alpha, tan_alpha_ext):
         return math.atan(tan_alpha / (1.0 - 2.0 * rho))
     beta = wedge_angle(tan_alpha, tan_alpha_ext, rho)
+    rolling_root = math.atan2(tan_alpha, 1.0 - 2.0 * rho)   # N = 0 of Eq 3.48 (phase I)
+    if rolling_root <= beta:      # just above ρc with the exact β: F_R vanishes before the rocking phase
+        return rolling_root
     return math.atan(tan_alpha_ext / (1.0 - 2.0 * rho * (1.0 - math.cos(beta))))
 
 
