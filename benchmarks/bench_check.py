@@ -27,15 +27,25 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 
 
+CPU_SECONDS = {}
+"""CPU seconds (user + system) of the last timed check: on a machine shared with other jobs the wall time
+grows with the load, the CPU time much less; CPU/cores is the wall time of an idle machine at best."""
+
+
 def timed_check(project: str, out_dir: str, cache_dir: str | None, root: Path = ROOT) -> tuple[float, int]:
-    """Seconds and exit code of ``rockdesign check project -o out_dir`` run from the checkout ``root``."""
+    """Seconds and exit code of ``rockdesign check project -o out_dir`` run from the checkout ``root``
+    (its CPU seconds in :data:`CPU_SECONDS`)."""
+    import resource
     env = dict(os.environ, PYTHONPATH=str(root))
     if cache_dir is not None:
         env["NUMBA_CACHE_DIR"] = cache_dir
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
     proc = subprocess.run([sys.executable, "-m", "rockdesign.cli", "check", project, "-o", out_dir], env=env, cwd=root,
                           capture_output=True, text=True)
     dt = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    CPU_SECONDS["last"] = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
     if proc.returncode not in (0, 1):
         raise SystemExit(f"check failed ({proc.returncode}):\n{proc.stderr[-3000:]}")
     announced = [ln.strip() for ln in proc.stderr.splitlines() if "compil" in ln]
@@ -94,6 +104,36 @@ def suite_ratio(project: str, n_records: int = 3) -> dict:
     return {"records": rows, "median_ratio": sorted(x["ratio"] for x in rows)[len(rows) // 2]}
 
 
+def first_run(project: str, work: str, cache: str, skip: bool, budget: float) -> float | None:
+    """Seconds of a check with an empty numba cache (``cache``), which it fills; None (cache filled
+    untimed) with ``skip``."""
+    if skip:
+        timed_check(project, str(Path(work) / "fill"), cache)
+        return None
+    cold, _ = timed_check(project, str(Path(work) / "cold"), cache)
+    print(f"first run (empty numba cache): {cold:.1f} s  (budget {budget:g} s)")
+    return cold
+
+
+def reported_suite_ratio(project: str) -> dict:
+    """:func:`suite_ratio`, printed."""
+    ratio = suite_ratio(project)
+    print(f"suite RHA, ours vs scipy DOP853 (same equations/events, rtol 1e-10): median ratio "
+          f"{ratio['median_ratio']:.0f}x")
+    return ratio
+
+
+def write_result(path, result: dict) -> None:
+    """Write a benchmark's JSON with the load average, date and machine it was measured on."""
+    result = dict(result, load_average=list(os.getloadavg()),
+                  date=datetime.now(timezone.utc).isoformat(timespec="seconds"),
+                  machine={"platform": platform.platform(), "processor": platform.processor(),
+                           "cpus": os.cpu_count(), "python": platform.python_version()})
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    Path(path).write_text(json.dumps(result, indent=2) + "\n")
+    print(f"wrote {path}")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--project", default="examples/podium_flat.toml")
@@ -104,12 +144,7 @@ def main():
     args = ap.parse_args()
     baseline = None
     with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as work:
-        cold = None
-        if not args.skip_cold:
-            cold, _ = timed_check(args.project, str(Path(work) / "cold"), cache)
-            print(f"first run (empty numba cache): {cold:.1f} s  (budget 45 s)")
-        else:
-            timed_check(args.project, str(Path(work) / "fill"), cache)
+        cold = first_run(args.project, work, cache, args.skip_cold, budget=45)
         warms, base_warms = [], []
         if args.baseline_root:   # fill the baseline's own cache first
             timed_check(args.project, str(Path(work) / "base-fill"), None, Path(args.baseline_root))
@@ -130,18 +165,9 @@ def main():
                                                 Path(work) / "base" / "results.json")}
             print(f"baseline warm {min(base_warms):.1f} s → ours is {baseline['ratio_baseline_over_ours']:.2f}× "
                   f"faster; same verdict/counts/classes: {baseline['outcome']}")
-    ratio = suite_ratio(args.project)
-    print(f"suite RHA, ours vs scipy DOP853 (same equations/events, rtol 1e-10): median ratio "
-          f"{ratio['median_ratio']:.0f}x")
-    result = {"benchmark": "check", "project": args.project, "first_run_s": cold, "warm_run_s": warm,
-              "warm_runs_s": warms, "budget_first_s": 45, "budget_warm_s": 8, "baseline": baseline,
-              "load_average": list(os.getloadavg()), "suite_rha_vs_scipy": ratio,
-              "date": datetime.now(timezone.utc).isoformat(timespec="seconds"),
-              "machine": {"platform": platform.platform(), "processor": platform.processor(), "cpus": os.cpu_count(),
-                          "python": platform.python_version()}}
-    Path(args.out).parent.mkdir(parents=True, exist_ok=True)
-    Path(args.out).write_text(json.dumps(result, indent=2) + "\n")
-    print(f"wrote {args.out}")
+    write_result(args.out, {"benchmark": "check", "project": args.project, "first_run_s": cold, "warm_run_s": warm,
+                            "warm_runs_s": warms, "budget_first_s": 45, "budget_warm_s": 8, "baseline": baseline,
+                            "suite_rha_vs_scipy": reported_suite_ratio(args.project)})
 
 
 if __name__ == "__main__":

@@ -5,52 +5,23 @@ ensembles (issue 13), stage by stage (the engine speed and first-run budgets are
 Budget (issue "rockdesign check"): warm run under 15 s, first (JIT-compiling) run under 90 s on the
 2-core machine; with the overturning fragility and the perturbation ensembles (issue 13, default
 ``ensemble_size = 8``) the warm run stays under 30 s.  The stages of one in-process check are timed
-too (ensembles against the nominal suite analysis of the same process, fragility fits + bootstrap).  The cold run uses an empty numba cache directory (NUMBA_CACHE_DIR), so nothing of
-the repository's cache is reused; the warm run repeats it with that cache filled.  As a ratio
-against a baseline measured in the same run, the suite-analysis stage (the nonlinear RHA of the
-records) is also timed for a few records with the independent scipy implementation
-(solve_ivp DOP853, same equations and events, restarted at impacts).
+too (ensembles against the nominal suite analysis of the same process, fragility fits + bootstrap).
+Cold run (empty numba cache), warm run and the suite-analysis ratio against scipy are measured as in
+bench_check.py (its ``timed_check`` and ``suite_ratio``).
 
     .venv/bin/python benchmarks/bench_check_fragility.py [--project examples/podium_flat.toml] [--out benchmarks/results/check_fragility.json]
 """
 from __future__ import annotations
 
 import argparse
-import json
 import os
-import platform
-import subprocess
-import sys
 import tempfile
 import time
-from datetime import datetime, timezone
 from pathlib import Path
 
-from bench_check import suite_ratio  # noqa: E402  (same folder: the engine vs scipy ratio)
+from bench_check import CPU_SECONDS, first_run, reported_suite_ratio, timed_check, write_result  # noqa: E402  (same folder)
 
 ROOT = Path(__file__).resolve().parents[1]
-
-
-CPU_SECONDS = {}
-"""CPU seconds (user + system) of the last timed check: on a machine shared with other jobs the wall time
-grows with the load, the CPU time much less; CPU/cores is the wall time of an idle machine at best."""
-
-
-def timed_check(project: str, out_dir: str, cache_dir: str) -> tuple[float, int]:
-    import resource
-    env = dict(os.environ, NUMBA_CACHE_DIR=cache_dir)
-    exe = str(Path(sys.executable).with_name("rockdesign"))
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    t0 = time.perf_counter()
-    proc = subprocess.run([exe, "check", project, "-o", out_dir], env=env, cwd=ROOT, capture_output=True, text=True)
-    dt = time.perf_counter() - t0
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    CPU_SECONDS["last"] = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-    if proc.returncode not in (0, 1):
-        raise SystemExit(f"check failed ({proc.returncode}):\n{proc.stderr[-3000:]}")
-    return dt, proc.returncode
-
-
 
 
 def without_ensembles(text: str) -> str:
@@ -103,12 +74,7 @@ def main():
     ap.add_argument("--skip-cold", action="store_true", help="only the warm run")
     args = ap.parse_args()
     with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as work:
-        cold = None
-        if not args.skip_cold:
-            cold, _ = timed_check(args.project, str(Path(work) / "cold"), cache)
-            print(f"first run (empty numba cache): {cold:.1f} s  (budget 90 s)")
-        else:
-            timed_check(args.project, str(Path(work) / "fill"), cache)
+        cold = first_run(args.project, work, cache, args.skip_cold, budget=90)
         warm, code = timed_check(args.project, str(Path(work) / "warm"), cache)
         warm_cpu = CPU_SECONDS["last"]
         print(f"warm run: {warm:.1f} s  (budget 30 s with fragility and ensembles), verdict exit code {code}; "
@@ -125,20 +91,11 @@ def main():
         print(f"  {sec:6.1f} s  {name}")
     print(f"  fragility fits + bootstrap: {stages['fragility_fits_and_bootstrap_s']:.2f} s; ensembles / suite "
           f"analysis: {stages['ensemble_over_suite_analysis'] or 0:.1f}x")
-    ratio = suite_ratio(args.project)
-    print(f"suite RHA, ours vs scipy DOP853 (same equations/events, rtol 1e-10): median ratio "
-          f"{ratio['median_ratio']:.0f}x")
-    result = {"benchmark": "check", "project": args.project, "first_run_s": cold, "warm_run_s": warm,
-              "warm_run_cpu_s": warm_cpu, "warm_run_without_ensembles_s": warm_plain,
-              "warm_run_without_ensembles_cpu_s": plain_cpu,
-              "budget_first_s": 90, "budget_warm_s": 30, "stages": stages, "suite_rha_vs_scipy": ratio,
-              "load_average": os.getloadavg(),
-              "date": datetime.now(timezone.utc).isoformat(timespec="seconds"),
-              "machine": {"platform": platform.platform(), "processor": platform.processor(), "cpus": os.cpu_count(),
-                          "python": platform.python_version()}}
-    Path(args.out).parent.mkdir(parents=True, exist_ok=True)
-    Path(args.out).write_text(json.dumps(result, indent=2) + "\n")
-    print(f"wrote {args.out}")
+    write_result(args.out, {"benchmark": "check", "project": args.project, "first_run_s": cold, "warm_run_s": warm,
+                            "warm_run_cpu_s": warm_cpu, "warm_run_without_ensembles_s": warm_plain,
+                            "warm_run_without_ensembles_cpu_s": plain_cpu, "budget_first_s": 90,
+                            "budget_warm_s": 30, "stages": stages,
+                            "suite_rha_vs_scipy": reported_suite_ratio(args.project)})
 
 
 if __name__ == "__main__":

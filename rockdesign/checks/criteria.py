@@ -21,6 +21,7 @@ is 1 − 0.05^(1/n), so a suite of fewer than :func:`minimum_records` records ca
 """
 from __future__ import annotations
 
+import abc
 import math
 import statistics
 from dataclasses import dataclass, field
@@ -136,7 +137,7 @@ class CheckContext:
         return [o for o in self.outcomes if analysis_failed(o.run.status)]
 
 
-class Criterion:
+class Criterion(abc.ABC):
     """A design criterion: subclasses set ``key``, ``name``, ``role``, ``source`` and implement evaluate."""
 
     key = "criterion"
@@ -150,8 +151,9 @@ class Criterion:
         """False when the criterion cannot be evaluated for this check (it is then left out)."""
         return True
 
+    @abc.abstractmethod
     def evaluate(self, ctx: CheckContext) -> CheckItem:
-        raise NotImplementedError
+        """The criterion's item for this check (utilisation, passed, detail, the verdict's phrase)."""
 
     def item(self, utilisation: float, passed: bool, detail: str, reason: str, **kw) -> CheckItem:
         u = float(utilisation)

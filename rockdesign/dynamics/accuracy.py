@@ -11,16 +11,15 @@ import time
 
 import numpy as np
 
-from ..design.geometry import rocking_geometry
-from ..design.kinematics import top_displacement
 from ..motions.motion import pulse_motion
 from ..systems import Column, RockingSystem
 from . import metrics
 from .engine import integrate
-from .layout import N_OPTIONS, O_ATOL, O_H_MAX, O_MAX_EVENTS, O_MAX_STEPS, O_RTOL, O_SCAN, O_T_END
+from .layout import O_T_END
 from .linear_exact import integrate_linear_exact, sampled_pulse
 from .model import ModelChoice, resolve_structure, system_parameters
-from .simulate import DEFAULT_ATOL, simulate
+from .batch import batch_options
+from .simulate import DEFAULT_ATOL, initial_state, simulate
 
 G = 9.81
 ACCURACY_T_END = 10.0
@@ -59,14 +58,7 @@ def history_at(system, motion, times, *, t_end: float, structure: str = "auto", 
     structure = resolve_structure(system, structure)
     equations = "linear" if model in ("linear", "linear-exact") else "exact"
     sp = system_parameters(system, ModelChoice(structure, equations))
-    y0 = np.array([theta0, 0.0, 0.0, 0.0])
-    if theta0 != 0.0 and structure == "podium-2dof":
-        # as simulate(): the superstructure starts undeformed on the tilted frame
-        geo = rocking_geometry(system.column)
-        phase = 2 if geo.radius > 0 and abs(theta0) > geo.beta else 1
-        y0[2] = math.copysign(top_displacement(abs(theta0), 1.0, phase, geo.R, geo.alpha, geo.radius, geo.beta),
-                              theta0)
-    side0 = 1.0 if theta0 >= 0.0 else -1.0
+    y0, side0 = initial_state(system, structure, theta0)
     t_out = np.ascontiguousarray(np.clip(t_sorted, 0.0, t_end))
     out_y = np.zeros((t_out.size, 4))
     cap = 1
@@ -76,14 +68,8 @@ def history_at(system, motion, times, *, t_end: float, structure: str = "auto", 
         integrate_linear_exact(sp, motion.kind, motion.params, motion.samples, y0, side0, 0.0, t_end,
                                t_out, out_y, ev_t, ev_kind, ev_y, 1_000_000, False, False)
     else:
-        opts = np.zeros(N_OPTIONS)
+        opts = batch_options(rtol, atol, energy_stop=False, max_steps=50_000_000, scan_points=scan_points)
         opts[O_T_END] = t_end
-        opts[O_RTOL] = rtol
-        opts[O_ATOL] = atol
-        opts[O_H_MAX] = math.inf
-        opts[O_MAX_STEPS] = 50_000_000
-        opts[O_SCAN] = scan_points
-        opts[O_MAX_EVENTS] = 1_000_000
         integrate(sp, motion.kind, motion.params, motion.samples, y0, side0, 0.0, opts, t_out, out_y,
                   ev_t, ev_kind, ev_y)
     return out_y[:, 0][inverse].reshape(times.shape)

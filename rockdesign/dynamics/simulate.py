@@ -72,14 +72,7 @@ def simulate(system: RockingSystem, motion: GroundMotion | None = None, *, model
     if record_history:
         check_memory(motion, t_end, output_dt)
     t_out = _output_times(motion, t_end, output_dt) if record_history else np.zeros(0)
-    y0 = np.array([theta0, thetadot0, 0.0, 0.0])
-    if theta0 != 0.0 and structure == "podium-2dof":
-        # a tilted podium released from rest: the superstructure starts undeformed on the tilted frame
-        from ..design.kinematics import top_displacement
-        geo = rocking_geometry(system.column)
-        y0[2] = math.copysign(top_displacement(abs(theta0), 1.0, 2 if geo.radius > 0 and abs(theta0) > geo.beta
-                                               else 1, geo.R, geo.alpha, geo.radius, geo.beta), theta0)
-    side0 = 1.0 if (theta0 > 0 or (theta0 == 0 and thetadot0 >= 0)) else -1.0
+    y0, side0 = initial_state(system, structure, theta0, thetadot0)
     if model == "linear-exact":
         from .linear_exact import integrate_linear_exact, sampled_pulse
         if system.has_elastic_superstructure and structure == "podium-2dof":
@@ -162,6 +155,20 @@ def _output_times(motion: GroundMotion, t_end: float, output_dt: float | None) -
     if t[-1] < t_end - 1e-12:
         t = np.append(t, t_end)
     return t
+
+
+def initial_state(system: RockingSystem, structure: str, theta0: float = 0.0,
+                  thetadot0: float = 0.0) -> tuple[np.ndarray, float]:
+    """(y0 = (θ, θ̇, u_T, u̇_T), side) at the start of a run from tilt θ0 [rad] and rate θ̇0 [rad/s]: a
+    tilted 2DOF podium released from rest has its superstructure undeformed on the tilted frame."""
+    y0 = np.array([theta0, thetadot0, 0.0, 0.0])
+    if theta0 != 0.0 and structure == "podium-2dof":
+        from ..design.kinematics import top_displacement
+        geo = rocking_geometry(system.column)
+        y0[2] = math.copysign(top_displacement(abs(theta0), 1.0, 2 if geo.radius > 0 and abs(theta0) > geo.beta
+                                               else 1, geo.R, geo.alpha, geo.radius, geo.beta), theta0)
+    side0 = 1.0 if (theta0 > 0 or (theta0 == 0 and thetadot0 >= 0)) else -1.0
+    return y0, side0
 
 
 def _build_response(system, motion, sp, model, label, summary, diag, t_out, out_y, ev_t, ev_kind, ev_y,
