@@ -173,6 +173,111 @@ def _refine_event(high, t, y, f0, x_e, h, level, sgn, K, y_e, ytmp, rocking, sid
     return t + he
 
 
+QUIET_MARGIN = 0.05
+"""A step is *quiet* (no dense output needed) when the quintic Hermite interpolant of its end values
+keeps |dθ/dx| above this fraction of the larger end rate at every scan point (see :func:`_quiet_step`)."""
+
+
+@njit(cache=True)
+def _hermite_rate(x, d0, c0, d1, c1, p0, p1):
+    """d/dx of the quintic Hermite interpolant on [0, 1] with values p0, p1, first derivatives d0, d1 and
+    second derivatives c0, c1 (all with respect to x) at the ends."""
+    x2 = x * x
+    x3 = x2 * x
+    x4 = x3 * x
+    return ((p1 - p0) * (30.0 * x2 - 60.0 * x3 + 30.0 * x4) + d0 * (1.0 - 18.0 * x2 + 32.0 * x3 - 15.0 * x4)
+            + c0 * 0.5 * (2.0 * x - 9.0 * x2 + 12.0 * x3 - 5.0 * x4) + d1 * (-12.0 * x2 + 28.0 * x3 - 15.0 * x4)
+            + c1 * 0.5 * (3.0 * x2 - 8.0 * x3 + 5.0 * x4))
+
+
+@njit(cache=True)
+def _hermite_value(x, p0, d0, c0, p1, d1, c1):
+    """The quintic Hermite interpolant on [0, 1] (ends: values p, x-derivatives d, second derivatives c)."""
+    x2 = x * x
+    x3 = x2 * x
+    x4 = x3 * x
+    x5 = x4 * x
+    return (p0 * (1.0 - 10.0 * x3 + 15.0 * x4 - 6.0 * x5) + d0 * (x - 6.0 * x3 + 8.0 * x4 - 3.0 * x5)
+            + c0 * 0.5 * (x2 - 3.0 * x3 + 3.0 * x4 - x5) + p1 * (10.0 * x3 - 15.0 * x4 + 6.0 * x5)
+            + d1 * (-4.0 * x3 + 7.0 * x4 - 3.0 * x5) + c1 * 0.5 * (x3 - 2.0 * x4 + x5))
+
+
+@njit(cache=True)
+def _quiet_step(h, y, y_new, f0, f1, m_scan, side, phase, curved, beta, theta_ot, theta_c, exceeded, two_dof,
+                drift_slope, drift_max, sp):
+    """True when an accepted rocking step needs no dense output: the scan of :func:`_scan_rocking_step`
+    would find nothing but the peak candidate at the step's end.
+
+    The test uses only the step's end values and derivatives (θ, θ̇, θ̈ and u_T, u̇_T, ü_T from the
+    FSAL stage — no function evaluation): their quintic Hermite interpolant (5th order) must keep θ̇
+    of one sign with a margin of :data:`QUIET_MARGIN` at the scan points (so the 7th-order dense
+    output, which differs from it by far less, has no extremum there either), sθ must cross no event
+    level or θc between the ends (θ is then monotone, so the ends decide), and — for the 2DOF podium —
+    the drift |u_T − u_B(θ)| on the interpolants must stay below the drift maximum at the scan points
+    (margin 1e-6 of it, thousands of times the interpolants' difference from the dense output).  Any doubt returns False and the step is scanned as before: results are unchanged, and
+    DOP853 saves its 3 extra evaluations of the 7th-order interpolant on most steps.
+    """
+    s0 = side * y[0]
+    s1 = side * y_new[0]
+    d0 = side * y[1] * h
+    d1 = side * y_new[1] * h
+    c0 = side * f0[1] * h * h
+    c1 = side * f1[1] * h * h
+    margin = QUIET_MARGIN * max(abs(d0), abs(d1))
+    if margin == 0.0 or d0 * d1 <= 0.0 or min(abs(d0), abs(d1)) < margin:
+        return False
+    for k in range(1, m_scan):
+        r = _hermite_rate(k / m_scan, d0, c0, d1, c1, s0, s1)
+        if r * d0 <= 0.0 or abs(r) < margin:
+            return False
+    kind, _ = crossing_event(s0, s1, curved, phase, beta, theta_ot)
+    if kind != 0:
+        return False
+    if s1 > s0 and not exceeded and s0 < theta_c <= s1:
+        return False
+    if two_dof:
+        # the drift |u_T − u_B(θ)| must not reach the maximum at the scan points (checked on the
+        # interpolants, with a margin far above their difference from the dense output) nor at the end
+        tol = 1e-6 * drift_max
+        s_abs = max(abs(s0), abs(s1))
+        u0, v0, a0 = y[2], y[3] * h, f0[3] * h * h
+        u1, v1, a1 = y_new[2], y_new[3] * h, f1[3] * h * h
+        for k in range(1, m_scan + 1):
+            x = k / m_scan
+            u = u1 if k == m_scan else _hermite_value(x, u0, v0, a0, u1, v1, a1)
+            if abs(u) + drift_slope * s_abs + tol <= drift_max:
+                continue
+            sk = s1 if k == m_scan else _hermite_value(x, s0, d0, c0, s1, d1, c1)
+            if abs(u - side * top_displacement(sk, sp)) + tol > drift_max:
+                return False
+    return True
+
+
+@njit(cache=True)
+def _quiet_rest(t, h, y, y_new, f0, f1, m_scan, hyst, kind, xp, samples, sp):
+    """True when an accepted step of the resting 2DOF podium needs no dense output: the uplift criterion
+    (Eq 4.7, either side) stays below the hysteresis by a margin of 1e-6 of its size at the scan points
+    of :func:`_scan_podium_uplift`, with u_T, u̇_T from the quintic Hermite interpolant of the step's
+    end values (no function evaluation) and ü_g exact.  False in any doubt (the step is then scanned)."""
+    u0, v0, a0 = y[2], y[3] * h, f0[3] * h * h
+    u1, v1, a1 = y_new[2], y_new[3] * h, f1[3] * h * h
+    for k in range(1, m_scan + 1):
+        x = k / m_scan
+        if k == m_scan:
+            ut = y_new[2]
+            utd = y_new[3]
+        else:
+            ut = _hermite_value(x, u0, v0, a0, u1, v1, a1)
+            utd = _hermite_rate(x, v0, a0, v1, a1, u0, u1) / h
+        ag = ground_acceleration(t + x * h, kind, xp, samples)
+        cp = uplift_condition(1.0, ag, ut, utd, sp) - hyst
+        cm = uplift_condition(-1.0, ag, ut, utd, sp) - hyst
+        tol = 1e-6 * (abs(cp) + abs(cm))
+        if cp >= -tol or cm >= -tol:
+            return False
+    return True
+
+
 @njit(cache=True, inline="always")   # called once per step: inlined as it was written before
 def _scan_podium_uplift(t, h, y, y_new, Q, m_scan, hyst, kind, xp, samples, sp):
     """Scan an accepted step of the fixed-base 2DOF podium (at rest, Eq 4.3) for uplift (Eq 4.7 above
@@ -442,7 +547,20 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
         t_new = t + h
         if t_new > tb - 1e-13 * max(1.0, abs(tb)) and tb < math.inf:
             t_new = tb
-        if high:
+        # a quiet step needs no dense output (no output time inside it; see _quiet_step, _quiet_rest)
+        if i_out < n_out and t_out[i_out] < t_new:
+            quiet = False
+        elif rocking:
+            quiet = _quiet_step(h, y, y_new, f0, K[fsal], m_scan, side, phase, curved, beta, theta_ot, theta_c,
+                                summary[S_EXCEEDED] != 0.0, two_dof, drift_slope, summary[S_DRIFT_MAX], sp)
+        else:
+            quiet = _quiet_rest(t, h, y, y_new, f0, K[fsal], m_scan, hyst, kind, xp, samples, sp)
+        if quiet:
+            # nothing inside the step: its end is the only peak candidate
+            if rocking and side * y_new[0] > summary[S_THETA_MAX]:
+                summary[S_THETA_MAX] = side * y_new[0]
+                summary[S_T_THETA_MAX] = t + h
+        elif high:
             diag[D_NFEV] += dop853_dense(t, y, y_new, h, K, Q, ytmp, rocking, side, phase, kind, xp, samples, sp, n,
                                          work)
         else:
@@ -450,7 +568,8 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
 
         # ------------------------------------------------------------ rest of a 2DOF podium
         if not rocking:
-            ev_x, ev_side = _scan_podium_uplift(t, h, y, y_new, Q, m_scan, hyst, kind, xp, samples, sp)
+            ev_x, ev_side = (-1.0, 0.0) if quiet else _scan_podium_uplift(t, h, y, y_new, Q, m_scan, hyst, kind, xp,
+                                                                           samples, sp)
             if ev_x >= 0.0:
                 he = ev_x * h
                 _step_to(high, t, y, f0, he, K, y_e, ytmp, rocking, side, phase, kind, xp, samples, sp, n, diag)
@@ -463,6 +582,9 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
                 enter_uplift(y, t, summary, ev_t, ev_kind, ev_y, diag)
                 need_start = fresh_start = True
                 continue
+            ev_type = 0
+            ev_level = 0.0
+        elif quiet:
             ev_type = 0
             ev_level = 0.0
         else:
