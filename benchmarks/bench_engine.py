@@ -93,7 +93,7 @@ def single_record(system_name: str, policy_ours: TimingPolicy, policy_scipy: Tim
     def ours_summary_call():
         return run_batch(sp_summary, [motion], [1.0], [T_END], opts_summary)
     s_summary, _ = ours_summary_call()
-    assert s_summary[0, S_THETA_MAX] == r.theta_max or abs(s_summary[0, S_THETA_MAX] / r.theta_max - 1) < 1e-9
+    assert abs(s_summary[0, S_THETA_MAX] / r.theta_max - 1.0) < 1e-9, "the kernel and simulate disagree"
     ours_summary_s, _ = best_time(ours_summary_call, policy_ours)
     r5 = ours_call("dp5")
     dp5_err = metrics.max_abs_difference(r5.theta, ref.theta_at(r5.t))

@@ -179,9 +179,18 @@ keeps |dθ/dx| above this fraction of the larger end rate at every scan point (s
 
 
 @njit(cache=True)
-def _hermite_rate(x, d0, c0, d1, c1, p0, p1):
-    """d/dx of the quintic Hermite interpolant on [0, 1] with values p0, p1, first derivatives d0, d1 and
-    second derivatives c0, c1 (all with respect to x) at the ends."""
+def _hermite_ends(y, y_new, f0, f1, h, i, sign):
+    """End data (p0, d0, c0, p1, d1, c1) of component ``i`` (its rate is ``i + 1``) over a step of ``h`` [s],
+    times ``sign``: values, x-derivatives and second x-derivatives (x = (t − t0)/h), from the states
+    and their derivatives f at both ends."""
+    return (sign * y[i], sign * y[i + 1] * h, sign * f0[i + 1] * h * h,
+            sign * y_new[i], sign * y_new[i + 1] * h, sign * f1[i + 1] * h * h)
+
+
+@njit(cache=True)
+def _hermite_rate(x, p0, d0, c0, p1, d1, c1):
+    """d/dx of the quintic Hermite interpolant on [0, 1] with values p, first derivatives d and second
+    derivatives c (all with respect to x) at the ends."""
     x2 = x * x
     x3 = x2 * x
     x4 = x3 * x
@@ -214,20 +223,16 @@ def _quiet_step(h, y, y_new, f0, f1, m_scan, side, phase, curved, beta, theta_ot
     output, which differs from it by far less, has no extremum there either), sθ must cross no event
     level or θc between the ends (θ is then monotone, so the ends decide), and — for the 2DOF podium —
     the drift |u_T − u_B(θ)| on the interpolants must stay below the drift maximum at the scan points
-    (margin 1e-6 of it, thousands of times the interpolants' difference from the dense output).  Any doubt returns False and the step is scanned as before: results are unchanged, and
-    DOP853 saves its 3 extra evaluations of the 7th-order interpolant on most steps.
+    (margin 1e-6 of it, thousands of times the interpolants' difference from the dense output).  Any
+    doubt returns False and the step is scanned as before: results are unchanged, and DOP853 saves
+    its 3 extra evaluations of the 7th-order interpolant on most steps.
     """
-    s0 = side * y[0]
-    s1 = side * y_new[0]
-    d0 = side * y[1] * h
-    d1 = side * y_new[1] * h
-    c0 = side * f0[1] * h * h
-    c1 = side * f1[1] * h * h
+    s0, d0, c0, s1, d1, c1 = _hermite_ends(y, y_new, f0, f1, h, 0, side)
     margin = QUIET_MARGIN * max(abs(d0), abs(d1))
     if margin == 0.0 or d0 * d1 <= 0.0 or min(abs(d0), abs(d1)) < margin:
         return False
     for k in range(1, m_scan):
-        r = _hermite_rate(k / m_scan, d0, c0, d1, c1, s0, s1)
+        r = _hermite_rate(k / m_scan, s0, d0, c0, s1, d1, c1)
         if r * d0 <= 0.0 or abs(r) < margin:
             return False
     kind, _ = crossing_event(s0, s1, curved, phase, beta, theta_ot)
@@ -240,8 +245,7 @@ def _quiet_step(h, y, y_new, f0, f1, m_scan, side, phase, curved, beta, theta_ot
         # interpolants, with a margin far above their difference from the dense output) nor at the end
         tol = 1e-6 * drift_max
         s_abs = max(abs(s0), abs(s1))
-        u0, v0, a0 = y[2], y[3] * h, f0[3] * h * h
-        u1, v1, a1 = y_new[2], y_new[3] * h, f1[3] * h * h
+        u0, v0, a0, u1, v1, a1 = _hermite_ends(y, y_new, f0, f1, h, 2, 1.0)
         for k in range(1, m_scan + 1):
             x = k / m_scan
             u = u1 if k == m_scan else _hermite_value(x, u0, v0, a0, u1, v1, a1)
@@ -259,8 +263,7 @@ def _quiet_rest(t, h, y, y_new, f0, f1, m_scan, hyst, kind, xp, samples, sp):
     (Eq 4.7, either side) stays below the hysteresis by a margin of 1e-6 of its size at the scan points
     of :func:`_scan_podium_uplift`, with u_T, u̇_T from the quintic Hermite interpolant of the step's
     end values (no function evaluation) and ü_g exact.  False in any doubt (the step is then scanned)."""
-    u0, v0, a0 = y[2], y[3] * h, f0[3] * h * h
-    u1, v1, a1 = y_new[2], y_new[3] * h, f1[3] * h * h
+    u0, v0, a0, u1, v1, a1 = _hermite_ends(y, y_new, f0, f1, h, 2, 1.0)
     for k in range(1, m_scan + 1):
         x = k / m_scan
         if k == m_scan:
@@ -268,7 +271,7 @@ def _quiet_rest(t, h, y, y_new, f0, f1, m_scan, hyst, kind, xp, samples, sp):
             utd = y_new[3]
         else:
             ut = _hermite_value(x, u0, v0, a0, u1, v1, a1)
-            utd = _hermite_rate(x, v0, a0, v1, a1, u0, u1) / h
+            utd = _hermite_rate(x, u0, v0, a0, u1, v1, a1) / h
         ag = ground_acceleration(t + x * h, kind, xp, samples)
         cp = uplift_condition(1.0, ag, ut, utd, sp) - hyst
         cm = uplift_condition(-1.0, ag, ut, utd, sp) - hyst

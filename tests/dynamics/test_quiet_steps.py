@@ -13,7 +13,6 @@ import numpy as np
 import pytest
 
 from rockdesign.dynamics import engine
-from rockdesign.dynamics.model import ModelChoice, system_parameters
 from rockdesign.dynamics.simulate import simulate
 from rockdesign.motions.motion import pulse_motion
 from support import block_from_p
@@ -30,8 +29,7 @@ def test_hermite_interpolant_is_exact_on_quintics():
     ends = (p(0.0), d(0.0), dd(0.0), p(1.0), d(1.0), dd(1.0))
     for x in np.linspace(0.0, 1.0, 11):
         assert engine._hermite_value.py_func(x, *ends) == pytest.approx(p(x), abs=1e-13)
-        p0, d0, c0, p1, d1, c1 = ends
-        assert engine._hermite_rate.py_func(x, d0, c0, d1, c1, p0, p1) == pytest.approx(d(x), abs=1e-12)
+        assert engine._hermite_rate.py_func(x, *ends) == pytest.approx(d(x), abs=1e-12)
 
 
 def _step(theta, h=0.01):
