@@ -4,8 +4,9 @@ One kernel, :func:`integrate`, runs any planar system described by the parameter
 :mod:`rockdesign.dynamics.eom` under any excitation ``(kind, xp, samples)``.  Modes:
 
 * **rest** — θ = θ̇ = 0.  Rigid systems wait for the ground acceleration to cross the uplift threshold
-  (found exactly); a podium with an elastic superstructure integrates the fixed-base SDOF (Eq 4.3)
-  and watches the Eq 4.7 criterion on the dense output.  Uplift needs the criterion to exceed a tiny
+  (found exactly); a podium with an elastic superstructure steps the fixed-base SDOF (Eq 4.3) with
+  its exact piecewise-linear solution under a record (:mod:`.rest_step`; Runge–Kutta under analytic
+  pulses) and watches the Eq 4.7 criterion on that solution.  Uplift needs the criterion to exceed a tiny
   hysteresis (SPEC §3.6), so round-off cannot chatter uplift → impact → rest at one instant.
 * **rocking** — DP5(4) steps that end exactly on every kink of ü_g (record samples, pulse ends);
   each step's dense output is scanned for impact (θ = 0), phase change (|θ| = β), overturning
@@ -25,8 +26,10 @@ import math
 import numpy as np
 from numba import njit
 
-from ..motions.excitation import excitation_end, ground_acceleration, ground_acceleration_right, next_breakpoint
-from .eom import (rhs_given_acceleration, P_RADIUS, P_R, P_TWO_DOF, uplift_condition)
+from ..motions.excitation import (EXC_SAMPLES, excitation_end, ground_acceleration, ground_acceleration_right,
+                                  next_breakpoint)
+from .eom import (rest_acceleration, rhs_given_acceleration, P_RADIUS, P_R, P_TWO_DOF, uplift_condition)
+from .rest_step import exact_rest_available, fill_rest_outputs, rest_state, rest_substeps, rest_uplift_scan
 from .events import next_threshold_crossing, root_on_dense
 from .transitions import (change_phase, event_levels, new_summary, crossing_event, energy_bound, enter_overturn, enter_uplift, impact, phase_of,
                           store_event, top_displacement)
@@ -258,11 +261,30 @@ def _quiet_step(h, y, y_new, f0, f1, m_scan, side, phase, curved, beta, theta_ot
 
 
 @njit(cache=True)
-def _quiet_rest(t, h, y, y_new, f0, f1, m_scan, hyst, kind, xp, samples, sp):
+def _rest_uplift_coefficients(sp):
+    """(2 × 4) coefficients (c₀, c_ag, c_u, c_u̇) of the uplift criterion at rest on the sides +1 (row 0)
+    and −1 (row 1): :func:`~.eom.uplift_condition` is affine in (ü_g, u_T, u̇_T) at θ = θ̇ = 0 (Eq 4.7),
+    so s·θ̈ = c₀ + c_ag ü_g + c_u u_T + c_u̇ u̇_T.  Used only to decide that a step is quiet (a filter
+    with a margin, :func:`_quiet_rest`); uplift itself is located with ``uplift_condition``."""
+    c = np.zeros((2, 4))
+    for k in range(2):
+        s = 1.0 - 2.0 * k
+        d = uplift_condition(s, 0.0, 0.0, 0.0, sp)
+        c[k, 0] = d
+        c[k, 1] = uplift_condition(s, 1.0, 0.0, 0.0, sp) - d
+        c[k, 2] = uplift_condition(s, 0.0, 1.0, 0.0, sp) - d
+        c[k, 3] = uplift_condition(s, 0.0, 0.0, 1.0, sp) - d
+    return c
+
+
+@njit(cache=True)
+def _quiet_rest(t, h, y, y_new, f0, f1, m_scan, hyst, kind, xp, samples, coef):
     """True when an accepted step of the resting 2DOF podium needs no dense output: the uplift criterion
-    (Eq 4.7, either side) stays below the hysteresis by a margin of 1e-6 of its size at the scan points
-    of :func:`_scan_podium_uplift`, with u_T, u̇_T from the quintic Hermite interpolant of the step's
-    end values (no function evaluation) and ü_g exact.  False in any doubt (the step is then scanned)."""
+    (Eq 4.7, either side; affine, ``coef`` from :func:`_rest_uplift_coefficients`) stays below the
+    hysteresis by a margin of 1e-6 of its size (plus 1e-12 of its terms, for round-off) at the scan
+    points of :func:`_scan_podium_uplift`, with u_T, u̇_T from the quintic Hermite interpolant of the
+    step's end values (no function evaluation) and ü_g exact.  False in any doubt (the step is then
+    scanned)."""
     u0, v0, a0, u1, v1, a1 = _hermite_ends(y, y_new, f0, f1, h, 2, 1.0)
     for k in range(1, m_scan + 1):
         x = k / m_scan
@@ -273,9 +295,11 @@ def _quiet_rest(t, h, y, y_new, f0, f1, m_scan, hyst, kind, xp, samples, sp):
             ut = _hermite_value(x, u0, v0, a0, u1, v1, a1)
             utd = _hermite_rate(x, u0, v0, a0, u1, v1, a1) / h
         ag = ground_acceleration(t + x * h, kind, xp, samples)
-        cp = uplift_condition(1.0, ag, ut, utd, sp) - hyst
-        cm = uplift_condition(-1.0, ag, ut, utd, sp) - hyst
-        tol = 1e-6 * (abs(cp) + abs(cm))
+        tp = coef[0, 1] * ag + coef[0, 2] * ut + coef[0, 3] * utd
+        tm = coef[1, 1] * ag + coef[1, 2] * ut + coef[1, 3] * utd
+        cp = coef[0, 0] + tp - hyst
+        cm = coef[1, 0] + tm - hyst
+        tol = 1e-6 * (abs(cp) + abs(cm)) + 1e-12 * (abs(coef[0, 0]) + abs(coef[1, 0]) + abs(tp) + abs(tm) + hyst)
         if cp >= -tol or cm >= -tol:
             return False
     return True
@@ -461,6 +485,9 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
     work = np.zeros(8)
 
     thr_lo, thr_hi = _rigid_uplift_thresholds(hyst, sp)
+    rest_coef = _rest_uplift_coefficients(sp)
+    # a resting podium under a record is stepped exactly (rest_step.py), not by Runge–Kutta
+    rest_exact = exact_rest_available(sp, kind == EXC_SAMPLES)
 
     t = t0
     rocking = y[0] != 0.0 or y[1] != 0.0
@@ -512,6 +539,55 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
             enter_uplift(y, t, summary, ev_t, ev_kind, ev_y, diag)
             need_start = fresh_start = True
             continue
+        # ---------------------------------------------------------------- podium at rest: exact steps
+        if not rocking and rest_exact:
+            tb = min(next_breakpoint(t, kind, xp, samples), t_end)
+            span = tb - t
+            if span <= 1e-15 * max(1.0, abs(t)):
+                t = tb      # sliver before a breakpoint: the state moves by round-off
+                continue
+            h = span / rest_substeps(span, sp)
+            t_new = t + h
+            if t_new > tb - 1e-13 * max(1.0, abs(tb)):
+                t_new = tb
+                h = tb - t
+            a0 = ground_acceleration_right(t, kind, xp, samples)
+            a1 = ground_acceleration(t_new, kind, xp, samples)
+            u1, v1 = rest_state(y[2], y[3], a0, a1, h, sp)
+            y_new[0] = 0.0
+            y_new[1] = 0.0
+            y_new[2] = u1
+            y_new[3] = v1
+            f0[2] = y[3]
+            f0[3] = rest_acceleration(y[2], y[3], a0, sp)
+            ftmp[2] = v1
+            ftmp[3] = rest_acceleration(u1, v1, a1, sp)
+            diag[D_STEPS] += 1
+            if _quiet_rest(t, h, y, y_new, f0, ftmp, m_scan, hyst, kind, xp, samples, rest_coef):
+                ev_x = -1.0
+                ev_side = 0.0
+            else:
+                ev_x, ev_side = rest_uplift_scan(t, h, y, a0, a1, m_scan, hyst, sp)
+            if ev_x >= 0.0:
+                he = ev_x * h
+                ue, ve = rest_state(y[2], y[3], a0, a0 + ev_x * (a1 - a0), he, sp)
+                t_e = t + he
+                i_out = fill_rest_outputs(t_out, out_y, i_out, t_e, t, h, y, a0, a1, sp)
+                y[2] = ue
+                y[3] = ve
+                t = t_rock_start = t_e
+                rocking, side, phase = True, ev_side, 1
+                enter_uplift(y, t, summary, ev_t, ev_kind, ev_y, diag)
+                need_start = fresh_start = True
+                continue
+            i_out = fill_rest_outputs(t_out, out_y, i_out, t_new, t, h, y, a0, a1, sp)
+            for i in range(4):
+                y[i] = y_new[i]
+            t = t_new
+            if energy_stop and t >= t_exc and energy_bound(y, rocking, side, phase + 0, summary[S_THETA_MAX], sp):
+                status = ST_ENERGY_BOUND
+                break
+            continue
         # ---------------------------------------------------------------- a step
         if need_start:
             rhs_given_acceleration(ground_acceleration_right(t, kind, xp, samples), y, f0, rocking, side, phase, sp)
@@ -557,7 +633,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
             quiet = _quiet_step(h, y, y_new, f0, K[fsal], m_scan, side, phase, curved, beta, theta_ot, theta_c,
                                 summary[S_EXCEEDED] != 0.0, two_dof, drift_slope, summary[S_DRIFT_MAX], sp)
         else:
-            quiet = _quiet_rest(t, h, y, y_new, f0, K[fsal], m_scan, hyst, kind, xp, samples, sp)
+            quiet = _quiet_rest(t, h, y, y_new, f0, K[fsal], m_scan, hyst, kind, xp, samples, rest_coef)
         if quiet:
             # nothing inside the step: its end is the only peak candidate
             if rocking and side * y_new[0] > summary[S_THETA_MAX]:
