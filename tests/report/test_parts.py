@@ -111,6 +111,36 @@ def test_svg_is_deterministic():
     assert svg(structure_drawing(system), "a") == svg(structure_drawing(system), "a")
 
 
+def test_slim_svg_draws_the_same_pdf():
+    """slim_svg (style declarations as presentation attributes, no metadata, matplotlib's ``*`` rule on
+    the root) changes nothing WeasyPrint draws: the PDF drawing operators of the figure are identical."""
+    from weasyprint import HTML
+    from rockdesign.report import figures
+    from rockdesign.report.drawing import structure_drawing
+    from rockdesign.report.render import svg_image
+    system = load_project(REPO_ROOT / "examples" / "podium_curved.toml").system
+    slim = figures.svg(structure_drawing(system), "a")
+    original = figures.slim_svg
+    try:
+        figures.slim_svg = lambda text: text
+        fat = figures.svg(structure_drawing(system), "a")
+    finally:
+        figures.slim_svg = original
+    assert " style=\"" in fat and "<metadata>" in fat and "*{stroke-linejoin" in fat
+    assert " style=\"" not in slim and "<metadata>" not in slim and "<style" not in slim
+    assert len(slim) < len(fat)
+
+    def drawing(text):
+        raw = HTML(string=f"<html><body>{svg_image(text)}</body></html>").write_pdf(uncompressed_pdf=True)
+        # text lines of the PDF (drawing operators, objects), without dates, ids and binary font data
+        return [ln for ln in raw.split(b"\n") if all(32 <= c < 127 for c in ln)
+                and b"CreationDate" not in ln and b"/ID" not in ln]
+
+    ops = drawing(fat)
+    assert len(ops) > 1000
+    assert drawing(slim) == ops
+
+
 def test_symbols_subscripts():
     from rockdesign.report.render import symbols
     assert symbols("SD_max < u_B(θc)") == "SD<sub>max</sub> &lt; u<sub>B</sub>(θc)"
