@@ -305,6 +305,56 @@ def _quiet_rest(t, h, y, y_new, f0, f1, m_scan, hyst, kind, xp, samples, coef):
     return True
 
 
+@njit(cache=True)
+def _exact_rest_step(t, h, t_end, y, y_new, f0, f1, m_scan, hyst, kind, xp, samples, sp, rest_coef, t_out, out_y,
+                     i_out, summary, ev_t, ev_kind, ev_y, diag):
+    """One exact step of the resting 2DOF podium under a record (:mod:`.rest_step`, Eq 4.3): to the next
+    sample (split so that ω_s h ≤ 0.4), outputs written from the exact solution, Eq 4.7 watched on it.
+
+    Moves ``y`` and returns (t, h, i_out, side): side = ±1 when the podium uplifted at the returned t
+    (``y`` is then the state at uplift and the event is stored), 0.0 otherwise.  A separate kernel, not
+    inlined into :func:`integrate`: numba's compile time grows with the integrator's size."""
+    tb = min(next_breakpoint(t, kind, xp, samples), t_end)
+    span = tb - t
+    if span <= 1e-15 * max(1.0, abs(t)):
+        return tb, h, i_out, 0.0     # sliver before a breakpoint: the state moves by round-off
+    h = span / rest_substeps(span, sp)
+    t_new = t + h
+    if t_new > tb - 1e-13 * max(1.0, abs(tb)):
+        t_new = tb
+        h = tb - t
+    a0 = ground_acceleration_right(t, kind, xp, samples)
+    a1 = ground_acceleration(t_new, kind, xp, samples)
+    u1, v1 = rest_state(y[2], y[3], a0, a1, h, sp)
+    y_new[0] = 0.0
+    y_new[1] = 0.0
+    y_new[2] = u1
+    y_new[3] = v1
+    f0[2] = y[3]
+    f0[3] = rest_acceleration(y[2], y[3], a0, sp)
+    f1[2] = v1
+    f1[3] = rest_acceleration(u1, v1, a1, sp)
+    diag[D_STEPS] += 1
+    if _quiet_rest(t, h, y, y_new, f0, f1, m_scan, hyst, kind, xp, samples, rest_coef):
+        ev_x = -1.0
+        ev_side = 0.0
+    else:
+        ev_x, ev_side = rest_uplift_scan(t, h, y, a0, a1, m_scan, hyst, sp)
+    if ev_x >= 0.0:
+        he = ev_x * h
+        ue, ve = rest_state(y[2], y[3], a0, a0 + ev_x * (a1 - a0), he, sp)
+        t_e = t + he
+        i_out = fill_rest_outputs(t_out, out_y, i_out, t_e, t, h, y, a0, a1, sp)
+        y[2] = ue
+        y[3] = ve
+        enter_uplift(y, t_e, summary, ev_t, ev_kind, ev_y, diag)
+        return t_e, h, i_out, ev_side
+    i_out = fill_rest_outputs(t_out, out_y, i_out, t_new, t, h, y, a0, a1, sp)
+    for i in range(4):
+        y[i] = y_new[i]
+    return t_new, h, i_out, 0.0
+
+
 @njit(cache=True, inline="always")   # called once per step: inlined as it was written before
 def _scan_podium_uplift(t, h, y, y_new, Q, m_scan, hyst, kind, xp, samples, sp):
     """Scan an accepted step of the fixed-base 2DOF podium (at rest, Eq 4.3) for uplift (Eq 4.7 above
@@ -541,49 +591,14 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
             continue
         # ---------------------------------------------------------------- podium at rest: exact steps
         if not rocking and rest_exact:
-            tb = min(next_breakpoint(t, kind, xp, samples), t_end)
-            span = tb - t
-            if span <= 1e-15 * max(1.0, abs(t)):
-                t = tb      # sliver before a breakpoint: the state moves by round-off
-                continue
-            h = span / rest_substeps(span, sp)
-            t_new = t + h
-            if t_new > tb - 1e-13 * max(1.0, abs(tb)):
-                t_new = tb
-                h = tb - t
-            a0 = ground_acceleration_right(t, kind, xp, samples)
-            a1 = ground_acceleration(t_new, kind, xp, samples)
-            u1, v1 = rest_state(y[2], y[3], a0, a1, h, sp)
-            y_new[0] = 0.0
-            y_new[1] = 0.0
-            y_new[2] = u1
-            y_new[3] = v1
-            f0[2] = y[3]
-            f0[3] = rest_acceleration(y[2], y[3], a0, sp)
-            ftmp[2] = v1
-            ftmp[3] = rest_acceleration(u1, v1, a1, sp)
-            diag[D_STEPS] += 1
-            if _quiet_rest(t, h, y, y_new, f0, ftmp, m_scan, hyst, kind, xp, samples, rest_coef):
-                ev_x = -1.0
-                ev_side = 0.0
-            else:
-                ev_x, ev_side = rest_uplift_scan(t, h, y, a0, a1, m_scan, hyst, sp)
-            if ev_x >= 0.0:
-                he = ev_x * h
-                ue, ve = rest_state(y[2], y[3], a0, a0 + ev_x * (a1 - a0), he, sp)
-                t_e = t + he
-                i_out = fill_rest_outputs(t_out, out_y, i_out, t_e, t, h, y, a0, a1, sp)
-                y[2] = ue
-                y[3] = ve
-                t = t_rock_start = t_e
-                rocking, side, phase = True, ev_side, 1
-                enter_uplift(y, t, summary, ev_t, ev_kind, ev_y, diag)
+            t, h, i_out, s_up = _exact_rest_step(t, h, t_end, y, y_new, f0, ftmp, m_scan, hyst, kind, xp, samples,
+                                                 sp, rest_coef, t_out, out_y, i_out, summary, ev_t, ev_kind, ev_y,
+                                                 diag)
+            if s_up != 0.0:
+                t_rock_start = t
+                rocking, side, phase = True, s_up, 1
                 need_start = fresh_start = True
                 continue
-            i_out = fill_rest_outputs(t_out, out_y, i_out, t_new, t, h, y, a0, a1, sp)
-            for i in range(4):
-                y[i] = y_new[i]
-            t = t_new
             if energy_stop and t >= t_exc and energy_bound(y, rocking, side, phase + 0, summary[S_THETA_MAX], sp):
                 status = ST_ENERGY_BOUND
                 break
