@@ -27,6 +27,8 @@ console = Console()
 
 
 INTERRUPTED = 130
+INTERNAL_ERROR = 3
+"""Exit code of a bug in rockdesign (not in the input): distinct from 1, which means the design failed."""
 """Exit code after Ctrl-C (128 + SIGINT), as shells report it."""
 
 
@@ -47,8 +49,13 @@ def _interrupt_exit():
     raise typer.Exit(INTERRUPTED)
 
 
+_CLICK_EXCEPTION = next(c for c in typer.BadParameter.__mro__ if c.__name__ == "ClickException")
+"""click's ClickException (typer vendors click): usage errors stay click's to report (exit 2)."""
+
+
 def handle_errors(func):
-    """Convert user-input errors to a clean message and exit code 2; Ctrl-C to one line and exit 130."""
+    """Convert user-input errors to a clean message and exit code 2; Ctrl-C to one line and exit 130; any
+    other exception (a bug) to its traceback, one line saying so and exit code 3 (never 1, which means FAIL)."""
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
@@ -59,10 +66,23 @@ def handle_errors(func):
             raise typer.Exit(2) from None
         except (KeyboardInterrupt, SystemError) as exc:
             if not interrupted(exc):
-                raise
+                _internal_error(exc)
             _interrupt_exit()
+        except (typer.Exit, typer.Abort, SystemExit, _CLICK_EXCEPTION):
+            raise
+        except Exception as exc:   # a bug: say so, keep the traceback for the report, never exit 1 (= FAIL)
+            _internal_error(exc)
 
     return wrapper
+
+
+def _internal_error(exc: BaseException):
+    import traceback
+    err_console.print("".join(traceback.format_exception(exc)), highlight=False, markup=False, soft_wrap=True)
+    err_console.print(f"[bold red]internal error[/] (a bug in rockdesign {__version__}, not in the input): "
+                      f"{escape(type(exc).__name__)}: {escape(str(exc))} — please report it with the traceback "
+                      f"above; exit code {INTERNAL_ERROR}", highlight=False, markup=True, soft_wrap=True)
+    raise typer.Exit(INTERNAL_ERROR) from None
 
 
 def _version_callback(value: bool):

@@ -347,3 +347,23 @@ def test_ctrl_c_is_exit_130_with_one_line(tmp_path, delay):
     assert proc.returncode == 130, err[-2000:]
     assert "Traceback" not in err and "SystemError" not in err and "CPUDispatcher" not in err
     assert err.strip().splitlines()[-1].startswith("interrupted (Ctrl-C)")
+
+
+def test_a_bug_is_exit_3_not_fail(monkeypatch):
+    """An exception that is not an input error (a bug) ends with its traceback, one line saying it is an
+    internal error, and exit code 3 — never 1, which scripts read as 'the design failed'."""
+    import rockdesign.api
+
+    def broken(project):
+        raise ZeroDivisionError("simulated bug")
+
+    monkeypatch.setattr(rockdesign.api, "quantities_json", broken)
+    result = runner.invoke(app, ["quantities", PIER, "--json"])
+    assert result.exit_code == 3
+    text = result.output + (result.stderr if hasattr(result, "stderr") else "")
+    assert "internal error" in text and "ZeroDivisionError: simulated bug" in text and "Traceback" in text
+
+
+def test_usage_errors_stay_exit_2():
+    result = runner.invoke(app, ["quantities", PIER, "--no-such-option"])
+    assert result.exit_code == 2
