@@ -7,8 +7,9 @@ as the elastic spectra, SPEC §5): the engine steps the resting podium with it i
 method.  No tolerance is involved, so a resting phase is exact and costs a few multiplications per
 step; the uplift criterion (Eq 4.7) is watched on the exact solution (engine.integrate).
 
-Written by hand because it is part of the numba integrator's inner loop (no library offers this
-recurrence as a compiled scalar function).
+The recurrence's coefficients are the elastic spectra's (:func:`rockdesign.motions.spectra.nigam_jennings_step`);
+this module adds the Taylor series for very short steps, the uplift scan and the outputs — written
+by hand because they are part of the numba integrator's inner loop.
 """
 from __future__ import annotations
 
@@ -16,6 +17,7 @@ import math
 
 from numba import njit
 
+from ..motions.spectra import nigam_jennings_step
 from .eom import P_OMEGA, P_TWO_DOF, P_ZETA, uplift_condition
 
 TAYLOR_BELOW = 1e-3
@@ -50,23 +52,7 @@ def rest_state(u0, v0, a0, a1, tau, sp):
         snap = -w2 * acc - 2.0 * ze * om * jerk
         return (u0 + tau * (v0 + tau * (0.5 * acc + tau * (jerk / 6.0 + tau * snap / 24.0))),
                 v0 + tau * (acc + tau * (0.5 * jerk + tau * snap / 6.0)))
-    root = math.sqrt(1.0 - ze * ze)
-    omega_d = om * root
-    e = math.exp(-ze * om * tau)
-    s = math.sin(omega_d * tau)
-    c = math.cos(omega_d * tau)
-    k1 = (2.0 * ze * ze - 1.0) / (w2 * tau)
-    k2 = 2.0 * ze / (w2 * om * tau)
-    c_minus = c - ze / root * s
-    d_sin = omega_d * s + ze * om * c
-    a11 = e * (ze / root * s + c)
-    a12 = e * s / omega_d
-    a21 = -om / root * e * s
-    a22 = e * c_minus
-    b11 = e * ((k1 + ze / om) * s / omega_d + (k2 + 1.0 / w2) * c) - k2
-    b12 = -e * (k1 * s / omega_d + k2 * c) - 1.0 / w2 + k2
-    b21 = e * ((k1 + ze / om) * c_minus - (k2 + 1.0 / w2) * d_sin) + 1.0 / (w2 * tau)
-    b22 = -e * (k1 * c_minus - k2 * d_sin) - 1.0 / (w2 * tau)
+    a11, a12, a21, a22, b11, b12, b21, b22 = nigam_jennings_step(om, ze, tau)
     return a11 * u0 + a12 * v0 + b11 * a0 + b12 * a1, a21 * u0 + a22 * v0 + b21 * a0 + b22 * a1
 
 
@@ -81,7 +67,10 @@ def rest_uplift_scan(t, h, y, a0, a1, m_scan, hyst, sp):
     """The first uplift (Eq 4.7 above the hysteresis, either side) inside an exact rest step from
     state ``y`` over ``h`` [s] with ü_g linear from a0 to a1: the criterion is checked at ``m_scan``
     points of the exact solution and the first crossing is bisected on it to 1e-15 of the step.
-    Returns (its position x ∈ (0, 1], or −1.0 for none; the side it uplifts to)."""
+    Returns (its position x ∈ (0, 1], or −1.0 for none; the side it uplifts to).
+
+    The same scan as ``engine._scan_podium_uplift`` on the Runge–Kutta dense output (pulses); kept as
+    two loops because numba has no cheap way to pass the state evaluator as an argument."""
     x_prev = 0.0
     for k in range(1, m_scan + 1):
         x = k / m_scan

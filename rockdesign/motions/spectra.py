@@ -30,18 +30,18 @@ DEFAULT_N_PERIODS = 400
 
 
 @njit(cache=True)
-def nigam_jennings_coefficients(omega, zeta, dt):
-    """The 8 coefficients (A11, A12, A21, A22, B11, B12, B21, B22) of one exact step.
+def nigam_jennings_step(omega, zeta, dt):
+    """The 8 coefficients (A11, A12, A21, A22, B11, B12, B21, B22) of one exact step, as a tuple.
 
     Args:
         omega: circular frequency ω [rad/s] (> 0).
         zeta: damping ratio ζ (0 ≤ ζ < 1).
-        dt: step [s].
+        dt: step [s] (> 0; the B coefficients lose digits as 1/(ω dt)² for very short steps).
 
-    Returns:
-        float64 array of 8 coefficients such that, for ü + 2ζωu̇ + ω²u = −ü_g with ü_g linear
-        from a_i to a_j over the step, u_j = A11 u_i + A12 v_i + B11 a_i + B12 a_j and
-        v_j = A21 u_i + A22 v_i + B21 a_i + B22 a_j (Nigam & Jennings 1968).
+    For ü + 2ζωu̇ + ω²u = −ü_g with ü_g linear from a_i to a_j over the step,
+    u_j = A11 u_i + A12 v_i + B11 a_i + B12 a_j and v_j = A21 u_i + A22 v_i + B21 a_i + B22 a_j
+    (Nigam & Jennings 1968).  Used by the elastic spectra and by the engine's exact rest step of a
+    podium (rockdesign.dynamics.rest_step).
     """
     root = math.sqrt(1.0 - zeta * zeta)
     omega_d = omega * root
@@ -51,17 +51,22 @@ def nigam_jennings_coefficients(omega, zeta, dt):
     w2 = omega * omega
     k1 = (2.0 * zeta * zeta - 1.0) / (w2 * dt)
     k2 = 2.0 * zeta / (w2 * omega * dt)
-    out = np.empty(8)
-    out[0] = e * (zeta / root * s + c)
-    out[1] = e * s / omega_d
-    out[2] = -omega / root * e * s
-    out[3] = e * (c - zeta / root * s)
     c_minus = c - zeta / root * s
     d_sin = omega_d * s + zeta * omega * c
-    out[4] = e * ((k1 + zeta / omega) * s / omega_d + (k2 + 1.0 / w2) * c) - k2
-    out[5] = -e * (k1 * s / omega_d + k2 * c) - 1.0 / w2 + k2
-    out[6] = e * ((k1 + zeta / omega) * c_minus - (k2 + 1.0 / w2) * d_sin) + 1.0 / (w2 * dt)
-    out[7] = -e * (k1 * c_minus - k2 * d_sin) - 1.0 / (w2 * dt)
+    return (e * (zeta / root * s + c), e * s / omega_d, -omega / root * e * s, e * c_minus,
+            e * ((k1 + zeta / omega) * s / omega_d + (k2 + 1.0 / w2) * c) - k2,
+            -e * (k1 * s / omega_d + k2 * c) - 1.0 / w2 + k2,
+            e * ((k1 + zeta / omega) * c_minus - (k2 + 1.0 / w2) * d_sin) + 1.0 / (w2 * dt),
+            -e * (k1 * c_minus - k2 * d_sin) - 1.0 / (w2 * dt))
+
+
+@njit(cache=True)
+def nigam_jennings_coefficients(omega, zeta, dt):
+    """:func:`nigam_jennings_step` as a float64 array of 8 (A11, A12, A21, A22, B11, B12, B21, B22)."""
+    out = np.empty(8)
+    k = nigam_jennings_step(omega, zeta, dt)
+    for i in range(8):
+        out[i] = k[i]
     return out
 
 
