@@ -94,7 +94,7 @@ def _step_factor(high, y, y_new, K, h, rtol, atol, n, work, error_exponent, step
     return True, fac
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _step_to(high, t, y, f0, he, K, y_e, ytmp, rocking, side, phase, kind, xp, samples, sp, n, diag):
     """State ``y_e`` at t + he by one step of the run's method (he ≥ 0; he = 0 copies ``y``)."""
     if he > 0.0:
@@ -355,7 +355,7 @@ def _exact_rest_step(t, h, t_end, y, y_new, f0, f1, m_scan, hyst, kind, xp, samp
     return t_new, h, i_out, 0.0
 
 
-@njit(cache=True, inline="always")   # called once per step: inlined as it was written before
+@njit(cache=True)
 def _scan_podium_uplift(t, h, y, y_new, Q, m_scan, hyst, kind, xp, samples, sp):
     """Scan an accepted step of the fixed-base 2DOF podium (at rest, Eq 4.3) for uplift (Eq 4.7 above
     the hysteresis, either side) at ``m_scan`` points of the dense output, and bisect the first one.
@@ -393,7 +393,7 @@ def _scan_podium_uplift(t, h, y, y_new, Q, m_scan, hyst, kind, xp, samples, sp):
     return ev_x, ev_side
 
 
-@njit(cache=True, inline="always")   # called once per step: inlined as it was written before
+@njit(cache=True)
 def _scan_rocking_step(t, h, y, y_new, Q, ytmp, m_scan, side, phase, curved, beta, theta_ot, theta_c, two_dof,
                        drift_slope, impacts, stop_exceeded, c_theta, c_rate, summary, ev_t, ev_kind, ev_y, diag, sp):
     """Scan an accepted rocking step's dense output at ``m_scan`` points for the first event.
@@ -548,7 +548,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
         else:
             side = 1.0 if y[1] > 0.0 else -1.0
     phase = phase_of(abs(y[0]), sp)
-    impacts = 0
+    impacts = c_theta   # a run-time 0: a literal would compile the event kernels twice
     i_out = 0
     n_out = t_out.shape[0]
     while i_out < n_out and t_out[i_out] < t:

@@ -107,7 +107,7 @@ def crossing_event(s0, s1, curved, phase, beta, theta_ot):
     return 0, 0.0
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def enter_uplift(y, t, summary, ev_t, ev_kind, ev_y, diag):
     """Uplift at time t [s]: θ = θ̇ = 0 on the new side; counted, and its first time kept."""
     y[0] = 0.0
@@ -118,7 +118,7 @@ def enter_uplift(y, t, summary, ev_t, ev_kind, ev_y, diag):
         summary[S_T_UPLIFT] = t
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def enter_overturn(y, side, theta_ot, t, impacts, summary, ev_t, ev_kind, ev_y, diag):
     """Dynamic overturning at time t [s]: |θ| = π/2 reached after ``impacts`` impacts."""
     y[0] = side * theta_ot
@@ -131,7 +131,7 @@ def enter_overturn(y, side, theta_ot, t, impacts, summary, ev_t, ev_kind, ev_y, 
     store_event(ev_t, ev_kind, ev_y, diag, EV_OVERTURN, t, y)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def change_phase(y, side, beta, ev_type, t, ev_t, ev_kind, ev_y, diag):
     """|θ| = β: rolling → rocking about the extension's edge, or back; returns the new phase."""
     y[0] = side * beta
@@ -140,7 +140,7 @@ def change_phase(y, side, beta, ev_type, t, ev_t, ev_kind, ev_y, diag):
     return phase
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def impact(y, sqrt_cr, v_rest, impacts, t, t_rock_start, summary, ev_t, ev_kind, ev_y, diag):
     """Impact at θ = 0 (SPEC §3.4): θ̇⁺ = √c_r θ̇⁻, u̇_T unchanged; below the rest velocity [rad/s] the
     body comes to rest (its uplifted time is accounted).  Returns (still rocking, impacts)."""

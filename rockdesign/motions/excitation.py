@@ -63,6 +63,17 @@ def ground_acceleration(t, kind, params, samples):
             return 0.0
         f = x - i
         return params[0] * (samples[i] + f * (samples[i + 1] - samples[i]))
+    return pulse_acceleration(t, kind, params, samples)
+
+
+@njit(cache=True)
+def pulse_acceleration(t, kind, params, samples):
+    """ü_g(t) in m/s² of an analytic pulse (the formulas of :func:`ground_acceleration`).
+
+    Not inlined: the record branch of :func:`ground_acceleration` is inlined into every Runge–Kutta
+    stage and event search, and copying these pulse formulas there too made the engine's first-run
+    compilation about 8 s longer (docs/engine.md); a pulse pays one function call per evaluation.
+    """
     if kind == EXC_RICKER_SYM:
         a_p = params[0]
         tp = params[1]
