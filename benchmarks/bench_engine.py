@@ -84,9 +84,9 @@ def single_record(system_name: str, policy_ours: TimingPolicy, policy_scipy: Tim
     ours_err = metrics.max_abs_difference(r.theta, ref.theta_at(r.t))
     ours_s, ours_n = best_time(ours_call, policy_ours)
 
-    # summary only, as the check runs every record: one job of the batch kernel (numba compiles the
-    # integrator inlined into the prange body to faster machine code than the function called from
-    # Python: docs/engine.md)
+    # summary only, as the check runs every record: one job of the batch kernel without history buffers
+    # (simulate runs its history through the same kernel: numba's code for the integrator is faster in
+    # the kernel's prange body than called from Python, docs/engine.md)
     sp_summary = system_parameters(system, ModelChoice(structure, "exact"))
     opts_summary = batch_options(OUR_RTOL, OUR_ATOL, energy_stop=False)
 

@@ -14,11 +14,10 @@ import numpy as np
 from ..motions.motion import pulse_motion
 from ..systems import Column, RockingSystem
 from . import metrics
-from .engine import integrate
 from .layout import O_T_END
 from .linear_exact import integrate_linear_exact, sampled_pulse
 from .model import ModelChoice, resolve_structure, system_parameters
-from .batch import batch_options
+from .batch import batch_options, run_history
 from .simulate import DEFAULT_ATOL, initial_state, simulate
 
 G = 9.81
@@ -70,8 +69,8 @@ def history_at(system, motion, times, *, t_end: float, structure: str = "auto", 
     else:
         opts = batch_options(rtol, atol, energy_stop=False, max_steps=50_000_000, scan_points=scan_points)
         opts[O_T_END] = t_end
-        integrate(sp, motion.kind, motion.params, motion.samples, y0, side0, 0.0, opts, t_out, out_y,
-                  ev_t, ev_kind, ev_y)
+        run_history(sp, motion.kind, motion.params, motion.samples, y0, side0, opts, t_out, out_y,
+                    ev_t, ev_kind, ev_y)
     return out_y[:, 0][inverse].reshape(times.shape)
 
 

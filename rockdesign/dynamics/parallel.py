@@ -12,7 +12,7 @@ from typing import Callable, Sequence
 
 import numpy as np
 
-from .batch import pack_motions, _run_batch
+from .batch import pack_motions, run_packed
 from ..kernel_cache import sources_digest
 from ..execution.executor import ChunkStore, LocalExecutor, fingerprint, run_chunks
 
@@ -22,7 +22,7 @@ def motion_rows(sp: np.ndarray, samples: np.ndarray, opts: np.ndarray, kinds: np
     """The chunk function: jobs ``kinds[i], xps[i], samples[offsets[i]:offsets[i]+lengths[i]]`` until
     ``t_ends[i]`` [s] (numba prange over the jobs). Returns {"summaries": n × N_SUMMARY,
     "diagnostics": n × N_DIAG}."""
-    s, d = _run_batch(sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s)
+    s, d = run_packed(sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s)
     return {"summaries": s, "diagnostics": d}
 
 

@@ -9,7 +9,6 @@ from ..design.geometry import displacement_capacity, rocking_geometry, slenderne
 from ..errors import ModelError
 from ..motions.motion import GroundMotion, no_motion
 from ..systems import RockingSystem
-from .engine import integrate
 from .layout import (D_EVENTS, D_EVENTS_STORED, D_NFEV, D_REFINE, D_REJECTED, D_REST, D_STATUS, D_STEPS, EVENT_NAMES,
                      O_T_END, STATUS_NAMES, S_DRIFT_MAX, S_IMPACTS, S_THETA_MAX, S_T_END, S_T_THETA_MAX, S_T_UPLIFT,
                      S_UB_MAX, S_UPLIFT_TIME)
@@ -86,14 +85,14 @@ def simulate(system: RockingSystem, motion: GroundMotion | None = None, *, model
                                                           side0, 0.0, t_end, t_out, out_y, ev_t, ev_kind, ev_y,
                                                           max_events, stop_at_capacity, energy_stop)
     else:
-        from .batch import batch_options
+        from .batch import batch_options, run_history
         opts = batch_options(rtol, atol, energy_stop=energy_stop, stop_at_capacity=stop_at_capacity,
                              max_steps=max_steps, max_events=max_events, scan_points=scan_points, method=method)
         opts[O_T_END] = t_end
         out_y = np.zeros((t_out.size, 4))
         ev_t, ev_kind, ev_y = _event_buffers(event_capacity)
-        summary, diag, n_written = integrate(sp, motion.kind, motion.params, motion.samples, y0, side0, 0.0,
-                                             opts, t_out, out_y, ev_t, ev_kind, ev_y)
+        summary, diag, n_written = run_history(sp, motion.kind, motion.params, motion.samples, y0, side0, opts,
+                                               t_out, out_y, ev_t, ev_kind, ev_y)
     label = f"{structure}/{model if model != 'auto' else 'exact'}"
     response = _build_response(system, motion, sp, model, label, summary, diag, t_out[:n_written], out_y[:n_written],
                            ev_t, ev_kind, ev_y, overturn)
