@@ -9,14 +9,16 @@ numba's cache index of a kernel the command needs is missing, it prints
     compiling numerical kernels, once per installation, ~N s
 
 and compiles exactly those kernels by calling them on a tiny problem with the argument types of the
-real calls (so the real calls load them from the cache), then reports the seconds it took.  Commands
-compile only their own kernels: ``simulate`` never compiles the parallel batch runner, ``records``
+real calls (so the real calls load them from the cache), then reports the seconds it took.  On two or
+more cores a second process shares the work (numba compiles on one core; :mod:`.compile_plan`).  Commands compile only their own kernels: ``simulate`` never compiles the closed-form linear integrator, ``records``
 only the elastic response spectrum.
 """
 from __future__ import annotations
 
 import importlib
 import os
+import subprocess
+import sys
 import time
 from pathlib import Path
 
@@ -27,10 +29,11 @@ KERNELS: dict[str, tuple[tuple[str, str], ...]] = {
               ("rockdesign.dynamics.transitions", "top_displacements"),
               ("rockdesign.dynamics.linear_exact", "integrate_linear_exact"),
               ("rockdesign.motions.spectra", "spectral_displacements")),
-    "simulate": (("rockdesign.dynamics.engine", "integrate"), ("rockdesign.dynamics.transitions", "top_displacements")),
+    "simulate": (("rockdesign.dynamics.batch", "_run_batch"), ("rockdesign.dynamics.engine", "integrate"),
+                 ("rockdesign.dynamics.transitions", "top_displacements")),
     "records": (("rockdesign.motions.spectra", "spectral_displacements"),),
 }
-ESTIMATE_SECONDS = {"check": 50, "simulate": 35, "records": 5}
+ESTIMATE_SECONDS = {"check": 40, "simulate": 40, "records": 5}
 MESSAGE = "compiling numerical kernels, once per installation, ~{seconds} s"
 
 
@@ -56,7 +59,13 @@ def missing_kernels(command: str) -> list[str]:
     return [f"{m}.{f}" for m, f in KERNELS.get(command, ()) if not is_cached(_dispatcher(m, f))]
 
 
-def _warm(command: str) -> None:
+PARTS = ("engine", "side")
+"""What :func:`_warm` compiles: the rocking engine (the batch kernel and the integrator it runs, which
+``simulate`` shares) and the side kernels of ``check`` (the closed-form linear integrator of the
+accuracy statement, the elastic spectrum of Polyakov's rule)."""
+
+
+def _warm(command: str, parts: tuple[str, ...] = PARTS) -> None:
     """Call the command's kernels once on a tiny problem, with the argument types of the real calls."""
     import numpy as np
 
@@ -68,17 +77,54 @@ def _warm(command: str) -> None:
     g = 9.81
     system = block(1.5, 0.15)
     record = record_motion("warm-up", np.array([0.0, 0.3, -0.3, 0.0]) * g, 0.01)
-    if command in ("check", "simulate"):
+    if "engine" in parts and command in ("check", "simulate"):
         simulate(system, record, t_end=0.05)
-    if command == "check":
         sp = system_parameters(system, ModelChoice("block", "exact"))
         run_batch(sp, [record], [1.0], [0.05], batch_options())
+    if "side" in parts and command == "check":
         from .accuracy import accuracy_problem
         system_b1, pulse = accuracy_problem()
         simulate(system_b1, pulse, model="linear-exact", t_end=0.05)
-    if command in ("check", "records"):
+    if "side" in parts and command in ("check", "records"):
         from ..motions.spectra import sd_max
         sd_max(record)
+
+
+def _cores() -> int:
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:   # pragma: no cover - not Linux
+        return os.cpu_count() or 1
+
+
+def _shares(command: str) -> tuple[list, list]:
+    """The integrator's callees this process and the helper compile (:mod:`.compile_plan`)."""
+    from .compile_plan import callee_table, split
+    from .compile_plan_table import SIDE_SECONDS
+    return split(callee_table(), SIDE_SECONDS if command == "check" else 0.0)
+
+
+def _helper(command: str) -> None:
+    """The second process's work: the side kernels of ``check``, then its share of the callees."""
+    from .compile_plan import compile_entries
+    _warm(command, ("side",))
+    compile_entries(_shares(command)[1])
+
+
+def _start_helper(command: str):
+    """A second Python process compiling into numba's on-disk cache while this one compiles too
+    (numba compiles on one core); None on one core or when it cannot start."""
+    if command not in ("check", "simulate") or _cores() < 2:
+        return None
+    code = f"from rockdesign.dynamics.compilation import _helper; _helper({command!r})"
+    # the helper imports this very package (not another one on its path) and shares numba's cache
+    here = str(Path(__file__).resolve().parents[2])
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(p for p in (here, os.environ.get("PYTHONPATH")) if p)}
+    try:
+        return subprocess.Popen([sys.executable, "-c", code], stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                                stderr=subprocess.DEVNULL, env=env)
+    except OSError:
+        return None
 
 
 def prepare(command: str, say=None) -> float:
@@ -86,7 +132,11 @@ def prepare(command: str, say=None) -> float:
 
     ``say(text)`` prints a line (the CLI passes its stderr console); nothing is printed and nothing is
     compiled when every kernel is cached.  ``ROCKDESIGN_NO_WARMUP=1`` skips the step (kernels then
-    compile on first use, as numba does by default).
+    compile on first use, as numba does by default).  On two or more cores a second process compiles
+    the side kernels of ``check`` and half of the integrator's callees while this one compiles the other
+    half (:mod:`.compile_plan`); then the integrator and the batch kernel compile here, loading every
+    callee from the cache.  If the helper fails, what it did not compile is compiled here: the outcome
+    is the same.
     """
     if os.environ.get("ROCKDESIGN_NO_WARMUP") or command not in KERNELS:
         return 0.0
@@ -96,7 +146,19 @@ def prepare(command: str, say=None) -> float:
     if say is not None:
         say(MESSAGE.format(seconds=ESTIMATE_SECONDS.get(command, 30)))
     t0 = time.perf_counter()
-    _warm(command)
+    helper = _start_helper(command)
+    if helper is not None:
+        try:
+            from .compile_plan import compile_entries
+            compile_entries(_shares(command)[0])
+            ok = helper.wait() == 0
+        except BaseException:
+            helper.kill()
+            helper.wait()
+            raise
+        if not ok:     # whatever the helper did not compile is compiled below, here
+            _warm(command, ("side",))
+    _warm(command, PARTS if helper is None else ("engine",))
     seconds = time.perf_counter() - t0
     if say is not None:
         say(f"compiled {len(missing)} kernel{'s' if len(missing) > 1 else ''} in {seconds:.0f} s")

@@ -10,8 +10,9 @@ def test_kernels_of_each_command_exist_and_are_cacheable():
         for module, name in kernels:
             d = compilation._dispatcher(module, name)
             assert d._cache is not None, f"{module}.{name} is not cache=True"
-    # simulate never needs the parallel batch runner
-    assert ("rockdesign.dynamics.batch", "_run_batch") not in compilation.KERNELS["simulate"]
+    # simulate never needs the closed-form linear integrator, records never the rocking engine
+    assert ("rockdesign.dynamics.linear_exact", "integrate_linear_exact") not in compilation.KERNELS["simulate"]
+    assert all(module != "rockdesign.dynamics.batch" for module, _ in compilation.KERNELS["records"])
 
 
 def test_compiled_kernel_is_detected_as_cached():
@@ -29,7 +30,8 @@ def test_announcement_when_the_cache_is_empty(monkeypatch):
     said, warmed = [], []
     monkeypatch.delenv("ROCKDESIGN_NO_WARMUP", raising=False)
     monkeypatch.setattr(compilation, "is_cached", lambda d: False)
-    monkeypatch.setattr(compilation, "_warm", lambda command: warmed.append(command))
+    monkeypatch.setattr(compilation, "_start_helper", lambda command: None)    # one core
+    monkeypatch.setattr(compilation, "_warm", lambda command, parts=compilation.PARTS: warmed.append(command))
     compilation.prepare("check", say=said.append)
     assert warmed == ["check"]
     assert said[0] == compilation.MESSAGE.format(seconds=compilation.ESTIMATE_SECONDS["check"])
@@ -40,3 +42,68 @@ def test_announcement_when_the_cache_is_empty(monkeypatch):
     monkeypatch.setenv("ROCKDESIGN_NO_WARMUP", "1")
     assert compilation.prepare("check", say=said.append) == 0.0
     assert warmed == ["check"]
+
+
+class _Helper:
+    """Stands in for the helper process (subprocess.Popen): exits with ``code``."""
+
+    def __init__(self, code):
+        self.code = code
+
+    def wait(self):
+        return self.code
+
+    def kill(self):
+        pass
+
+
+def test_two_processes_share_the_work_and_a_failed_helper_costs_only_time(monkeypatch):
+    from rockdesign.dynamics import compile_plan
+    monkeypatch.delenv("ROCKDESIGN_NO_WARMUP", raising=False)
+    monkeypatch.setattr(compilation, "is_cached", lambda d: False)
+    for code, expected in ((0, [("engine",)]), (1, [("side",), ("engine",)])):
+        warmed, shared = [], []
+        monkeypatch.setattr(compilation, "_start_helper", lambda command: _Helper(code))
+        monkeypatch.setattr(compilation, "_warm", lambda command, parts=compilation.PARTS: warmed.append(parts))
+        monkeypatch.setattr(compile_plan, "compile_entries", lambda entries: shared.append(list(entries)))
+        compilation.prepare("check")
+        assert shared == [compilation._shares("check")[0]]     # this process's half of the callees first
+        assert warmed == expected        # then the engine; the side kernels too if the helper failed
+
+
+def test_split_keeps_every_callee_and_balances_the_two_processes():
+    from rockdesign.dynamics.compile_plan import callee_table, split
+    entries = callee_table()
+    assert len(entries) >= 20
+    for head_start in (0.0, 5.0, 12.0):
+        mine, theirs = split(entries, head_start)
+        assert sorted(mine + theirs) == sorted(entries)
+        gap = sum(e[3] for e in mine) - (sum(e[3] for e in theirs) + head_start)
+        assert abs(gap) <= max(e[3] for e in entries) + 1e-9, (head_start, gap)
+
+
+def test_compile_plan_names_the_signatures_the_integrator_calls():
+    """After the real warm-up every entry of the plan loads from numba's cache or memory: none compiles.
+
+    A stale entry (a kernel whose argument types changed) would make the helper compile a specialisation
+    that the integrator never calls; rewrite the table with ``python -m rockdesign.dynamics.compile_plan``.
+    """
+    from numba.core import event
+    from rockdesign.dynamics.compile_plan import callee_table, compile_entries
+    compilation._warm("check")
+    compiled = []
+
+    class Listener(event.Listener):
+        def on_start(self, ev):
+            compiled.append(ev.data["dispatcher"].py_func.__qualname__)
+
+        def on_end(self, ev):
+            pass
+
+    listener = Listener()
+    event.register("numba:compile", listener)
+    try:
+        compile_entries(callee_table())
+    finally:
+        event.unregister("numba:compile", listener)
+    assert compiled == []
