@@ -103,7 +103,8 @@ def simulate(system: RockingSystem, motion: GroundMotion | None = None, *, model
 
 
 def _event_buffers(capacity: int):
-    return np.zeros(capacity), np.zeros(capacity, dtype=np.int64), np.zeros((capacity, 4))
+    # uninitialised: the integrator writes the rows it reports (diag[D_EVENTS_STORED]), nothing else is read
+    return np.empty(capacity), np.empty(capacity, dtype=np.int64), np.empty((capacity, 4))
 
 
 BYTES_PER_OUTPUT_SAMPLE = 8 * 24
@@ -174,8 +175,8 @@ def _build_response(system, motion, sp, model, label, summary, diag, t_out, out_
                     overturn) -> Response:
     from .transitions import top_displacements
     n_ev = int(diag[D_EVENTS_STORED])
-    events = [Event(EVENT_NAMES[int(ev_kind[i])], float(ev_t[i]), tuple(float(v) for v in ev_y[i]))
-              for i in range(n_ev)]
+    events = [Event(EVENT_NAMES[k], t_k, tuple(y_k))
+              for k, t_k, y_k in zip(ev_kind[:n_ev].tolist(), ev_t[:n_ev].tolist(), ev_y[:n_ev].tolist())]
     # merge event rows into the output series
     t = np.concatenate([t_out, ev_t[:n_ev]])
     y = np.concatenate([out_y, ev_y[:n_ev]])
