@@ -33,7 +33,7 @@ KERNELS: dict[str, tuple[tuple[str, str], ...]] = {
                  ("rockdesign.dynamics.transitions", "top_displacements")),
     "records": (("rockdesign.motions.spectra", "spectral_displacements"),),
 }
-ESTIMATE_SECONDS = {"check": 40, "simulate": 40, "records": 5}
+ESTIMATE_SECONDS = {"check": 30, "simulate": 30, "records": 5}
 MESSAGE = "compiling numerical kernels, once per installation, ~{seconds} s"
 
 
