@@ -10,8 +10,9 @@ numba's cache index of a kernel the command needs is missing, it prints
 
 and compiles exactly those kernels by calling them on a tiny problem with the argument types of the
 real calls (so the real calls load them from the cache), then reports the seconds it took.  On two or
-more cores a second process shares the work (numba compiles on one core; :mod:`.compile_plan`).  Commands compile only their own kernels: ``simulate`` never compiles the closed-form linear integrator, ``records``
-only the elastic response spectrum.
+more cores a second process shares the work (numba compiles on one core; :mod:`.compile_plan`).
+Commands compile only their own kernels: ``simulate`` never compiles the closed-form linear
+integrator, ``records`` only the elastic response spectrum.
 """
 from __future__ import annotations
 

@@ -50,15 +50,19 @@ def split(entries, head_start: float) -> tuple[list, list]:
 
 
 def compile_entries(entries) -> None:
-    """Compile (or load from numba's cache) each callee for its signature.
+    """Compile (or load from numba's cache) each callee for its signature; an entry that no longer fits
+    its kernel (renamed, other arguments) is skipped — the integrator then compiles that callee itself.
 
     The signature goes to numba as a tuple of types, as a calling kernel passes it: numba's cache is
     keyed on the signature object it is given, and a string would be stored under the string.
     """
     from numba.core import sigutils
     for module, name, signature, _ in entries:
-        args, _ = sigutils.normalize_signature(signature)
-        getattr(importlib.import_module(module), name).compile(tuple(args))
+        try:
+            args, _ = sigutils.normalize_signature(signature)
+            getattr(importlib.import_module(module), name).compile(tuple(args))
+        except Exception:      # a stale entry costs time only (tests/dynamics/test_compilation.py fails on it)
+            continue
 
 
 def record_side_seconds() -> float:

@@ -107,3 +107,9 @@ def test_compile_plan_names_the_signatures_the_integrator_calls():
     finally:
         event.unregister("numba:compile", listener)
     assert compiled == []
+
+
+def test_a_stale_plan_entry_costs_time_not_the_command():
+    from rockdesign.dynamics.compile_plan import compile_entries
+    compile_entries([("rockdesign.dynamics.engine", "_step_to", "(float64,)", 0.1),      # other arguments
+                     ("rockdesign.dynamics.no_such_module", "kernel", "()", 0.1)])       # renamed
