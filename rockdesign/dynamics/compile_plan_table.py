@@ -1,7 +1,7 @@
 """The integrator's direct callees with the signatures it calls them with, in numba's compile order,
 and their first-run compile seconds (nested callees included) on the machine that wrote it.
 
-Written by ``python -m rockdesign.dynamics.compile_plan``; see :mod:`.compile_plan`.
+Written by ``python -m rockdesign.dynamics.compile_plan_writer``; see :mod:`.compile_plan`.
 """
 
 SIDE_SECONDS = 12.8

@@ -86,7 +86,7 @@ def test_compile_plan_names_the_signatures_the_integrator_calls():
     """After the real warm-up every entry of the plan loads from numba's cache or memory: none compiles.
 
     A stale entry (a kernel whose argument types changed) would make the helper compile a specialisation
-    that the integrator never calls; rewrite the table with ``python -m rockdesign.dynamics.compile_plan``.
+    that the integrator never calls; rewrite the table with ``python -m rockdesign.dynamics.compile_plan_writer``.
     """
     from numba.core import event
     from rockdesign.dynamics.compile_plan import callee_table, compile_entries
