@@ -213,6 +213,9 @@ def main():  # console-script entry point
     try:
         app()
     except SystemExit as exc:
+        # the command is over (its files written or not): a Ctrl-C during the interpreter's shutdown would
+        # kill the process by SIGINT instead of ending with the command's exit code
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
         if _SIGINT_SEEN[0] and exc.code not in (0, INTERRUPTED):
             sys.exit(INTERRUPTED)
         raise

@@ -333,7 +333,7 @@ def test_stiff_superstructure_event_limit_is_a_failure(tmp_path):
 
 # ------------------------------------------------------------------------------ Ctrl-C
 @pytest.mark.slow
-@pytest.mark.parametrize("delay", [4.0, 9.0])
+@pytest.mark.parametrize("delay", [4.0, 6.5])   # in the margins stage (the --no-pdf check takes ≈ 10 s)
 def test_ctrl_c_is_exit_130_with_one_line(tmp_path, delay):
     env = dict(os.environ, PYTHONPATH=str(REPO_ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
     proc = subprocess.Popen([sys.executable, "-m", "rockdesign.cli", "check", "examples/podium_flat.toml", "-o",
@@ -344,6 +344,9 @@ def test_ctrl_c_is_exit_130_with_one_line(tmp_path, delay):
         pytest.skip("the check finished before the interrupt")
     proc.send_signal(signal.SIGINT)
     out, err = proc.communicate(timeout=300)
+    if "output:" in out:          # pragma: no cover - the check had written its results: its verdict stands
+        assert proc.returncode in (0, 1), err[-2000:]
+        pytest.skip("the check had finished its work before the interrupt")
     assert proc.returncode == 130, err[-2000:]
     assert "Traceback" not in err and "SystemError" not in err and "CPUDispatcher" not in err
     assert err.strip().splitlines()[-1].startswith("interrupted (Ctrl-C)")
