@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 import math
-import os
 from dataclasses import dataclass
 
 import numpy as np
@@ -13,6 +12,7 @@ from ..dynamics.layout import D_STATUS, STATUS_NAMES, S_IMPACTS, S_THETA_MAX, S_
 from ..dynamics.model import ModelChoice, system_parameters
 from ..dynamics.eom import P_CR, P_THETA_C
 from ..dynamics.overturning import classify
+from ..execution.executor import usable_cores
 from ..systems import RockingSystem
 
 
@@ -47,10 +47,6 @@ def interpret(summary: np.ndarray, status: int, theta_c: float, alpha: float, ca
                       before, STATUS_NAMES[int(status)])
 
 
-def worker_count() -> int:
-    return max(1, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1)
-
-
 def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rtol: float, atol: float,
              free_vibration: float, criterion: str, rest_velocity: float = 5e-4, energy_stop: bool = False,
              stop_at_capacity: bool = False, restitution_factor: float = 1.0, progress=None,
@@ -73,7 +69,7 @@ def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rto
     n = len(motions)
     t_ends = [m.duration + free_vibration for m in motions]
     out: list[RunSummary] = []
-    step = chunk or max(4 * worker_count(), 8)
+    step = chunk or max(4 * usable_cores(), 8)
     if executor is not None:
         from ..dynamics.parallel import run_motions
         done = [0]

@@ -91,13 +91,6 @@ def _warm(command: str, parts: tuple[str, ...] = PARTS) -> None:
         sd_max(record)
 
 
-def _cores() -> int:
-    try:
-        return len(os.sched_getaffinity(0))
-    except AttributeError:   # pragma: no cover - not Linux
-        return os.cpu_count() or 1
-
-
 def _shares(command: str) -> tuple[list, list]:
     """The integrator's callees this process and the helper compile (:mod:`.compile_plan`)."""
     from .compile_plan import callee_table, split
@@ -115,7 +108,8 @@ def _helper(command: str) -> None:
 def _start_helper(command: str):
     """A second Python process compiling into numba's on-disk cache while this one compiles too
     (numba compiles on one core); None on one core or when it cannot start."""
-    if command not in ("check", "simulate") or _cores() < 2:
+    from ..execution.executor import usable_cores
+    if command not in ("check", "simulate") or usable_cores() < 2:
         return None
     code = f"from rockdesign.dynamics.compilation import _helper; _helper({command!r})"
     # the helper imports this very package (not another one on its path) and shares numba's cache

@@ -48,6 +48,11 @@ class ExecutorError(RockdesignError):
     """The execution backend cannot be used (bad ``--dask`` address, dask not installed...)."""
 
 
+def usable_cores() -> int:
+    """Cores this process may run on (its CPU affinity where the OS reports it, else the CPU count)."""
+    return max(1, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1)
+
+
 # ------------------------------------------------------------------------------------------ executors
 def _call(func, common, args):
     return func(*common, *args)
