@@ -51,7 +51,12 @@ def register(app: typer.Typer, handle_errors) -> None:
         folder = OutputFolder(target, key="-o/--out")
         with folder.locked():   # before the analyses: a file, a read-only or busy folder stops here (exit 2)
             from .dynamics.compilation import prepare
-            prepare("check", Console(stderr=True).print)
+            # the engine finishes compiling in a helper while the check reads its records (run_check waits)
+            prepare("check", Console(stderr=True).print, background=True)
+            from .dynamics.compilation import compilation_pending
+            if compilation_pending() and not no_pdf:    # this process would wait: load the report's libraries
+                from .report.render import warm_up
+                warm_up()
             executor = None
             if dask:
                 from .execution.executor import make_executor

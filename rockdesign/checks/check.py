@@ -240,6 +240,7 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
         sds.append(sd_max(m, rule.damping, rule.band))
         if tick:
             tick(k + 1)
+    _finish_compilation(stage)
     run_kw = dict(rtol=a.rtol, atol=a.atol, free_vibration=a.free_vibration, criterion=a.overturn,
                   rest_velocity=a.rest_velocity, executor=executor)
     selection, runs = select_model(system, a, motions, run_kw, progress=stage("suite analysis (RHA)", n))
@@ -337,6 +338,18 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
                        resolved.default_used or spec.default_used, resolved.suites, stats, checks, verdict, histories,
                        sensitivity, settings, decision.reason, decision.robust, intensity, fragility, margin_fema,
                        ens_json, decision.governing)
+
+
+def _finish_compilation(stage) -> None:
+    """On the first run the rocking engine may still be compiling in a helper process while the records
+    were read and SD_max computed (:func:`rockdesign.dynamics.compilation.prepare`): wait for it here,
+    as a progress stage."""
+    from ..dynamics.compilation import compilation_pending, finish_compilation
+    if compilation_pending():
+        tick = stage("compiling numerical kernels (first run)", 1)
+        finish_compilation()
+        if tick:
+            tick(1)
 
 
 def _statistics(outcomes: list[RecordOutcome], a, with_margins: bool) -> dict:

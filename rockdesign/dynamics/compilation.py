@@ -10,17 +10,20 @@ numba's cache index of a kernel the command needs is missing, it prints
 
 and compiles exactly those kernels by calling them on a tiny problem with the argument types of the
 real calls (so the real calls load them from the cache), then reports the seconds it took.  On two or
-more cores a second process shares the work (numba compiles on one core; :mod:`.compile_plan`).
+more cores a second process shares the work (numba compiles on one core; :mod:`.compile_plan`), and
+``check`` reads its records and computes SD_max while the helper finishes the rocking engine.
 Commands compile only their own kernels: ``simulate`` never compiles the closed-form linear
 integrator, ``records`` only the elastic response spectrum.
 """
 from __future__ import annotations
 
+import atexit
 import importlib
 import os
 import subprocess
 import sys
 import time
+from dataclasses import dataclass
 from pathlib import Path
 
 # Kernels (module, function) each command calls; the estimates are first-run compile seconds measured
@@ -91,21 +94,49 @@ def _warm(command: str, parts: tuple[str, ...] = PARTS) -> None:
         sd_max(record)
 
 
+HELPER_STARTUP_SECONDS = 1.0
+"""Seconds the helper spends starting Python and importing numba and rockdesign before it compiles: its
+head start on this process's half of the callees (:func:`.compile_plan.split`)."""
+
+
 def _shares(command: str) -> tuple[list, list]:
     """The integrator's callees this process and the helper compile (:mod:`.compile_plan`)."""
     from .compile_plan import callee_table, split
-    from .compile_plan_table import SIDE_SECONDS
-    return split(callee_table(), SIDE_SECONDS if command == "check" else 0.0)
+    return split(callee_table(), HELPER_STARTUP_SECONDS)
 
 
 def _helper(command: str) -> None:
-    """The second process's work: the side kernels of ``check``, then its share of the callees."""
+    """The second process's work: its half of the integrator's callees, then — once this process has
+    compiled the other half and writes ``go`` — the integrator and the batch kernel."""
     from .compile_plan import compile_entries
-    _warm(command, ("side",))
     compile_entries(_shares(command)[1])
+    if sys.stdin.readline().strip() == "go":
+        _warm(command, ("engine",))
 
 
-def _start_helper(command: str):
+class _Helper:
+    """The helper process (:func:`_start_helper`)."""
+
+    def __init__(self, process: subprocess.Popen):
+        self.process = process
+
+    def go(self) -> None:
+        """Tell the helper that this process's half of the callees is in the cache."""
+        try:
+            self.process.stdin.write(b"go\n")
+            self.process.stdin.close()
+        except OSError:     # the helper has died: wait() says so and its work is done here
+            pass
+
+    def wait(self) -> int:
+        return self.process.wait()
+
+    def kill(self) -> None:
+        self.process.kill()
+        self.process.wait()
+
+
+def _start_helper(command: str) -> _Helper | None:
     """A second Python process compiling into numba's on-disk cache while this one compiles too
     (numba compiles on one core); None on one core or when it cannot start."""
     from ..execution.executor import usable_cores
@@ -116,22 +147,39 @@ def _start_helper(command: str):
     here = str(Path(__file__).resolve().parents[2])
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(p for p in (here, os.environ.get("PYTHONPATH")) if p)}
     try:
-        return subprocess.Popen([sys.executable, "-c", code], stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
-                                stderr=subprocess.DEVNULL, env=env)
+        return _Helper(subprocess.Popen([sys.executable, "-c", code], stdin=subprocess.PIPE,
+                                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env))
     except OSError:
         return None
 
 
-def prepare(command: str, say=None) -> float:
+@dataclass
+class _Pending:
+    """Compilation still running in the helper after :func:`prepare` returned (``background=True``)."""
+    helper: _Helper
+    command: str
+    kernels: int
+    t0: float
+    say: object
+
+
+_pending: _Pending | None = None
+
+
+def prepare(command: str, say=None, *, background: bool = False) -> float:
     """Compile the kernels ``command`` needs if numba's cache lacks them, announcing it; returns seconds.
 
     ``say(text)`` prints a line (the CLI passes its stderr console); nothing is printed and nothing is
     compiled when every kernel is cached.  ``ROCKDESIGN_NO_WARMUP=1`` skips the step (kernels then
-    compile on first use, as numba does by default).  On two or more cores a second process compiles
-    the side kernels of ``check`` and half of the integrator's callees while this one compiles the other
-    half (:mod:`.compile_plan`); then the integrator and the batch kernel compile here, loading every
-    callee from the cache.  If the helper fails, what it did not compile is compiled here: the outcome
-    is the same.
+    compile on first use, as numba does by default).
+
+    On two or more cores a second process shares the work (:mod:`.compile_plan`): each process compiles
+    half of the integrator's callees; then the helper compiles the integrator and the batch kernel around
+    it (loading every callee from the cache) while this process compiles the side kernels of ``check``
+    (the closed-form linear integrator, the elastic spectrum).  With ``background=True`` this function
+    returns then, and the caller does work that needs no rocking engine (reading records, SD_max) before
+    :func:`finish_compilation` waits for the helper; ``check`` does so (its progress shows the wait).
+    If the helper fails, what it did not compile is compiled here: the outcome is the same.
     """
     if os.environ.get("ROCKDESIGN_NO_WARMUP") or command not in KERNELS:
         return 0.0
@@ -142,19 +190,57 @@ def prepare(command: str, say=None) -> float:
         say(MESSAGE.format(seconds=ESTIMATE_SECONDS.get(command, 30)))
     t0 = time.perf_counter()
     helper = _start_helper(command)
-    if helper is not None:
-        try:
-            from .compile_plan import compile_entries
-            compile_entries(_shares(command)[0])
-            ok = helper.wait() == 0
-        except BaseException:
-            helper.kill()
-            helper.wait()
-            raise
-        if not ok:     # whatever the helper did not compile is compiled below, here
-            _warm(command, ("side",))
-    _warm(command, PARTS if helper is None else ("engine",))
+    if helper is None:
+        _warm(command, PARTS)
+        return _compiled(len(missing), t0, say)
+    try:
+        from .compile_plan import compile_entries
+        compile_entries(_shares(command)[0])
+        helper.go()                        # the helper compiles the integrator and the batch kernel now
+        _warm(command, ("side",))
+    except BaseException:
+        helper.kill()
+        raise
+    global _pending
+    _pending = _Pending(helper, command, len(missing), t0, say)
+    return time.perf_counter() - t0 if background else finish_compilation()
+
+
+def compilation_pending() -> bool:
+    """True while the helper started by :func:`prepare` (``background=True``) may still be compiling."""
+    return _pending is not None
+
+
+def finish_compilation() -> float:
+    """Wait for the helper of :func:`prepare` (``background=True``) and return the seconds since the
+    compilation began (0 when none is pending); compile here whatever a failed helper did not."""
+    global _pending
+    pending, _pending = _pending, None
+    if pending is None:
+        return 0.0
+    try:
+        ok = pending.helper.wait() == 0
+    except BaseException:             # Ctrl-C while waiting
+        pending.helper.kill()
+        raise
+    if not ok:
+        _warm(pending.command, ("engine",))
+    return _compiled(pending.kernels, pending.t0, pending.say)
+
+
+def _abandon() -> None:
+    """At exit, a helper nobody waited for (the command failed before its analyses) is stopped."""
+    global _pending
+    pending, _pending = _pending, None
+    if pending is not None:
+        pending.helper.kill()
+
+
+atexit.register(_abandon)
+
+
+def _compiled(kernels: int, t0: float, say) -> float:
     seconds = time.perf_counter() - t0
     if say is not None:
-        say(f"compiled {len(missing)} kernel{'s' if len(missing) > 1 else ''} in {seconds:.0f} s")
+        say(f"compiled {kernels} kernel{'s' if kernels > 1 else ''} in {seconds:.0f} s")
     return seconds

@@ -1,11 +1,11 @@
 """Compile the integrator's callees in two processes at once on the first run (numba compiles on one core).
 
 numba compiles a kernel and, one by one, every kernel it calls; for the rocking engine that is ~45
-functions and ~25 s before the integrator itself (~4 s) and the batch kernel around it (~8 s).  Each
+functions and ~22 s before the integrator itself (~4 s) and the batch kernel around it (~10 s).  Each
 callee lands in numba's on-disk cache, and a caller compiled later loads a cached callee instead of
 compiling it again.  So on the first run :func:`rockdesign.dynamics.compilation.prepare` splits the
-callees between itself and a second process, waits for both, and only then compiles the integrator,
-which finds every callee in the cache.
+callees between itself and a second process; when both halves are in the cache the second process
+compiles the integrator, which finds every callee there, while the first compiles the side kernels.
 
 numba compiles a callee for the argument types of its call site, so the plan names each callee with
 the signature the integrator calls it with (``compile_plan_table.py``, written by
@@ -27,7 +27,7 @@ def callee_table() -> tuple[tuple[str, str, str, float], ...]:
 
 def split(entries, head_start: float) -> tuple[list, list]:
     """Entries for this process and for the helper, balanced by compile seconds when the helper first
-    spends ``head_start`` seconds on other kernels (the side kernels of ``check``)."""
+    spends ``head_start`` seconds on other work (starting Python, importing)."""
     total = sum(e[3] for e in entries)
     target = (total + head_start) / 2.0
     mine, theirs, done = [], [], 0.0

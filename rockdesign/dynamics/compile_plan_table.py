@@ -4,9 +4,6 @@ and their first-run compile seconds (nested callees included) on the machine tha
 Written by ``python -m rockdesign.dynamics.compile_plan_writer``; see :mod:`.compile_plan`.
 """
 
-SIDE_SECONDS = 12.8
-"""Compile seconds of the side kernels of ``check`` (helper's head start)."""
-
 CALLEES = (
     ('rockdesign.dynamics.transitions', 'new_summary',
      '()', 0.13),

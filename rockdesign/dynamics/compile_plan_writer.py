@@ -22,13 +22,6 @@ TABLE = Path(__file__).with_name("compile_plan_table.py")
 INTEGRATOR = ("rockdesign.dynamics.engine", "integrate")
 
 
-def record_side_seconds() -> float:
-    """Seconds to compile the side kernels of ``check`` alone (empty cache expected), as the helper does."""
-    t0 = time.perf_counter()
-    _warm("check", ("side",))
-    return time.perf_counter() - t0
-
-
 def record_callees() -> list[tuple[str, str, str, float]]:
     """Compile the engine (empty cache expected) and list the integrator's direct callees in the order
     numba compiled them, with their compile seconds (nested callees included).  Uses numba's event API
@@ -60,12 +53,10 @@ def record_callees() -> list[tuple[str, str, str, float]]:
 def write_table() -> Path:
     """Regenerate ``compile_plan_table.py``, measuring in child processes with empty numba caches."""
     callees = _in_child("record_callees")
-    side = _in_child("record_side_seconds")
     lines = ['"""The integrator\'s direct callees with the signatures it calls them with, in numba\'s compile order,',
              "and their first-run compile seconds (nested callees included) on the machine that wrote it.",
              "", "Written by ``python -m rockdesign.dynamics.compile_plan_writer``; see :mod:`.compile_plan`.", '"""', "",
-             f"SIDE_SECONDS = {side:.1f}", '"""Compile seconds of the side kernels of ``check`` (helper\'s head start)."""',
-             "", "CALLEES = ("]
+             "CALLEES = ("]
     lines += [f"    ({m!r}, {f!r},\n     {s!r}, {sec}),"
               for m, f, s, sec in callees]
     lines.append(")")

@@ -45,30 +45,56 @@ def test_announcement_when_the_cache_is_empty(monkeypatch):
 
 
 class _Helper:
-    """Stands in for the helper process (subprocess.Popen): exits with ``code``."""
+    """Stands in for the helper process (compilation._Helper): exits with ``code``."""
 
-    def __init__(self, code):
-        self.code = code
+    def __init__(self, code, log):
+        self.code, self.log = code, log
+
+    def go(self):
+        self.log.append("go")
 
     def wait(self):
+        self.log.append("wait")
         return self.code
 
     def kill(self):
-        pass
+        self.log.append("kill")
 
 
 def test_two_processes_share_the_work_and_a_failed_helper_costs_only_time(monkeypatch):
+    """This process compiles its half of the callees, lets the helper go on to the integrator and compiles
+    the side kernels meanwhile; a failed helper's engine is compiled here."""
     from rockdesign.dynamics import compile_plan
     monkeypatch.delenv("ROCKDESIGN_NO_WARMUP", raising=False)
     monkeypatch.setattr(compilation, "is_cached", lambda d: False)
-    for code, expected in ((0, [("engine",)]), (1, [("side",), ("engine",)])):
-        warmed, shared = [], []
-        monkeypatch.setattr(compilation, "_start_helper", lambda command: _Helper(code))
-        monkeypatch.setattr(compilation, "_warm", lambda command, parts=compilation.PARTS: warmed.append(parts))
-        monkeypatch.setattr(compile_plan, "compile_entries", lambda entries: shared.append(list(entries)))
+    for code, expected in ((0, [("side",)]), (1, [("side",), ("engine",)])):
+        log = []
+        monkeypatch.setattr(compilation, "_start_helper", lambda command: _Helper(code, log))
+        monkeypatch.setattr(compilation, "_warm", lambda command, parts=compilation.PARTS: log.append(parts))
+        monkeypatch.setattr(compile_plan, "compile_entries", lambda entries: log.append(list(entries)))
         compilation.prepare("check")
-        assert shared == [compilation._shares("check")[0]]     # this process's half of the callees first
-        assert warmed == expected        # then the engine; the side kernels too if the helper failed
+        assert log == [compilation._shares("check")[0], "go", ("side",), "wait"] + expected[1:]
+        assert not compilation.compilation_pending()
+
+
+def test_background_compilation_is_waited_for_before_the_engine_runs(monkeypatch):
+    from rockdesign.dynamics import compile_plan
+    monkeypatch.delenv("ROCKDESIGN_NO_WARMUP", raising=False)
+    monkeypatch.setattr(compilation, "is_cached", lambda d: False)
+    log, said = [], []
+    monkeypatch.setattr(compilation, "_start_helper", lambda command: _Helper(0, log))
+    monkeypatch.setattr(compilation, "_warm", lambda command, parts=compilation.PARTS: log.append(parts))
+    monkeypatch.setattr(compile_plan, "compile_entries", lambda entries: log.append("half"))
+    compilation.prepare("check", say=said.append, background=True)
+    assert log == ["half", "go", ("side",)] and compilation.compilation_pending()
+    assert len(said) == 1                   # the announcement; "compiled ..." comes when the helper is done
+    assert compilation.finish_compilation() >= 0.0
+    assert log[-1] == "wait" and said[-1].startswith("compiled 5 kernels in")
+    assert not compilation.compilation_pending() and compilation.finish_compilation() == 0.0
+    # a helper nobody waited for (the command failed before its analyses) is stopped at exit
+    compilation.prepare("check", background=True)
+    compilation._abandon()
+    assert log[-1] == "kill" and not compilation.compilation_pending()
 
 
 def test_split_keeps_every_callee_and_balances_the_two_processes():

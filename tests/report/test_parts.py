@@ -147,3 +147,17 @@ def test_symbols_subscripts():
     assert symbols("u_B,max/2B") == "u<sub>B,max</sub>/2B"
     assert symbols("project input (mass_distribution)") == "project input (mass_distribution)"
     assert symbols(None) == ""
+
+
+def test_report_warm_up_writes_nothing_and_changes_no_figure(tmp_path, monkeypatch):
+    """render.warm_up (run by `check` while its engine compiles on the first run) only loads libraries:
+    no file appears and a figure drawn afterwards is the same markup as before."""
+    from rockdesign.report.drawing import structure_drawing
+    from rockdesign.report.figures import svg
+    from rockdesign.report.render import warm_up
+    monkeypatch.chdir(tmp_path)
+    system = load_project(REPO_ROOT / "examples" / "podium_flat.toml").system
+    before = svg(structure_drawing(system), "a")
+    warm_up()
+    assert list(tmp_path.iterdir()) == []
+    assert svg(structure_drawing(system), "a") == before
