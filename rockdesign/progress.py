@@ -16,6 +16,10 @@ def progress_bars(console: Console | None = None, *, disable: bool = False):
 
     def progress(stage: str, done: int, total: int) -> None:
         if stage not in tasks:
+            # stages run one after another: a new stage ends the earlier ones, so their clocks stop (a scan
+            # that ends early, e.g. the margins', would otherwise count on until the last stage ends)
+            for t in tasks.values():
+                bar.update(t, completed=bar.tasks[t].total)
             tasks[stage] = bar.add_task(stage, total=total)
         bar.update(tasks[stage], completed=min(done, total), total=total)
 
