@@ -42,7 +42,7 @@ def register(app: typer.Typer, handle_errors) -> None:
             folder = cylinder_output_folder(target, key="-o/--out")
             with folder.locked():   # before the analyses, as below
                 result = run_check(proj, progress=not as_json or Console(stderr=True).is_terminal)
-                write_report(result, folder, pdf=not no_pdf, html=html or not no_pdf)
+                _report(write_report, result, folder, no_pdf, html)
             if as_json:
                 sys.stdout.write(json_text(result.as_json()))
             else:
@@ -68,7 +68,7 @@ def register(app: typer.Typer, handle_errors) -> None:
             finally:
                 if executor is not None:
                     executor.close()
-            write_report(result, folder, pdf=not no_pdf, html=html or not no_pdf)
+            _report(write_report, result, folder, no_pdf, html)
         data = result.as_json()
         if as_json:
             sys.stdout.write(json_text(data))
@@ -77,3 +77,11 @@ def register(app: typer.Typer, handle_errors) -> None:
             check_summary(data, folder.target, Console())
         # failed analyses: the check is incomplete (exit 2), whatever the other records say
         raise typer.Exit(2 if data.get("failed_records") else 0 if data["verdict"] == "PASS" else 1)
+
+
+def _report(write_report, result, folder, no_pdf: bool, html: bool) -> None:
+    """Write the output folder (results.json/csv and the report), with a spinner on a terminal: the
+    figures and the PDF take seconds after the analyses' progress bars have ended."""
+    what = "results and calculation report (figures, PDF)" if not no_pdf else "results" + (" and HTML report" if html else "")
+    with Console(stderr=True).status(f"writing the {what}"):
+        write_report(result, folder, pdf=not no_pdf, html=html or not no_pdf)
