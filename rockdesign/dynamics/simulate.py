@@ -175,8 +175,7 @@ def _build_response(system, motion, sp, model, label, summary, diag, t_out, out_
                     overturn) -> Response:
     from .transitions import top_displacements
     n_ev = int(diag[D_EVENTS_STORED])
-    events = [Event(EVENT_NAMES[k], t_k, tuple(y_k))
-              for k, t_k, y_k in zip(ev_kind[:n_ev].tolist(), ev_t[:n_ev].tolist(), ev_y[:n_ev].tolist())]
+    events = Event.many([EVENT_NAMES[k] for k in ev_kind[:n_ev].tolist()], ev_t[:n_ev].tolist(), ev_y[:n_ev].tolist())
     # merge event rows into the output series
     t = np.concatenate([t_out, ev_t[:n_ev]])
     y = np.concatenate([out_y, ev_y[:n_ev]])

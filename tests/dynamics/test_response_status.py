@@ -63,3 +63,20 @@ def test_the_literal_index_check_sees_one(tmp_path):
     f = tmp_path / "probe.py"
     f.write_text("def g(sp, y):\n    return sp[12] + y[0] + sp[P_THETA_C]\n")
     assert _literal_index_uses(f) == ["probe.py:2 sp[12]"]
+
+
+def test_events_made_in_bulk_are_ordinary_frozen_events():
+    """Event.many (used by simulate for its ~900 podium events) makes the same objects as Event(...)."""
+    import dataclasses
+
+    import pytest
+    from rockdesign.dynamics.response import Event
+    bulk = Event.many(["impact", "uplift"], [1.5, 2.0], [[0.0, -0.1, 0.01, 0.2], (0.001, 0.0, 0.0, 0.0)])
+    one_by_one = [Event("impact", 1.5, (0.0, -0.1, 0.01, 0.2)), Event("uplift", 2.0, (0.001, 0.0, 0.0, 0.0))]
+    assert bulk == one_by_one and [hash(e) for e in bulk] == [hash(e) for e in one_by_one]
+    assert [repr(e) for e in bulk] == [repr(e) for e in one_by_one]
+    assert isinstance(bulk[0].state, tuple) and dataclasses.asdict(bulk[0])["time"] == 1.5
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        bulk[0].time = 3.0
+    r = simulate(table34_column("B1"), pulse_motion("ricker-anti", 0.12 * G, 0.95), t_end=6.0)
+    assert r.events and all(type(e) is Event and e == Event(e.kind, e.time, tuple(e.state)) for e in r.events)
