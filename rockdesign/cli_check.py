@@ -50,7 +50,10 @@ def register(app: typer.Typer, handle_errors) -> None:
             raise typer.Exit(0 if result.verdict == "PASS" else 1)
         folder = OutputFolder(target, key="-o/--out")
         with folder.locked():   # before the analyses: a file, a read-only or busy folder stops here (exit 2)
-            from .dynamics.compilation import prepare
+            from .dynamics.compilation import missing_kernels, prepare
+            if missing_kernels("check"):       # a first run: an input error in the records stops it before compiling
+                from .checks.check import check_records
+                check_records(proj, records_dir)
             # the engine finishes compiling in a helper while the check reads its records (run_check waits)
             prepare("check", Console(stderr=True).print, background=True)
             from .dynamics.compilation import compilation_pending

@@ -201,6 +201,26 @@ def _excitation(project: Project):
     return spec
 
 
+def check_records(project: Project, records_dir: str | None = None):
+    """The records of a project's excitation, read and scaled as the check will analyse them
+    (:func:`rockdesign.motions.config.resolve_motions`); a :class:`ProjectError` when the excitation is
+    invalid or none of its records can be found.  ``rockdesign check`` calls it before compiling its
+    kernels on a first run, so such an input error stops the command at once."""
+    q = design_quantities(project.system, project.analysis.rigid_superstructure_ratio)
+    return _records(project, q, records_dir)[1]
+
+
+def _records(project: Project, q, records_dir):
+    spec = _excitation(project)
+    resolved = resolve_motions(spec, gravity=project.system.g, uplift_acceleration=q["uplift_acceleration"].value,
+                               records_dir=records_dir)
+    if not resolved.records:
+        raise ProjectError("no record of the excitation could be found", file=project.path, key="excitation",
+                           expected="at least one available record",
+                           found="; ".join(f"{i}: {r}" for i, r, _ in resolved.missing) or "an empty suite")
+    return spec, resolved
+
+
 def run_check(project: Project, *, records_dir: str | None = None, margins: bool = True, progress=None,
               executor=None) -> CheckResult:
     """Run the design check of a project (see module docstring).
@@ -214,13 +234,7 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     q = design_quantities(system, a.rigid_superstructure_ratio)
     capacity = q["u_capacity"].value
     rule = PolyakovRule(capacity, a.sdmax_damping, tuple(a.sdmax_band))
-    spec = _excitation(project)
-    resolved = resolve_motions(spec, gravity=system.g, uplift_acceleration=q["uplift_acceleration"].value,
-                               records_dir=records_dir)
-    if not resolved.records:
-        raise ProjectError("no record of the excitation could be found", file=project.path, key="excitation",
-                           expected="at least one available record",
-                           found="; ".join(f"{i}: {r}" for i, r, _ in resolved.missing) or "an empty suite")
+    spec, resolved = _records(project, q, records_dir)
     motions = [r.motion for r in resolved.records]
     n = len(motions)
     from ..motions.measures import plausibility_warnings
