@@ -85,6 +85,7 @@ def register(app: typer.Typer, handle_errors) -> None:
 def _report(write_report, result, folder, no_pdf: bool, html: bool) -> None:
     """Write the output folder (results.json/csv and the report), with a spinner on a terminal: the
     figures and the PDF take seconds after the analyses' progress bars have ended."""
-    what = "results and calculation report (figures, PDF)" if not no_pdf else "results" + (" and HTML report" if html else "")
+    what = ("results and calculation report (figures, PDF)" if not no_pdf
+            else "results and HTML report" if html else "results")
     with Console(stderr=True).status(f"writing the {what}"):
         write_report(result, folder, pdf=not no_pdf, html=html or not no_pdf)

@@ -18,6 +18,7 @@ integrator, ``records`` only the elastic response spectrum.
 from __future__ import annotations
 
 import atexit
+import contextlib
 import importlib
 import os
 import subprocess
@@ -122,11 +123,9 @@ class _Helper:
 
     def go(self) -> None:
         """Tell the helper that this process's half of the callees is in the cache."""
-        try:
+        with contextlib.suppress(OSError):     # the helper has died: wait() says so, its work is done here
             self.process.stdin.write(b"go\n")
             self.process.stdin.close()
-        except OSError:     # the helper has died: wait() says so and its work is done here
-            pass
 
     def wait(self) -> int:
         return self.process.wait()

@@ -20,7 +20,6 @@ from ..paths import templates_dir
 from .formatting import DIGITS
 
 TEMPLATE = "cylinder_report.html.j2"
-STYLESHEET = "report.css"
 
 SCALING_TEXT = {"resultant_pga": "each pair scaled to a peak resultant ground acceleration max √(ü_gx² + ü_gy²) "
                                  "of {target} (Table 5.4's scaling)",
@@ -104,12 +103,12 @@ def build_cylinder_context(result, *, figures: dict, date: str | None = None) ->
 
 def render_cylinder_html(result, *, figures: dict | None = None, date: str | None = None) -> str:
     """The cylinder report as one self-contained HTML document (CSS and SVG figures inline)."""
-    from .render import environment
+    from .render import environment, stylesheet
     folder = templates_dir()
     env = environment(folder)
     ctx = build_cylinder_context(result, figures=figures if figures is not None else render_cylinder_figures(result),
                                  date=date)
-    ctx["css"] = jinja2.utils.markupsafe.Markup((folder / STYLESHEET).read_text(encoding="utf-8"))
+    ctx["css"] = jinja2.utils.markupsafe.Markup(stylesheet(folder))
     return env.get_template(TEMPLATE).render(**ctx)
 
 

@@ -53,6 +53,12 @@ def environment(folder: Path | None = None) -> jinja2.Environment:
     return env
 
 
+def stylesheet(folder: Path | None = None) -> str:
+    """The report's CSS (``report.css`` in the templates folder), "" when the folder has none."""
+    path = (folder or templates_dir()) / STYLESHEET
+    return path.read_text(encoding="utf-8") if path.exists() else ""
+
+
 def svg_image(svg_text) -> str:
     """An SVG figure as an ``<img>`` with a data URI: still a vector figure, but WeasyPrint renders it
     through its SVG module instead of cascading the page's CSS over every path (≈ 3× faster)."""
@@ -100,7 +106,7 @@ def render_html(result, *, figures: dict | None = None, date: str | None = None)
     """The report as one self-contained HTML document (CSS and SVG figures inline)."""
     folder = templates_dir()
     env = environment(folder)
-    css = (folder / STYLESHEET).read_text(encoding="utf-8") if (folder / STYLESHEET).exists() else ""
+    css = stylesheet(folder)
     ctx = build_context(result, figures=figures if figures is not None else render_figures(result),
                         verification=verification_statement(result), date=date)
     ctx["css"] = jinja2.utils.markupsafe.Markup(css)
@@ -125,7 +131,7 @@ def warm_up() -> None:
     fig.tight_layout()
     figure = figures.svg(fig, "warm-up")
     folder = templates_dir()
-    css = (folder / STYLESHEET).read_text(encoding="utf-8") if (folder / STYLESHEET).exists() else ""
+    css = stylesheet(folder)
     page = (f"<html><head><style>{css}</style></head><body><h1>θ</h1><p>SD<sub>max</sub> <b>b</b> <i>i</i> "
             f"<code>c</code></p><table><tr><th>a</th><td>1</td></tr></table>{svg_image(figure)}</body></html>")
     HTML(string=page, base_url=str(folder)).write_pdf(io.BytesIO())
