@@ -60,6 +60,8 @@ def overturning_margins(system, choice: ModelChoice, motions, *, uplift_factors,
     failed_of = [[] for _ in grids]
     active = list(range(len(grids)))
     done = [0]
+    # the time the record's last analysis ran: it predicts the next one's cost, to balance the cores
+    ended = [m.duration + free_vibration for m in motions]
     while active:
         jobs = []
         for i in active:
@@ -72,9 +74,11 @@ def overturning_margins(system, choice: ModelChoice, motions, *, uplift_factors,
             if progress:
                 progress(done[0])
 
-        results = run_jobs(system, choice, [motions[i] for i, _ in jobs], [f for _, f in jobs], progress=tick, **kw)
+        results = run_jobs(system, choice, [motions[i] for i, _ in jobs], [f for _, f in jobs], progress=tick,
+                           costs=[ended[i] for i, _ in jobs], **kw)
         for (i, f), r in zip(jobs, results):
             flags_of[i].append(r.overturned)
+            ended[i] = r.t_end
             if analysis_failed(r.status):
                 failed_of[i].append(f)
         still = []
@@ -109,8 +113,10 @@ def overturning_margins(system, choice: ModelChoice, motions, *, uplift_factors,
         if not active:
             break
         mids = [math.sqrt(e[1] * e[2]) for e in active]
-        res = run_jobs(system, choice, [motions[e[0]] for e in active], mids, **kw)
+        res = run_jobs(system, choice, [motions[e[0]] for e in active], mids, costs=[ended[e[0]] for e in active],
+                       **kw)
         for e, mid, r in zip(active, mids, res):
+            ended[e[0]] = r.t_end
             margins[e[0]].runs += 1
             if analysis_failed(r.status):
                 margins[e[0]].failed_scales.append(mid)

@@ -4,11 +4,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 
 from ..design.geometry import displacement_capacity, slenderness_angle
 from ..dynamics.batch import batch_options, run_batch
-from ..dynamics.layout import D_STATUS, STATUS_NAMES, S_IMPACTS, S_THETA_MAX, S_T_UPLIFT, S_UB_MAX, S_UPLIFT_TIME
+from ..dynamics.layout import D_STATUS, STATUS_NAMES, S_IMPACTS, S_THETA_MAX, S_T_END, S_T_UPLIFT, S_UB_MAX, S_UPLIFT_TIME
 from ..dynamics.model import ModelChoice, system_parameters
 from ..dynamics.eom import P_CR, P_THETA_C
 from ..dynamics.overturning import classify
@@ -32,6 +33,7 @@ class RunSummary:
     overturned: bool            # per the criterion
     impacts_before_overturn: int | None
     status: str
+    t_end: float = math.nan     # time the analysis ended [s] (early when it overturned or stopped)
 
 
 def interpret(summary: np.ndarray, status: int, theta_c: float, alpha: float, capacity: float,
@@ -44,19 +46,21 @@ def interpret(summary: np.ndarray, status: int, theta_c: float, alpha: float, ca
     return RunSummary(theta_max, theta_max / alpha, theta_max / theta_c, float(summary[S_UB_MAX]),
                       float(summary[S_UB_MAX]) / capacity, int(summary[S_IMPACTS]),
                       None if math.isnan(t_up) else t_up, float(summary[S_UPLIFT_TIME]), mode, bool(overturned),
-                      before, STATUS_NAMES[int(status)])
+                      before, STATUS_NAMES[int(status)], float(summary[S_T_END]))
 
 
 def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rtol: float, atol: float,
              free_vibration: float, criterion: str, rest_velocity: float = 5e-4, energy_stop: bool = False,
              stop_at_capacity: bool = False, restitution_factor: float = 1.0, progress=None,
-             chunk: int | None = None, executor=None) -> list[RunSummary]:
+             chunk: int | None = None, executor=None, costs=None) -> list[RunSummary]:
     """Analyse ``motions[i]`` × ``scales[i]`` for one system and model, in parallel, in job order.
 
     ``restitution_factor`` multiplies the coefficient of restitution (capped at 1) for sensitivity
     studies.  ``progress(n_done)`` is called after each chunk.  With an ``executor`` (the chunked
     executor of :mod:`rockdesign.execution.executor`, e.g. a dask.distributed cluster) the jobs run
-    there in chunks; the results are identical to the in-process run.
+    there in chunks; the results are identical to the in-process run.  ``costs``: a predicted cost per
+    job (e.g. the seconds of record a similar analysis ran), to balance the cores (:func:`balanced_order`;
+    default the end times); it changes the order the jobs run in, never their results.
     """
     sp = system_parameters(system, choice, rest_velocity=rest_velocity)
     if restitution_factor != 1.0:
@@ -82,13 +86,36 @@ def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rto
         summaries, diags = run_motions(sp, list(motions), list(scales), t_ends, opts, executor=executor,
                                        chunk_jobs=step, progress=on_chunk)
         return [interpret(summaries[j], diags[j, D_STATUS], theta_c, alpha, capacity, criterion) for j in range(n)]
+    threads = numba.get_num_threads()     # the parallel loop's threads, one block of jobs each
+    predicted = list(t_ends if costs is None else costs)
     for start in range(0, n, step):
         sl = slice(start, min(n, start + step))
-        summaries, diags = run_batch(sp, motions[sl], scales[sl], t_ends[sl], opts)
-        out.extend(interpret(summaries[j], diags[j, D_STATUS], theta_c, alpha, capacity, criterion)
-                   for j in range(summaries.shape[0]))
+        ms, fs, ts = list(motions[sl]), list(scales[sl]), t_ends[sl]
+        order = balanced_order(list(predicted[sl]), threads)
+        summaries, diags = run_batch(sp, [ms[k] for k in order], [fs[k] for k in order], [ts[k] for k in order],
+                                     opts)
+        rows = [None] * len(order)
+        for j, k in enumerate(order):
+            rows[k] = interpret(summaries[j], diags[j, D_STATUS], theta_c, alpha, capacity, criterion)
+        out.extend(rows)
         if progress is not None:
             progress(len(out))
     return out
 
 
+def balanced_order(costs, threads: int) -> list[int]:
+    """An order of jobs for the batch kernel's parallel loop, which gives each of ``threads`` threads one
+    contiguous block of the jobs (equal counts): the blocks get near-equal sums of predicted ``costs``
+    (longest first, each to the block with the least so far that still has room).  Without it a block
+    of long analyses keeps one core busy while the other waits (docs/engine.md, "Speed")."""
+    n = len(costs)
+    if threads < 2 or n < 2:
+        return list(range(n))
+    size = [n // threads + (1 if b < n % threads else 0) for b in range(threads)]
+    blocks: list[list[int]] = [[] for _ in range(threads)]
+    load = [0.0] * threads
+    for k in sorted(range(n), key=lambda k: (-costs[k], k)):
+        b = min((b for b in range(threads) if len(blocks[b]) < size[b]), key=lambda b: (load[b], b))
+        blocks[b].append(k)
+        load[b] += costs[k]
+    return [k for block in blocks for k in sorted(block)]
