@@ -11,17 +11,15 @@ import math
 from pathlib import Path
 from typing import Optional
 
-import numpy as np
 import typer
 from rich.console import Console
 from rich.table import Table
 
 from .errors import MotionError
-from .motions.library import load_record
-from .motions.suites import list_records
-from .motions.measures import motion_measures
-from .motions.spectra import DEFAULT_BAND, DEFAULT_DAMPING, DEFAULT_N_PERIODS, motion_spectrum, period_grid, sd_max
-from .units import QuantityParseError, parse_quantity
+from .motions.defaults import DEFAULT_BAND, DEFAULT_DAMPING, DEFAULT_N_PERIODS
+
+# the records, spectra and units modules (numba, pint) are imported by the commands that use them: the
+# CLI mounts this module for every command, `--help` and `init` included
 
 app = typer.Typer(help="Ground-motion records: list, show, spectra, synthetic ensembles.", no_args_is_help=True)
 
@@ -46,6 +44,7 @@ def _load(record_id: str, gravity: float, records_dir: Optional[Path]):
     from .cli_inputs import gravity as check_gravity
     from .motions.measures import plausibility_warnings
     check_gravity(gravity)
+    from .motions.library import load_record
     motion = load_record(_record_id(record_id), gravity=gravity, records_dir=records_dir)
     for text in plausibility_warnings(motion, gravity):
         Console(stderr=True, highlight=False, markup=False, soft_wrap=True).print(f"warning: {text}")
@@ -65,6 +64,7 @@ def _parse_band(text: str) -> tuple[float, float]:
 
 
 def _parse_damping(text: str) -> float:
+    from .units import QuantityParseError, parse_quantity
     try:
         value = parse_quantity(float(text) if _is_number(text) else text, "dimensionless")
     except QuantityParseError:
@@ -103,6 +103,7 @@ def list_command(
     """List built-in records, or the records of a suite (table: dt in s, PGA in g; --json: SI, PGA in m/s²)."""
     from .cli_inputs import gravity as check_gravity
     check_gravity(gravity)
+    from .motions.suites import list_records
     rows = list_records(suite, gravity=gravity, records_dir=records_dir)
     if as_json:
         typer.echo(json.dumps(rows))
@@ -135,6 +136,8 @@ def show_command(
     """Metadata and intensity measures of one record."""
     from .cli_inputs import FIGURE_SUFFIXES, output_file
     output_file(plot, "--plot", FIGURE_SUFFIXES)
+    from .motions.measures import motion_measures
+    from .motions.spectra import sd_max
     motion = _load(record_id, gravity, records_dir)
     measures = motion_measures(motion, gravity)
     sd, period = sd_max(motion, DEFAULT_DAMPING, DEFAULT_BAND)
@@ -166,6 +169,8 @@ def show_command(
 
 
 def _plot_history(motion, path: Path) -> None:
+    import numpy as np
+
     from . import mplfig as plt
     from .plots import save
 
@@ -201,6 +206,8 @@ def spectrum_command(
     output_file(plot, "--plot", FIGURE_SUFFIXES)
     zeta = _parse_damping(damping)
     lo, hi = _parse_band(band)
+    from .motions.measures import motion_measures
+    from .motions.spectra import motion_spectrum, period_grid, sd_max
     motion = _load(record_id, gravity, records_dir)
     periods = period_grid((lo, hi), n_periods)
     sd, psv, psa = motion_spectrum(motion, periods, zeta)
@@ -230,6 +237,8 @@ def spectrum_command(
 
 
 def _plot_spectrum(result: dict, path: Path, gravity: float) -> None:
+    import numpy as np
+
     from . import mplfig as plt
     from .plots import save
 

@@ -19,14 +19,7 @@ import math
 import numpy as np
 from numba import njit, prange
 
-DEFAULT_DAMPING = 0.02
-"""Damping ratio of Polyakov's SD_max (SPEC §5)."""
-
-DEFAULT_BAND = (0.05, 10.0)
-"""Period band [s] of SD_max (SPEC §5)."""
-
-DEFAULT_N_PERIODS = 400
-"""Points of the logarithmic period grid before refinement."""
+from .defaults import DEFAULT_BAND, DEFAULT_DAMPING, DEFAULT_N_PERIODS  # noqa: F401  (re-exported)
 
 
 @njit(cache=True)

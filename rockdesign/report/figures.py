@@ -251,7 +251,7 @@ def margin_figure(result):
                    plt.Line2D([], [], color="C0", marker="D", ls="", ms=3.5,
                               label="Polyakov: $u_B$(θc)/SD$_{max}$"),
                    plt.Line2D([], [], color="0.4", marker=">", ls="", ms=4,
-                              label=f"no overturning up to the scan limit")]
+                              label="no overturning up to the scan limit")]
         if not have_margins:
             handles = handles[2:3]
         ax.legend(handles=handles, fontsize=7, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=2, frameon=False)
