@@ -222,13 +222,16 @@ def check(project: Project, *, progress: bool = False, records_dir: str | Path |
 
 
 @_parameter_names
-def write_report(result, out_dir, *, pdf: bool = True, html: bool = True) -> Path:
+def write_report(result, out_dir, *, pdf: bool = True, html: bool = True, pdf_worker=None) -> Path:
     """Write a check's ``report.pdf``, ``report.html``, ``results.json``, ``results.csv`` into ``out_dir``
     (for a cylinder check also the figures ``cylinder_vs_planar.png`` and ``wobbling_period.png``).
 
     The folder is written all or nothing (a temporary folder beside it is moved into place when
     complete), holds only this run's files afterwards, and is locked against concurrent runs (see
     :mod:`rockdesign.outdir`).  ``out_dir`` may also be a locked :class:`~rockdesign.outdir.OutputFolder`.
+    ``pdf_worker``: a started :class:`rockdesign.report.pdf_worker.PdfWorker` (``PdfWorker.start()``,
+    ``close()`` it afterwards) writes the PDF in a second process, as ``rockdesign check`` does; the
+    files are the same without it.
 
     Returns:
         The output folder.
@@ -246,5 +249,5 @@ def write_report(result, out_dir, *, pdf: bool = True, html: bool = True) -> Pat
         write_results_csv(data, tmp / "results.csv")
         if pdf or html:
             from .report.render import write_report as _render
-            _render(result, tmp, pdf=pdf, html=html)
+            _render(result, tmp, pdf=pdf, html=html, pdf_worker=pdf_worker)
     return folder.target

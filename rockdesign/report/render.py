@@ -114,15 +114,12 @@ def render_html(result, *, figures: dict | None = None, date: str | None = None)
     return env.get_template(TEMPLATE).render(**ctx)
 
 
-def warm_up() -> None:
+def warm_up(pdf: bool = True) -> None:
     """Load the report's libraries, fonts and style sheets (matplotlib with mathtext, WeasyPrint with the
-    report's CSS) by rendering a small figure and page into memory.  The first report of a process is
-    ≈ 1 s slower without it; ``rockdesign check`` calls this while its rocking engine is still compiling
-    on the first run, when this process would otherwise wait (:mod:`rockdesign.dynamics.compilation`)."""
-    import io
-
-    from weasyprint import HTML
-
+    report's CSS, unless ``pdf`` is False) by rendering a small figure and page into memory.  The first
+    report of a process is ≈ 1 s slower without it; ``rockdesign check`` calls this while its rocking
+    engine is still compiling on the first run, when this process would otherwise wait
+    (:mod:`rockdesign.dynamics.compilation`)."""
     from . import figures
     fig, ax = figures.plt.subplots(figsize=(2.0, 1.5))
     ax.plot([0.0, 1.0], [0.0, 1.0], "o-", label=r"$F_R/(m_C\,g)$, θ")
@@ -130,6 +127,25 @@ def warm_up() -> None:
     ax.legend()
     fig.tight_layout()
     figure = figures.svg(fig, "warm-up")
+    if pdf:
+        warm_up_pdf(figure)
+
+
+WARM_UP_SVG = ('<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" '
+               'viewBox="0 0 144 108"><defs><path id="warm-up-m" d="M 0 -3 L 3 3 L -3 3 z"/></defs>'
+               '<path d="M 10 90 L 130 20" style="fill: none; stroke: #1f77b4; stroke-width: 1.5"/>'
+               '<use xlink:href="#warm-up-m" x="10" y="90" style="fill: #1f77b4"/>'
+               '<text style="font: 10px \'DejaVu Sans\'; text-anchor: middle" x="72" y="104">θ [rad]</text></svg>')
+"""A small figure in the form of the report's (a line, a marker, text) for :func:`warm_up_pdf`."""
+
+
+def warm_up_pdf(figure: str = WARM_UP_SVG) -> None:
+    """Load WeasyPrint, the fonts and the report's style sheet by rendering a small page with ``figure``
+    (SVG) into memory: the PDF part of :func:`warm_up`, without matplotlib (the PDF worker of
+    :mod:`rockdesign.report.pdf_worker` calls it)."""
+    import io
+
+    from weasyprint import HTML
     folder = templates_dir()
     css = stylesheet(folder)
     page = (f"<html><head><style>{css}</style></head><body><h1>θ</h1><p>SD<sub>max</sub> <b>b</b> <i>i</i> "
@@ -144,10 +160,13 @@ def html_to_pdf(html_text: str, path: Path, base_url: str | None = None) -> Path
     return path
 
 
-def write_report(result, out_dir, *, pdf: bool = True, html: bool = True, render=None) -> dict[str, Path]:
+def write_report(result, out_dir, *, pdf: bool = True, html: bool = True, render=None,
+                 pdf_worker=None) -> dict[str, Path]:
     """Write ``report.html`` and/or ``report.pdf`` of a check result into ``out_dir``.
 
     ``render(result) -> str`` makes the HTML (default :func:`render_html`, the planar CheckResult's report).
+    ``pdf_worker``: a started :class:`~rockdesign.report.pdf_worker.PdfWorker` writes the PDF (this
+    process does if it fails); the file is the same.
 
     Returns:
         {"html": path, "pdf": path} for the files written.
@@ -163,5 +182,15 @@ def write_report(result, out_dir, *, pdf: bool = True, html: bool = True, render
         path.write_text(text, encoding="utf-8")
         written["html"] = path
     if pdf:
-        written["pdf"] = html_to_pdf(text, out_dir / "report.pdf")
+        written["pdf"] = _pdf(text, out_dir / "report.pdf", pdf_worker)
     return written
+
+
+def _pdf(text: str, path: Path, pdf_worker) -> Path:
+    if pdf_worker is not None:
+        from .pdf_worker import WorkerFailed
+        try:
+            return pdf_worker.write_pdf(text, path)
+        except WorkerFailed:
+            pass
+    return html_to_pdf(text, path)

@@ -1,0 +1,148 @@
+"""A second process that writes the calculation report's PDF for ``rockdesign check``.
+
+WeasyPrint's import and the first page a process renders (fonts, the style sheet, the SVG and
+text paths) cost ≈ 1 s. A warm ``check`` keeps one core idle while it starts (imports, the project,
+the records), so it starts this worker first. The worker loads WeasyPrint and renders a small page
+into memory (:func:`rockdesign.report.render.warm_up_pdf`) on that idle core, at low priority. When
+the report's HTML is ready, the check sends it here, and the worker writes the PDF. The check itself
+never imports WeasyPrint. Measurements: docs/engine.md, "Speed".
+
+The protocol is length-prefixed pickles over the worker's stdin and stdout. A request is
+``(html_text, path)``; a reply is ``("ok", path)`` or ``("error", traceback_text)``.
+
+The worker is a help, never a dependency. When it cannot start, dies or fails, the caller writes the
+PDF itself (:class:`WorkerFailed`). A failure then costs time only, and WeasyPrint's own error is
+raised in the calling process, with its traceback.
+
+Written by hand because ``multiprocessing`` and ``concurrent.futures`` fork on Linux, and GNU OpenMP
+kills a child forked after numba's parallel kernels ran. Their spawn start method would also
+re-import the calling CLI's ``__main__``.
+"""
+from __future__ import annotations
+
+import atexit
+import contextlib
+import os
+import pickle
+import struct
+import subprocess
+import sys
+import threading
+from pathlib import Path
+
+NICE = 10
+"""The worker's niceness: it warms up while the check keeps both cores busy, and should take only
+what the check leaves idle."""
+
+_HEADER = struct.Struct("<Q")
+
+
+class WorkerFailed(RuntimeError):
+    """The worker could not write the PDF (it died or raised): the caller writes it itself."""
+
+
+def _write(stream, obj) -> None:
+    data = pickle.dumps(obj, protocol=pickle.HIGHEST_PROTOCOL)
+    stream.write(_HEADER.pack(len(data)))
+    stream.write(data)
+    stream.flush()
+
+
+def _read(stream):
+    head = stream.read(_HEADER.size)
+    if len(head) < _HEADER.size:
+        return None
+    (n,) = _HEADER.unpack(head)
+    data = stream.read(n)
+    return pickle.loads(data) if len(data) == n else None
+
+
+class PdfWorker:
+    """The worker process, as seen by ``rockdesign check``: :meth:`start` it, call :meth:`write_pdf`,
+    and :meth:`close` it at the end."""
+
+    def __init__(self, process: subprocess.Popen):
+        self.process = process
+        atexit.register(self.close)
+
+    @classmethod
+    def start(cls) -> "PdfWorker | None":
+        """Start a worker. Returns None on one core, or when no process can be started."""
+        from ..execution.executor import usable_cores
+        if usable_cores() < 2:
+            return None
+        code = "from rockdesign.report.pdf_worker import serve; serve()"
+        # the worker imports this very package (not another one on its path)
+        here = str(Path(__file__).resolve().parents[2])
+        env = {**os.environ, "PYTHONPATH": os.pathsep.join(p for p in (here, os.environ.get("PYTHONPATH")) if p)}
+        try:
+            return cls(subprocess.Popen([sys.executable, "-c", code], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                        stderr=subprocess.DEVNULL, env=env))
+        except OSError:
+            return None
+
+    def write_pdf(self, html_text: str, path: Path) -> Path:
+        """Write ``html_text`` to the PDF ``path`` (waits for it). Raises :class:`WorkerFailed` if the
+        worker has gone or failed."""
+        try:
+            _write(self.process.stdin, (html_text, str(path)))
+            answer = _read(self.process.stdout)
+        except (OSError, ValueError, pickle.UnpicklingError, EOFError) as exc:
+            raise WorkerFailed(f"PDF worker: {exc}") from exc
+        if answer is None:
+            raise WorkerFailed(f"PDF worker ended (exit code {self.process.poll()})")
+        status, value = answer
+        if status != "ok":
+            raise WorkerFailed(f"PDF worker failed:\n{value}")
+        return Path(value)
+
+    def close(self) -> None:
+        """End the worker. It holds nothing that needs saving; one busy writing is killed."""
+        if self.process.poll() is None:
+            with contextlib.suppress(OSError, ValueError):
+                self.process.stdin.close()
+            try:
+                self.process.wait(timeout=1.0)
+            except subprocess.TimeoutExpired:
+                self.process.kill()
+                self.process.wait()
+        with contextlib.suppress(OSError, ValueError):
+            self.process.stdout.close()
+        atexit.unregister(self.close)
+
+
+def serve() -> None:
+    """The worker's main loop (run as ``python -c``): warm up, then write PDFs until stdin closes."""
+    import queue
+    import signal
+    import traceback
+    signal.signal(signal.SIGINT, signal.SIG_IGN)     # Ctrl-C is the check's to handle; it ends this process
+    with contextlib.suppress(OSError):
+        os.nice(NICE)
+    stdin, stdout = sys.stdin.buffer, sys.stdout.buffer
+    sys.stdout = sys.stderr                          # stray prints must not corrupt the replies
+    requests: queue.Queue = queue.Queue()
+
+    def reader() -> None:   # reads at once: the check's write of the HTML never waits for the warm-up
+        while True:
+            try:
+                request = _read(stdin)
+            except Exception:   # noqa: BLE001 — a broken request ends the worker like a closed pipe
+                request = None
+            requests.put(request)
+            if request is None:
+                return
+
+    threading.Thread(target=reader, daemon=True).start()
+    from . import render
+    render.warm_up_pdf()
+    while (request := requests.get()) is not None:
+        try:
+            html_text, path = request
+            answer = ("ok", str(render.html_to_pdf(html_text, Path(path))))
+        except Exception:   # noqa: BLE001 — reported to the caller, which writes the PDF itself
+            answer = ("error", traceback.format_exc())
+        try:
+            _write(stdout, answer)
+        except (OSError, ValueError):
+            return
