@@ -230,8 +230,8 @@ def write_report(result, out_dir, *, pdf: bool = True, html: bool = True, pdf_wo
     complete), holds only this run's files afterwards, and is locked against concurrent runs (see
     :mod:`rockdesign.outdir`).  ``out_dir`` may also be a locked :class:`~rockdesign.outdir.OutputFolder`.
     ``pdf_worker``: a started :class:`rockdesign.report.pdf_worker.PdfWorker` (``PdfWorker.start()``,
-    ``close()`` it afterwards) writes the PDF in a second process, as ``rockdesign check`` does; the
-    files are the same without it.
+    ``close()`` it afterwards) writes a planar check's PDF in a second process, as ``rockdesign check``
+    does; the files are the same without it.
 
     Returns:
         The output folder.
