@@ -96,6 +96,14 @@ class PdfWorker:
             raise WorkerFailed(f"PDF worker failed:\n{value}")
         return Path(value)
 
+    def pdf(self, html_text: str, path: Path) -> Path:
+        """Write the PDF here (:meth:`write_pdf`), or in this process if the worker fails."""
+        try:
+            return self.write_pdf(html_text, path)
+        except WorkerFailed:
+            from .render import html_to_pdf
+            return html_to_pdf(html_text, path)
+
     def close(self) -> None:
         """End the worker. It holds nothing that needs saving; one busy writing is killed."""
         if self.process.poll() is None:

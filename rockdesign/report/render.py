@@ -187,10 +187,4 @@ def write_report(result, out_dir, *, pdf: bool = True, html: bool = True, render
 
 
 def _pdf(text: str, path: Path, pdf_worker) -> Path:
-    if pdf_worker is not None:
-        from .pdf_worker import WorkerFailed
-        try:
-            return pdf_worker.write_pdf(text, path)
-        except WorkerFailed:
-            pass
-    return html_to_pdf(text, path)
+    return html_to_pdf(text, path) if pdf_worker is None else pdf_worker.pdf(text, path)
