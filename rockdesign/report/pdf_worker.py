@@ -126,8 +126,9 @@ def serve() -> None:
     import signal
     import traceback
     signal.signal(signal.SIGINT, signal.SIG_IGN)     # Ctrl-C is the check's to handle; it ends this process
-    with contextlib.suppress(OSError):
-        os.nice(NICE)
+    if hasattr(os, "nice"):      # (not on Windows)
+        with contextlib.suppress(OSError):
+            os.nice(NICE)
     stdin, stdout = sys.stdin.buffer, sys.stdout.buffer
     sys.stdout = sys.stderr                          # stray prints must not corrupt the replies
     requests: queue.Queue = queue.Queue()
