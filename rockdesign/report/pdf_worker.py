@@ -58,8 +58,8 @@ def _read(stream):
 
 
 class PdfWorker:
-    """The worker process, as seen by ``rockdesign check``: :meth:`start` it, call :meth:`write_pdf`,
-    and :meth:`close` it at the end."""
+    """The worker process, as seen by ``rockdesign check``: :meth:`start` it, call :meth:`pdf` (which
+    falls back to this process; :meth:`write_pdf` raises instead), and :meth:`close` it at the end."""
 
     def __init__(self, process: subprocess.Popen):
         self.process = process
