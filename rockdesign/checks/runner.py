@@ -33,7 +33,7 @@ class RunSummary:
     overturned: bool            # per the criterion
     impacts_before_overturn: int | None
     status: str
-    t_end: float = math.nan     # time the analysis ended [s] (early when it overturned or stopped)
+    t_end: float                # time the analysis ended [s] (early when it overturned or stopped)
 
 
 def interpret(summary: np.ndarray, status: int, theta_c: float, alpha: float, capacity: float,

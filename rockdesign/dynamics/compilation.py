@@ -142,12 +142,11 @@ def _start_helper(command: str) -> _Helper | None:
     if command not in ("check", "simulate") or usable_cores() < 2:
         return None
     code = f"from rockdesign.dynamics.compilation import _helper; _helper({command!r})"
-    # the helper imports this very package (not another one on its path) and shares numba's cache
-    here = str(Path(__file__).resolve().parents[2])
-    env = {**os.environ, "PYTHONPATH": os.pathsep.join(p for p in (here, os.environ.get("PYTHONPATH")) if p)}
-    try:
+    from ..paths import child_environment
+    try:   # (the helper shares numba's cache with this process)
         return _Helper(subprocess.Popen([sys.executable, "-c", code], stdin=subprocess.PIPE,
-                                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env))
+                                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                        env=child_environment()))
     except OSError:
         return None
 

@@ -71,13 +71,11 @@ class PdfWorker:
         from ..execution.executor import usable_cores
         if usable_cores() < 2:
             return None
+        from ..paths import child_environment
         code = "from rockdesign.report.pdf_worker import serve; serve()"
-        # the worker imports this very package (not another one on its path)
-        here = str(Path(__file__).resolve().parents[2])
-        env = {**os.environ, "PYTHONPATH": os.pathsep.join(p for p in (here, os.environ.get("PYTHONPATH")) if p)}
         try:
             return cls(subprocess.Popen([sys.executable, "-c", code], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                                        stderr=subprocess.DEVNULL, env=env))
+                                        stderr=subprocess.DEVNULL, env=child_environment()))
         except OSError:
             return None
 
