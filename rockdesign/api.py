@@ -99,12 +99,28 @@ def model_for_project(project: Project, model: str = "auto") -> tuple[str, str]:
     return model, structure
 
 
-def simulate_project(project: Project, motion: str, *, model: str = "auto", t_end: float | None = None,
-                     rtol: float | None = None, records_dir: str | None = None) -> SimulationResult:
-    """Run ``simulate`` for a project and a CONTRACT §2 motion string."""
-    if project.system.kind == "cylinder":                   # the 3D cylinder (thesis Ch. 5)
-        from .cylinder.commands import simulate_project as simulate_cylinder_project
-        return simulate_cylinder_project(project, motion, model=model, t_end=t_end, rtol=rtol, records_dir=records_dir)
+@dataclass(frozen=True)
+class SimulationRequest:
+    """A parsed and validated ``simulate`` request (:func:`simulation_request`); nothing has run yet."""
+
+    project: Project
+    motion_text: str
+    spec: object                  # motions.parse.MotionSpec: the motion and its initial state
+    model: str                    # exact | linear | linear-exact
+    structure: str                # the resolved structural model (SPEC §6)
+    rtol: float
+    t_end: float                  # [s]
+
+
+def simulation_request(project: Project, motion: str, *, model: str = "auto", t_end: float | None = None,
+                       rtol: float | None = None, records_dir: str | None = None) -> SimulationRequest:
+    """Parse a CONTRACT §2 motion string and validate everything :func:`run_simulation` needs, without
+    analysing (or compiling) anything: bad input is reported at once, also on a first run."""
+    if project.system.kind == "cylinder":
+        from .errors import RockdesignError
+        raise RockdesignError("a cylinder project is simulated by rockdesign.cylinder.commands.simulate_project",
+                              key="project", expected="a planar system", found="a cylinder")
+    from .dynamics.simulate import check_request
     from .motions.parse import parse_motion, system_scales
     system = project.system
     if records_dir is None and project.excitation_raw and "records_dir" in project.excitation_raw:
@@ -112,15 +128,36 @@ def simulate_project(project: Project, motion: str, *, model: str = "auto", t_en
     spec = parse_motion(motion, system_scales(system), records_dir=records_dir)
     eq, structure = model_for_project(project, model)
     a = project.analysis
-    response = simulate(system, spec.motion, model=eq, structure=structure, rtol=rtol or a.rtol, atol=a.atol,
-                        t_end=t_end if t_end is not None else spec.motion.duration + a.free_vibration,
-                        theta0=spec.theta0, thetadot0=spec.thetadot0, overturn=a.overturn,
-                        rest_velocity=a.rest_velocity, rigid_ratio=a.rigid_superstructure_ratio)
+    structure, t_end = check_request(system, spec.motion, model=eq, structure=structure,
+                                     t_end=t_end if t_end is not None else spec.motion.duration + a.free_vibration,
+                                     overturn=a.overturn, rigid_ratio=a.rigid_superstructure_ratio)
+    return SimulationRequest(project, motion, spec, eq, structure, rtol or a.rtol, t_end)
+
+
+def run_simulation(request: SimulationRequest) -> SimulationResult:
+    """Analyse a validated request (:func:`simulation_request`)."""
+    project, spec = request.project, request.spec
+    a = project.analysis
+    response = simulate(project.system, spec.motion, model=request.model, structure=request.structure,
+                        rtol=request.rtol, atol=a.atol, t_end=request.t_end, theta0=spec.theta0,
+                        thetadot0=spec.thetadot0, overturn=a.overturn, rest_velocity=a.rest_velocity,
+                        rigid_ratio=a.rigid_superstructure_ratio)
     from .motions.measures import plausibility_warnings
     m = spec.motion
     params = ({k: float(m.meta[k]) for k in ("a_p", "T_p", "t_m", "t_0") if k in m.meta}
               if not m.is_record and "a_p" in m.meta else None)
-    return SimulationResult(project, motion, response, params, tuple(plausibility_warnings(m, system.g)))
+    return SimulationResult(project, request.motion_text, response, params,
+                            tuple(plausibility_warnings(m, project.system.g)))
+
+
+def simulate_project(project: Project, motion: str, *, model: str = "auto", t_end: float | None = None,
+                     rtol: float | None = None, records_dir: str | None = None) -> SimulationResult:
+    """Run ``simulate`` for a project and a CONTRACT §2 motion string."""
+    if project.system.kind == "cylinder":                   # the 3D cylinder (thesis Ch. 5)
+        from .cylinder.commands import simulate_project as simulate_cylinder_project
+        return simulate_cylinder_project(project, motion, model=model, t_end=t_end, rtol=rtol, records_dir=records_dir)
+    return run_simulation(simulation_request(project, motion, model=model, t_end=t_end, rtol=rtol,
+                                             records_dir=records_dir))
 
 
 def write_history_csv(response: Response, path) -> None:

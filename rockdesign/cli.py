@@ -149,7 +149,7 @@ def simulate(project: Path = typer.Argument(..., help="Project file (TOML)"),
              records_dir: Optional[Path] = typer.Option(None, "--records-dir", help="Folder of PEER AT2 files.")):
     """One nonlinear time-history analysis (docs/model.md §4)."""
     from . import cli_inputs
-    from .api import simulate_project
+    from .api import run_simulation, simulation_request
     from .project import load_project
     cli_inputs.positive_time(t_end, "--t-end")
     cli_inputs.rtol(rtol)
@@ -159,10 +159,11 @@ def simulate(project: Path = typer.Argument(..., help="Project file (TOML)"),
     if proj.system.kind == "cylinder":                      # the 3D cylinder (thesis Ch. 5)
         from .cli_cylinder import simulate_command
         return simulate_command(proj, motion, model, as_json, plot, csv, t_end, rtol, records_dir, console)
-    from .dynamics.compilation import prepare
-    prepare("simulate", Console(stderr=True).print)
-    result = simulate_project(proj, motion, model=model, t_end=t_end, rtol=rtol,
-                              records_dir=str(records_dir) if records_dir else None)
+    # bad input is reported before a first run compiles the engine
+    request = simulation_request(proj, motion, model=model, t_end=t_end, rtol=rtol,
+                                 records_dir=str(records_dir) if records_dir else None)
+    cli_inputs.compile_kernels("simulate")
+    result = run_simulation(request)
     if csv:
         from .api import write_history_csv
         write_history_csv(result.response, csv)

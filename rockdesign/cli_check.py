@@ -58,6 +58,8 @@ def _check(project, out, as_json, no_pdf, html, no_margins, records_dir, dask, p
             pdf_worker.close()    # (the cylinder's report is written here)
         folder = cylinder_output_folder(target, key="-o/--out")
         with folder.locked():   # before the analyses, as below
+            from .cli_inputs import compile_kernels
+            compile_kernels("cylinder-check")
             result = run_check(proj, progress=not as_json or Console(stderr=True).is_terminal)
             _report(write_report, result, folder, no_pdf, html)
         if as_json:

@@ -19,8 +19,10 @@ def quantities_command(project, console, as_json: bool, units, curve) -> None:
 def simulate_command(project, motion, model, as_json, plot, csv, t_end, rtol, records_dir, console) -> None:
     """Run one cylinder analysis; JSON, CSV and the time-history/orbit figure on request."""
     from .cylinder.commands import simulate_project, write_history_csv
+    from .cli_inputs import compile_kernels
     result = simulate_project(project, motion, model=model, t_end=t_end, rtol=rtol,
-                              records_dir=str(records_dir) if records_dir else None)
+                              records_dir=str(records_dir) if records_dir else None,
+                              before_analysis=lambda: compile_kernels("cylinder"))
     if csv:
         write_history_csv(result.response, csv)
     if plot:

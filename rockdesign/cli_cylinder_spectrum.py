@@ -23,6 +23,8 @@ def cylinder_spectrum_command(project, project_path, record, x, y, relative, out
     _, xs = parse_cylinder_axis("R:0.5:30:60" if x.startswith("omega_p/p:0.5:12:") else x, "x")
     _, ys = parse_cylinder_axis("pga/up:1:6:51" if y.startswith("ap/up:0:12:") else y, "y")
     a = project.analysis
+    from .cli_inputs import compile_kernels
+    compile_kernels("cylinder-spectrum")
     console.print(f"cylinder spectrum: {ys.size} × {xs.size} analyses of {pair.name} …")
     spec = cylinder_spectrum(cyl, pair, xs, ys, rtol=a.rtol, atol=a.atol, free_vibration=a.free_vibration,
                              rest_velocity=a.rest_velocity)

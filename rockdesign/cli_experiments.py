@@ -156,7 +156,9 @@ def register(app: typer.Typer, handle_errors) -> None:
         history = read_tilt_csv(free_vibration)
         cal = run(proj.system, history, max_half_cycles=half_cycles, min_amplitude=min_amplitude)
         if plot is not None:
+            from .cli_inputs import compile_kernels
             from .experiments.figures import calibration_figure
+            compile_kernels("calibrate")
             sim = simulated_history(proj.system, cal, history)
             _save(calibration_figure(history, cal, sim, f"{proj.name}: {free_vibration.name}"), plot)
         if as_json:
@@ -223,10 +225,16 @@ def register(app: typer.Typer, handle_errors) -> None:
         err = Console(stderr=True)
         with Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
                       console=err, disable=as_json and not err.is_terminal) as bar:
-            task = bar.add_task("ensemble analyses", total=None)
+            from .dynamics.compilation import prepare
+            task = []
+
+            def ready():        # the input is checked: compile (first run), then show the bar
+                prepare("ensemble", bar.console.print)
+                task.append(bar.add_task("ensemble analyses", total=None))
+
             result = run_ensemble(proj, suite, scale=scale, restitution=restitution,
-                                  records_dir=str(records_dir) if records_dir else None,
-                                  progress=lambda done, total: bar.update(task, completed=done, total=total))
+                                  records_dir=str(records_dir) if records_dir else None, before_analyses=ready,
+                                  progress=lambda done, total: bar.update(task[0], completed=done, total=total))
         write_analyses_csv(result, out)
         data = result.as_json()
         if as_json:

@@ -79,3 +79,13 @@ def output_folder(path: Path, key: str) -> Path:
                                       found=f"'{parent}' is a file")
             break
     return path
+
+
+def compile_kernels(command: str) -> float:
+    """Compile the kernels ``command`` needs on its first run, saying so on stderr ("compiling numerical
+    kernels, once per installation, ~N s"): the step after the input was checked and before the
+    analyses (:func:`rockdesign.dynamics.compilation.prepare`); seconds spent (0 when all are cached)."""
+    from rich.console import Console
+
+    from .dynamics.compilation import prepare
+    return prepare(command, Console(stderr=True).print)

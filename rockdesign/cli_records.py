@@ -139,6 +139,8 @@ def show_command(
     from .motions.measures import motion_measures
     from .motions.spectra import sd_max
     motion = _load(record_id, gravity, records_dir)
+    from .cli_inputs import compile_kernels
+    compile_kernels("records")
     measures = motion_measures(motion, gravity)
     sd, period = sd_max(motion, DEFAULT_DAMPING, DEFAULT_BAND)
     meta = motion.meta
@@ -209,6 +211,8 @@ def spectrum_command(
     from .motions.measures import motion_measures
     from .motions.spectra import motion_spectrum, period_grid, sd_max
     motion = _load(record_id, gravity, records_dir)
+    from .cli_inputs import compile_kernels
+    compile_kernels("records")
     periods = period_grid((lo, hi), n_periods)
     sd, psv, psa = motion_spectrum(motion, periods, zeta)
     peak, period = sd_max(motion, zeta, (lo, hi), n_periods)

@@ -49,11 +49,13 @@ class CylinderSimulation:
 
 
 def simulate_project(project, motion: str, *, model: str = "auto", t_end: float | None = None,
-                     rtol: float | None = None, records_dir: str | None = None) -> CylinderSimulation:
+                     rtol: float | None = None, records_dir: str | None = None,
+                     before_analysis=None) -> CylinderSimulation:
     """``simulate`` for a cylinder: parse the bidirectional motion string, integrate, return the result.
 
     ``model``: ``auto`` (the project's contact), ``undamped`` (rigid contact) or ``damped``
-    (spring–dashpot with the project's ω_n, ζ)."""
+    (spring–dashpot with the project's ω_n, ζ).  ``before_analysis()`` is called once the input is
+    checked (the CLI compiles the kernels there on a first run)."""
     from dataclasses import replace
 
     from ..motions.pairs import parse_pair
@@ -68,6 +70,8 @@ def simulate_project(project, motion: str, *, model: str = "auto", t_end: float 
     spec = parse_pair(motion, gravity=cyl.g, alpha=cyl.alpha, uplift_acceleration=cyl.g * cyl.tan_alpha,
                       p=frequency_parameter(cyl.R, cyl.alpha, cyl.g), records_dir=records_dir)
     a = project.analysis
+    if before_analysis is not None:
+        before_analysis()
     response = simulate_cylinder(cyl, spec.pair, t_end=t_end, free_vibration=a.free_vibration,
                                  theta0=spec.theta0, thetadot0=spec.thetadot0, phi0=spec.phi0, phidot0=spec.phidot0,
                                  rtol=rtol or a.rtol, atol=a.atol, rest_velocity=a.rest_velocity,

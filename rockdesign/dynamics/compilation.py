@@ -12,8 +12,10 @@ and compiles exactly those kernels by calling them on a tiny problem with the ar
 real calls (so the real calls load them from the cache), then reports the seconds it took.  On two or
 more cores a second process shares the work (numba compiles on one core; :mod:`.compile_plan`), and
 ``check`` reads its records and computes SD_max while the helper finishes the rocking engine.
-Commands compile only their own kernels: ``simulate`` never compiles the closed-form linear
-integrator, ``records`` only the elastic response spectrum.
+Commands compile only their own kernels (:data:`KERNELS`): ``simulate`` never compiles the closed-form
+linear integrator, ``records`` only the elastic response spectrum, the cylinder's commands their own
+integrator.  Every CLI command that runs kernels calls :func:`prepare` after checking its input, so a
+typo is reported at once on a first run too (docs/engine.md, "First run").
 """
 from __future__ import annotations
 
@@ -29,16 +31,26 @@ from pathlib import Path
 
 # Kernels (module, function) each command calls; the estimates are first-run compile seconds measured
 # on the 2-core development machine (benchmarks/bench_check.py reports the first `check` run).
+ENGINE = (("rockdesign.dynamics.batch", "_run_batch"), ("rockdesign.dynamics.engine", "integrate"),
+          ("rockdesign.dynamics.transitions", "top_displacements"))
+"""The planar rocking engine: the batch kernel and the integrator it runs (also ``simulate``'s)."""
+ELASTIC_SPECTRUM = (("rockdesign.motions.spectra", "spectral_displacements"),)
+CYLINDER = (("rockdesign.cylinder.kernel", "integrate"),)
 KERNELS: dict[str, tuple[tuple[str, str], ...]] = {
-    "check": (("rockdesign.dynamics.batch", "_run_batch"), ("rockdesign.dynamics.engine", "integrate"),
-              ("rockdesign.dynamics.transitions", "top_displacements"),
-              ("rockdesign.dynamics.linear_exact", "integrate_linear_exact"),
-              ("rockdesign.motions.spectra", "spectral_displacements")),
-    "simulate": (("rockdesign.dynamics.batch", "_run_batch"), ("rockdesign.dynamics.engine", "integrate"),
-                 ("rockdesign.dynamics.transitions", "top_displacements")),
-    "records": (("rockdesign.motions.spectra", "spectral_displacements"),),
+    "check": ENGINE + (("rockdesign.dynamics.linear_exact", "integrate_linear_exact"),) + ELASTIC_SPECTRUM,
+    "simulate": ENGINE,
+    "ensemble": ENGINE,
+    "calibrate": ENGINE,                       # the simulated free vibration of --plot
+    "records": ELASTIC_SPECTRUM,
+    "spectrum": (("rockdesign.dynamics.engine", "integrate"), ("rockdesign.spectra.kernel", "spectrum_kernel")),
+    "cylinder": CYLINDER,
+    "cylinder-check": CYLINDER + ENGINE + ELASTIC_SPECTRUM,   # the 3D records and their planar components
+    "cylinder-spectrum": (("rockdesign.cylinder.spectrum", "_grid"),),
 }
-ESTIMATE_SECONDS = {"check": 30, "simulate": 30, "records": 5}
+ENGINE_COMMANDS = ("check", "simulate", "ensemble", "calibrate", "spectrum", "cylinder-check")
+"""Commands that run the planar integrator: a helper process compiles half of its callees (:func:`prepare`)."""
+ESTIMATE_SECONDS = {"check": 30, "simulate": 30, "ensemble": 30, "calibrate": 30, "records": 5, "spectrum": 30,
+                    "cylinder": 30, "cylinder-check": 45, "cylinder-spectrum": 30}
 MESSAGE = "compiling numerical kernels, once per installation, ~{seconds} s"
 
 
@@ -65,9 +77,10 @@ def missing_kernels(command: str) -> list[str]:
 
 
 PARTS = ("engine", "side")
-"""What :func:`_warm` compiles: the rocking engine (the batch kernel and the integrator it runs, which
-``simulate`` shares) and the side kernels of ``check`` (the closed-form linear integrator of the
-accuracy statement, the elastic spectrum of Polyakov's rule)."""
+"""What :func:`_warm` compiles: the rocking engine (the batch kernel and the integrator it runs, or the
+pulse-spectrum kernel around the integrator), which the helper process compiles, and the side kernels
+this process compiles meanwhile (the closed-form linear integrator of the accuracy statement, the
+elastic spectrum of Polyakov's rule, the cylinder's integrator)."""
 
 
 def _warm(command: str, parts: tuple[str, ...] = PARTS) -> None:
@@ -82,17 +95,36 @@ def _warm(command: str, parts: tuple[str, ...] = PARTS) -> None:
     g = 9.81
     system = block(1.5, 0.15)
     record = record_motion("warm-up", np.array([0.0, 0.3, -0.3, 0.0]) * g, 0.01)
-    if "engine" in parts and command in ("check", "simulate"):
+    if "engine" in parts and command in ENGINE_COMMANDS and command != "spectrum":
         simulate(system, record, t_end=0.05)
         sp = system_parameters(system, ModelChoice("block", "exact"))
         run_batch(sp, [record], [1.0], [0.05], batch_options())
+    if "engine" in parts and command == "spectrum":
+        from ..spectra.kernel import warm_up
+        warm_up()
     if "side" in parts and command == "check":
         from .accuracy import accuracy_problem
         system_b1, pulse = accuracy_problem()
         simulate(system_b1, pulse, model="linear-exact", t_end=0.05)
-    if "side" in parts and command in ("check", "records"):
+    if "side" in parts and command in ("check", "records", "cylinder-check"):
         from ..motions.spectra import sd_max
         sd_max(record)
+    if "side" in parts and command.startswith("cylinder"):
+        _warm_cylinder(command, record)
+
+
+def _warm_cylinder(command: str, record) -> None:
+    """The cylinder's integrator (or its spectrum grid) on a short record pair."""
+    from ..cylinder.engine import simulate_cylinder
+    from ..cylinder.spectrum import cylinder_spectrum
+    from ..cylinder.system import cylinder
+    from ..motions.pairs import pair_of_records
+    cyl = cylinder(1.5, 0.3)
+    pair = pair_of_records("warm-up", record, record)
+    if command == "cylinder-spectrum":
+        cylinder_spectrum(cyl, pair, [cyl.R], [1.0], free_vibration=0.05)
+    else:
+        simulate_cylinder(cyl, pair, t_end=0.05)
 
 
 HELPER_STARTUP_SECONDS = 1.0
@@ -139,7 +171,7 @@ def _start_helper(command: str) -> _Helper | None:
     """A second Python process compiling into numba's on-disk cache while this one compiles too
     (numba compiles on one core); None on one core or when it cannot start."""
     from ..execution.executor import usable_cores
-    if command not in ("check", "simulate") or usable_cores() < 2:
+    if command not in ENGINE_COMMANDS or usable_cores() < 2:
         return None
     code = f"from rockdesign.dynamics.compilation import _helper; _helper({command!r})"
     from ..paths import child_environment

@@ -47,12 +47,13 @@ class EnsembleRun:
 
 
 def run_ensemble(project, suite: str, *, scale: float = 1.0, restitution: float | None = None,
-                 records_dir=None, progress=None) -> EnsembleRun:
+                 records_dir=None, progress=None, before_analyses=None) -> EnsembleRun:
     """Analyse ``project`` under every motion of ``suite`` (name or manifest path) × ``scale`` (× the
     manifest's own factor, if it has one).
 
     ``restitution`` replaces the project's c_r (e.g. the value measured by ``rockdesign calibrate``).
-    ``progress(done, total)`` is called as chunks finish.
+    ``progress(done, total)`` is called as chunks finish; ``before_analyses()`` once the input is
+    checked (the CLI compiles the kernels there on a first run).
     """
     system = project.system
     a = project.analysis
@@ -82,6 +83,8 @@ def run_ensemble(project, suite: str, *, scale: float = 1.0, restitution: float 
     ids = [rid for rid, _, _ in loaded.records]
     motions = [m for _, m, _ in loaded.records]
     n = len(motions)
+    if before_analyses is not None:
+        before_analyses()
     runs = run_jobs(system, choice, motions, [scale] * n, rtol=a.rtol, atol=a.atol, free_vibration=a.free_vibration,
                     criterion=a.overturn, rest_velocity=a.rest_velocity,
                     progress=(lambda done: progress(done, n)) if progress else None)

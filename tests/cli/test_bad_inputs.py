@@ -88,6 +88,25 @@ def test_simulate_bad_motions(motion):
     assert_one_line_error(invoke("simulate", PIER, "--motion", motion), "key '--motion'")
 
 
+@pytest.mark.parametrize("args,fragments", [
+    (["--motion", "free:theta0=nan"], ["key '--motion'"]),
+    (["--motion", "record:p695-ff/11a,scale=inf"], ["key '--motion'"]),
+    (["--motion", PULSE, "--model", "bogus"], ["key '--model'", "'bogus'"]),
+    (["--motion", "record:p695-ff/11a", "--t-end", "1e9"], ["too much memory"]),
+    (["--motion", PULSE, "--model", "linear-exact"], ["key '--model'", "SDOF systems only"]),
+])
+def test_simulate_refuses_bad_input_before_compiling(args, fragments, monkeypatch):
+    # a first run compiles the engine (≈ 30 s): a typo must not wait for it
+    import rockdesign.dynamics.compilation as compilation
+
+    def compile_first(*a, **k):  # pragma: no cover - must not run
+        raise AssertionError("the kernels were prepared before the input was checked")
+
+    monkeypatch.setattr(compilation, "prepare", compile_first)
+    project = PIER if "linear-exact" not in args else str(REPO_ROOT / "examples" / "podium_flat.toml")
+    assert_one_line_error(invoke("simulate", project, *args), *fragments)
+
+
 def test_simulate_csv_into_a_directory(tmp_path):
     assert_one_line_error(invoke("simulate", PIER, "--motion", PULSE, "--csv", tmp_path), "key '--csv'",
                           "a directory")

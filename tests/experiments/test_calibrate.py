@@ -154,3 +154,20 @@ def test_measured_restitution_goes_into_the_project(tmp_path):
     path.write_text(SPECIMEN_TOML.replace("mass_distribution = 0.543", "mass_distribution = 0.54\nrestitution = 0.9417"))
     system = load_project(path).system
     assert coefficient_of_restitution(system) == (0.9417, "measured (project file)")
+
+
+def test_cli_compiles_the_engine_only_for_the_plot(specimen, tmp_path, monkeypatch):
+    """`calibrate` fits without the engine; `--plot` simulates the calibrated free vibration, so on a
+    first run it announces and compiles the engine's kernels first (docs/engine.md, "First run")."""
+    from rockdesign.dynamics import compilation
+    asked = []
+    monkeypatch.setattr(compilation, "prepare", lambda command, say=None, **k: asked.append(command) or 0.0)
+    project = tmp_path / "specimen.toml"
+    project.write_text(SPECIMEN_TOML)
+    csv_path = write_tilt_csv(tmp_path / "fv.csv", *_measurement(specimen, 1))
+    assert CliRunner().invoke(app, ["calibrate", str(project), "--free-vibration", str(csv_path)]).exit_code == 0
+    assert asked == []
+    result = CliRunner().invoke(app, ["calibrate", str(project), "--free-vibration", str(csv_path),
+                                      "--plot", str(tmp_path / "cal.png")])
+    assert result.exit_code == 0, result.output
+    assert asked == ["calibrate"]

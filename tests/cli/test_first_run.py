@@ -1,0 +1,61 @@
+"""Every command that runs numerical kernels compiles them on its first run *after* checking its input,
+and says so ("compiling numerical kernels, once per installation, ~N s"; issue: a first run that
+compiles says so).  Before, ``ensemble``, the cylinder's ``simulate``/``check``/``spectrum`` and
+``records spectrum`` compiled for 30–70 s behind a bar that did not move, or in silence."""
+from __future__ import annotations
+
+import pytest
+from typer.testing import CliRunner
+
+from rockdesign.cli import app
+from rockdesign.dynamics import compilation
+from rockdesign.paths import REPO_ROOT
+
+PIER = str(REPO_ROOT / "examples" / "bridge_pier.toml")
+CYLINDER = str(REPO_ROOT / "examples" / "cylinder.toml")
+
+
+@pytest.fixture
+def prepared(monkeypatch):
+    """The commands ``prepare`` was asked for, and a first-run announcement as it would be printed."""
+    asked = []
+
+    def prepare(command, say=None, *, background=False):
+        asked.append(command)
+        if say is not None:
+            say(compilation.MESSAGE.format(seconds=compilation.ESTIMATE_SECONDS[command]))
+        return 0.0
+
+    monkeypatch.setattr(compilation, "prepare", prepare)
+    return asked
+
+
+@pytest.mark.parametrize("command,args", [
+    ("records", ["records", "spectrum", "p695-ff/11a", "--n-periods", "20"]),
+    ("ensemble", ["ensemble", PIER, "--suite", "thesis-table-4.1", "-o", "{tmp}/analyses.csv"]),
+    ("spectrum", ["spectrum", PIER, "--pulse", "ricker-anti", "--x", "omega_p/p:1:4:2", "--y", "ap/up:0:4:2",
+                  "-o", "{tmp}/spectrum"]),
+    ("cylinder", ["simulate", CYLINDER, "--motion", "record:p695-ff/11", "--t-end", "2"]),
+    ("cylinder-spectrum", ["spectrum", CYLINDER, "--record", "p695-ff/11", "--x", "R:0.8:1:2", "--y", "pga/up:1:2:2",
+                           "-o", "{tmp}/cylinder-spectrum"]),
+])
+def test_each_command_announces_its_own_kernels(command, args, prepared, tmp_path):
+    result = CliRunner().invoke(app, [a.format(tmp=tmp_path) for a in args])
+    assert result.exit_code == 0, result.output
+    assert prepared == [command]
+    assert "compiling numerical kernels, once per installation" in result.stderr
+    assert command in compilation.KERNELS
+
+
+@pytest.mark.parametrize("args", [
+    ["ensemble", PIER, "--suite", "nosuch", "-o", "{tmp}/analyses.csv"],
+    ["ensemble", PIER, "--suite", "thesis-table-4.1", "--scale", "-1", "-o", "{tmp}/analyses.csv"],
+    ["simulate", CYLINDER, "--motion", "record:nosuch/11"],
+    ["simulate", CYLINDER, "--motion", "record:p695-ff/11", "--model", "bogus"],
+    ["spectrum", CYLINDER, "--record", "p695-ff/11", "--x", "R:0.8:1", "--y", "bogus:1:2:2"],
+    ["records", "spectrum", "nosuch/11a"],
+])
+def test_bad_input_is_refused_before_compiling(args, prepared, tmp_path):
+    result = CliRunner().invoke(app, [a.format(tmp=tmp_path) for a in args])
+    assert result.exit_code == 2, result.output
+    assert prepared == [] and result.stderr.strip().startswith("error:"), result.output
