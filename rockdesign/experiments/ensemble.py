@@ -64,7 +64,7 @@ def run_ensemble(project, suite: str, *, scale: float = 1.0, restitution: float 
         system = system.with_restitution(restitution)
     if not scale > 0.0:
         raise ProjectError("invalid scale factor", key="--scale", expected="a factor > 0", found=repr(scale))
-    loaded = load_suite(suite, gravity=system.g, records_dir=records_dir)
+    loaded = load_suite(suite, gravity=system.g, records_dir=records_dir, key="--suite")
     if not loaded.records:
         raise ProjectError("the ensemble has no available record", key="--suite", expected="a suite with records",
                            found="; ".join(f"{i}: {r}" for i, r in loaded.missing) or "an empty suite")

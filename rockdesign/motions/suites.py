@@ -75,8 +75,9 @@ class Suite:
     meta: dict = field(default_factory=dict)
 
 
-def suite_path(name_or_path) -> Path:
-    """The manifest of a built-in suite name, or the given path.
+def suite_path(name_or_path, key: str = "suites") -> Path:
+    """The manifest of a built-in suite name, or the given path (``key``: where the user gave it, for
+    the error message — the project file's ``suites`` or a command's ``--suite``).
 
     Raises:
         MotionError: unknown name (with the nearest built-in names).
@@ -93,7 +94,7 @@ def suite_path(name_or_path) -> Path:
         return builtin
     names = [s["name"] for s in list_suites()]
     close = difflib.get_close_matches(text, names, n=2)
-    raise MotionError("unknown suite", key="suites", expected=" | ".join(names) + " or a path to a *.toml",
+    raise MotionError("unknown suite", key=key, expected=" | ".join(names) + " or a path to a *.toml",
                       found=repr(text), hint=f"did you mean {' or '.join(close)}?" if close else None)
 
 
@@ -123,18 +124,19 @@ def _npz(path: str, mtime: float) -> dict[str, np.ndarray]:
         return {k: data[k] for k in data.files}
 
 
-def load_suite(name_or_path, *, gravity: float = 9.81, records_dir=None) -> Suite:
+def load_suite(name_or_path, *, gravity: float = 9.81, records_dir=None, key: str = "suites") -> Suite:
     """Load a suite and resolve its records (accelerations in m/s²).
 
     Args:
         name_or_path: built-in suite name (``p695-farfield``...) or path to a manifest.
         gravity: g [m/s²] converting records stored in g.
         records_dir: the user's folder of PEER AT2 files (for ``rsn`` entries).
+        key: where the user named the suite (error messages): ``suites`` or ``--suite``.
 
     Raises:
         MotionError: unknown suite, invalid manifest; RecordError: unreadable record files.
     """
-    path = suite_path(name_or_path)
+    path = suite_path(name_or_path, key)
     data = _read_manifest(path)
     file = str(path)
     records = data.get("records")
@@ -328,7 +330,7 @@ def list_records(suite: str | None = None, *, gravity: float = 9.81, records_dir
     """
     if suite is None:
         return [record_summary(rid, row=builtin_info(rid), gravity=gravity) for rid in builtin_ids()]
-    loaded = load_suite(suite, gravity=gravity, records_dir=records_dir)
+    loaded = load_suite(suite, gravity=gravity, records_dir=records_dir, key="--suite")
     out = []
     for entry in loaded.entries:
         if entry.motion is not None:

@@ -59,3 +59,10 @@ def test_bad_input_is_refused_before_compiling(args, prepared, tmp_path):
     result = CliRunner().invoke(app, [a.format(tmp=tmp_path) for a in args])
     assert result.exit_code == 2, result.output
     assert prepared == [] and result.stderr.strip().startswith("error:"), result.output
+
+
+@pytest.mark.parametrize("args", [["ensemble", PIER, "--suite", "nosuch", "-o", "analyses.csv"],
+                                  ["records", "list", "--suite", "nosuch"]])
+def test_an_unknown_suite_names_the_option_the_user_typed(args):
+    result = CliRunner().invoke(app, args)
+    assert result.exit_code == 2 and "key '--suite'" in result.stderr, result.output
