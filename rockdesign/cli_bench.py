@@ -144,6 +144,8 @@ def register(app: typer.Typer, handle_errors) -> None:
         if docs is not None:
             output_folder(docs, "--docs")
         err = Console(stderr=True, highlight=False, soft_wrap=True)
+        from .cli_inputs import compile_kernels
+        compile_kernels("bench")      # (every point's first run is untimed anyway: this is for the screen)
         progress = (lambda line: err.print(line, markup=False)) if verbose else None
         study = run_bench(out, quick=quick, only=only, stability=not no_stability, progress=progress)
         if docs is not None:

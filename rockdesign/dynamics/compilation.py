@@ -46,11 +46,12 @@ KERNELS: dict[str, tuple[tuple[str, str], ...]] = {
     "cylinder": CYLINDER,
     "cylinder-check": CYLINDER + ENGINE + ELASTIC_SPECTRUM,   # the 3D records and their planar components
     "cylinder-spectrum": (("rockdesign.cylinder.spectrum", "_grid"),),
+    "bench": ENGINE + (("rockdesign.dynamics.linear_exact", "integrate_linear_exact"),),
 }
-ENGINE_COMMANDS = ("check", "simulate", "ensemble", "calibrate", "spectrum", "cylinder-check")
+ENGINE_COMMANDS = ("check", "simulate", "ensemble", "calibrate", "spectrum", "cylinder-check", "bench")
 """Commands that run the planar integrator: a helper process compiles half of its callees (:func:`prepare`)."""
 ESTIMATE_SECONDS = {"check": 30, "simulate": 30, "ensemble": 30, "calibrate": 30, "records": 5, "spectrum": 30,
-                    "cylinder": 30, "cylinder-check": 45, "cylinder-spectrum": 30}
+                    "cylinder": 30, "cylinder-check": 45, "cylinder-spectrum": 30, "bench": 30}
 MESSAGE = "compiling numerical kernels, once per installation, ~{seconds} s"
 
 
@@ -102,7 +103,7 @@ def _warm(command: str, parts: tuple[str, ...] = PARTS) -> None:
     if "engine" in parts and command == "spectrum":
         from ..spectra.kernel import warm_up
         warm_up()
-    if "side" in parts and command == "check":
+    if "side" in parts and command in ("check", "bench"):
         from .accuracy import accuracy_problem
         system_b1, pulse = accuracy_problem()
         simulate(system_b1, pulse, model="linear-exact", t_end=0.05)

@@ -36,6 +36,7 @@ def prepared(monkeypatch):
     ("spectrum", ["spectrum", PIER, "--pulse", "ricker-anti", "--x", "omega_p/p:1:4:2", "--y", "ap/up:0:4:2",
                   "-o", "{tmp}/spectrum"]),
     ("cylinder", ["simulate", CYLINDER, "--motion", "record:p695-ff/11", "--t-end", "2"]),
+    ("bench", ["bench", "--quick", "--no-stability", "--only", "free-vibration/housner-block", "-o", "{tmp}/bench"]),
     ("cylinder-spectrum", ["spectrum", CYLINDER, "--record", "p695-ff/11", "--x", "R:0.8:1:2", "--y", "pga/up:1:2:2",
                            "-o", "{tmp}/cylinder-spectrum"]),
 ])
