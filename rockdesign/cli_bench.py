@@ -32,7 +32,7 @@ def _console() -> Console:
 
 
 def run_bench(out_dir: Path, quick: bool = False, only: Optional[str] = None, stability: bool = True,
-              progress=None) -> dict:
+              progress=None, stages=None) -> dict:
     """Run the study, write every output file into ``out_dir`` and return the bench.json object.
 
     Args:
@@ -42,6 +42,7 @@ def run_bench(out_dir: Path, quick: bool = False, only: Optional[str] = None, st
             ``"free-vibration/housner-block"``; None = all problems.
         stability: also run the stability study and write stability.md.
         progress: callback for progress lines.
+        stages: ``stages(stage, done, total)`` as problems and stability cases finish (progress bars).
     """
     from .bench.figures import write_study_figures
     from .bench.problems import problem_set
@@ -60,12 +61,16 @@ def run_bench(out_dir: Path, quick: bool = False, only: Optional[str] = None, st
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     histories: dict = {}
-    study = run_study(quick=quick, problems=problems, progress=progress, histories=histories)
+    bar = stages or (lambda stage, done, total: None)
+    bar("work-precision problems", 0, len(problems))
+    study = run_study(quick=quick, problems=problems, progress=progress, histories=histories,
+                      step=lambda done, total: bar("work-precision problems", done, total))
     figures = write_study_figures(study, out_dir, histories)
     study["highlights"] = highlights(study)
     if stability:
         from .bench.stability import run_stability, stability_markdown, write_stability_figures
-        cases = run_stability(quick=quick, progress=progress)
+        cases = run_stability(quick=quick, progress=progress,
+                              step=lambda done, total: bar("stability cases", done, total))
         stab_figs = write_stability_figures(cases, out_dir)
         (out_dir / "stability.md").write_text(stability_markdown(cases, stab_figs, machine=study["machine"]))
         study["stability"] = [c.as_json() for c in cases]
@@ -147,7 +152,10 @@ def register(app: typer.Typer, handle_errors) -> None:
         from .cli_inputs import compile_kernels
         compile_kernels("bench")      # (every point's first run is untimed anyway: this is for the screen)
         progress = (lambda line: err.print(line, markup=False)) if verbose else None
-        study = run_bench(out, quick=quick, only=only, stability=not no_stability, progress=progress)
+        from .progress import progress_bars
+        with progress_bars(err, disable=as_json and not err.is_terminal) as stages:
+            study = run_bench(out, quick=quick, only=only, stability=not no_stability, progress=progress,
+                              stages=stages)
         if docs is not None:
             from .bench.publish import publish_docs
             written = publish_docs(study, out, docs, readmes=[docs.parent / "benchmarks" / "README.md"])

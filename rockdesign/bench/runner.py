@@ -152,7 +152,8 @@ def problem_summary(entry: dict) -> dict:
 
 def run_study(quick: bool = False, problems: list[Problem] | None = None, methods=METHODS,
               tolerances=None, policy: TimingPolicy | None = None,
-              progress: Callable[[str], None] | None = None, histories: dict | None = None) -> dict:
+              progress: Callable[[str], None] | None = None, histories: dict | None = None,
+              step: Callable[[int, int], None] | None = None) -> dict:
     """Run the work-precision study and return the bench.json object (CONTRACT §4, extra keys added).
 
     Args:
@@ -163,6 +164,7 @@ def run_study(quick: bool = False, problems: list[Problem] | None = None, method
         policy: timing policy (default FULL, quick: QUICK).
         progress: callback for progress lines.
         histories: dict to receive error-versus-time curves (see :func:`run_problem`).
+        step: ``step(done, total)`` after each problem (the CLI's progress bar).
     """
     t0 = time.perf_counter()
     tolerances = tolerances or (TOLERANCES_QUICK if quick else TOLERANCES_FULL)
@@ -184,8 +186,10 @@ def run_study(quick: bool = False, problems: list[Problem] | None = None, method
                          "seconds": "median wall time of the public call [s]"},
              "methods": [{"name": m.name, "family": m.family, "description": m.description} for m in methods],
              "problems": []}
-    for p in problems:
+    for k, p in enumerate(problems):
         study["problems"].append(run_problem(p, methods, tolerances, policy, progress, histories))
+        if step is not None:
+            step(k + 1, len(problems))
     study["seconds"] = time.perf_counter() - t0
     return study
 

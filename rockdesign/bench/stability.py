@@ -24,19 +24,24 @@ def case_functions() -> dict[str, Callable]:
 
 
 def run_stability(quick: bool = False, methods=ALL_METHODS, keys=None,
-                  progress: Callable[[str], None] | None = None) -> list[StabilityCase]:
-    """Run the stability cases (all, or ``keys``) for ``methods``; quick: fewer tolerances/shorter runs."""
+                  progress: Callable[[str], None] | None = None,
+                  step: Callable[[int, int], None] | None = None) -> list[StabilityCase]:
+    """Run the stability cases (all, or ``keys``) for ``methods``; quick: fewer tolerances/shorter runs.
+    ``progress(line)`` gets a line per case, ``step(done, total)`` is called after each case."""
     say = progress or (lambda s: None)
     out = []
-    for key, fn in case_functions().items():
-        if keys and key not in keys:
-            continue
+    chosen = [(key, fn) for key, fn in case_functions().items() if not keys or key in keys]
+    if step is not None:
+        step(0, len(chosen))
+    for key, fn in chosen:
         t0 = time.perf_counter()
         case = fn(quick=quick, methods=tuple(methods))
         case.seconds = time.perf_counter() - t0
         say(f"stability {key}: " + ", ".join(f"{o.method} {o.verdict}" for o in case.outcomes)
             + f" ({case.seconds:.1f} s)")
         out.append(case)
+        if step is not None:
+            step(len(out), len(chosen))
     return out
 
 

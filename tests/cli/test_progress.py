@@ -28,3 +28,19 @@ def test_a_new_stage_stops_the_clock_of_the_earlier_ones(monkeypatch):
     scan, following = captured["tasks"]
     assert scan.finished and scan.completed == 10           # every bar is shown complete
     assert scan.finished_time < 0.25 and following.finished_time >= 0.5
+
+
+def test_bench_shows_its_stages(tmp_path):
+    """`bench` runs for minutes: it shows a bar per stage (problems, stability cases), not only -v lines."""
+    from typer.testing import CliRunner
+
+    from rockdesign.bench.stability import run_stability
+    from rockdesign.cli import app
+    result = CliRunner().invoke(app, ["bench", "--quick", "--no-stability", "--only", "free-vibration/housner-block",
+                                      "-o", str(tmp_path / "bench")])
+    assert result.exit_code == 0, result.output
+    assert "work-precision problems" in result.stderr and "1/1" in result.stderr
+    steps = []
+    run_stability(quick=True, keys=["missed-events", "event-location-crash"],
+                  step=lambda done, total: steps.append((done, total)))
+    assert steps == [(0, 2), (1, 2), (2, 2)]
