@@ -25,18 +25,21 @@ def cylinder_spectrum_command(project, project_path, record, x, y, relative, out
     a = project.analysis
     from .cli_inputs import compile_kernels
     compile_kernels("cylinder-spectrum")
-    console.print(f"cylinder spectrum: {ys.size} × {xs.size} analyses of {pair.name} …")
-    spec = cylinder_spectrum(cyl, pair, xs, ys, rtol=a.rtol, atol=a.atol, free_vibration=a.free_vibration,
-                             rest_velocity=a.rest_velocity)
-    ref = None
-    if relative is not None:
-        other = load_project(relative)
-        if other.system.kind != "cylinder":
-            raise CylinderSpectrumError("a relative cylinder spectrum needs a second cylinder", key="--relative",
-                                        expected="a [cylinder] project", found=f"a {other.system.kind}")
-        ref = cylinder_spectrum(other.system, pair, xs, ys, rtol=other.analysis.rtol, atol=other.analysis.atol,
-                                free_vibration=other.analysis.free_vibration,
-                                rest_velocity=other.analysis.rest_velocity)
+    other = load_project(relative) if relative is not None else None
+    if other is not None and other.system.kind != "cylinder":
+        raise CylinderSpectrumError("a relative cylinder spectrum needs a second cylinder", key="--relative",
+                                    expected="a [cylinder] project", found=f"a {other.system.kind}")
+    from .progress import progress_bars
+    with progress_bars(console, disable=as_json and not console.is_terminal) as bars:
+        stage = f"cylinder spectrum of {pair.name}"
+        spec = cylinder_spectrum(cyl, pair, xs, ys, rtol=a.rtol, atol=a.atol, free_vibration=a.free_vibration,
+                                 rest_velocity=a.rest_velocity, progress=lambda done, n: bars(stage, done, n))
+        ref = None
+        if other is not None:
+            ref = cylinder_spectrum(other.system, pair, xs, ys, rtol=other.analysis.rtol, atol=other.analysis.atol,
+                                    free_vibration=other.analysis.free_vibration,
+                                    rest_velocity=other.analysis.rest_velocity,
+                                    progress=lambda done, n: bars(f"reference ({other.name})", done, n))
     out_dir = Path(out) if out is not None else Path(f"{Path(project_path).stem}-spectrum-{pair.name.replace('/', '-')}")
     summary = write_cylinder_spectrum(out_dir, spec, ref, project_name=project.name, record_text=text,
                                       relative=relative, overturn_tilt=cyl.overturn_tilt, figures=figures)

@@ -89,9 +89,17 @@ class CylinderSpectrum:
     model: str
 
 
+PROGRESS_STEPS = 20
+"""With a progress callback the grid runs in about this many blocks of amplitude rows (one parallel
+kernel call each, so the bar moves; the points and their results are the same)."""
+
+
 def cylinder_spectrum(cyl, pair, R_values, pga_over_up, *, rtol: float = 1e-10, atol: float = 1e-12,
-                      free_vibration: float = 10.0, rest_velocity: float = 5e-4) -> CylinderSpectrum:
-    """The spectrum of ``cyl``'s slenderness and contact under ``pair`` (any size R [m] of the grid)."""
+                      free_vibration: float = 10.0, rest_velocity: float = 5e-4,
+                      progress=None) -> CylinderSpectrum:
+    """The spectrum of ``cyl``'s slenderness and contact under ``pair`` (any size R [m] of the grid).
+
+    ``progress(done, total)`` is called as blocks of grid points finish (points done, all points)."""
     from .engine import QUASI_IMPACT_TILT, THETA_SEED
     from .quantities import restitution_root
     if not pair.is_record or pair.planar:
@@ -111,9 +119,14 @@ def cylinder_spectrum(cyl, pair, R_values, pga_over_up, *, rtol: float = 1e-10, 
     ot = np.zeros((ny, nx), dtype=np.bool_)
     qi = np.zeros((ny, nx), dtype=np.int64)
     t0 = time.perf_counter()
-    _grid(pars, scales, np.array([1.0, pair.dt]), pair.x, pair.y, pair.duration + free_vibration, pair.duration,
-          rtol, atol, THETA_SEED, cyl.theta_overturn, QUASI_IMPACT_TILT * alpha, rest,
-          restitution_root(alpha) if cyl.damped else 1.0, ups, theta, ot, qi)
+    rows = ny if progress is None else max(1, math.ceil(ny / PROGRESS_STEPS))
+    for a in range(0, ny, rows):
+        b = min(ny, a + rows)
+        _grid(pars, scales[a:b], np.array([1.0, pair.dt]), pair.x, pair.y, pair.duration + free_vibration,
+              pair.duration, rtol, atol, THETA_SEED, cyl.theta_overturn, QUASI_IMPACT_TILT * alpha, rest,
+              restitution_root(alpha) if cyl.damped else 1.0, ups, theta[a:b], ot[a:b], qi[a:b])
+        if progress is not None:
+            progress(b * nx, ny * nx)
     seconds = time.perf_counter() - t0
     ratio = np.where(ot, cyl.overturn_tilt, theta / alpha)
     return CylinderSpectrum(R_values, np.asarray(pga_over_up, dtype=float), ratio, ot, qi, seconds,

@@ -34,6 +34,21 @@ def test_grid_points_are_single_analyses():
             assert spec.quasi_impacts[j, i] == r.quasi_impacts
 
 
+def test_progress_runs_the_same_points_in_blocks(monkeypatch):
+    """With a progress callback the grid runs in blocks of amplitude rows; every point is the same."""
+    import rockdesign.cylinder.spectrum as cs
+    monkeypatch.setattr(cs, "PROGRESS_STEPS", 3)
+    cyl = cylinder(3.0, 0.6)
+    pair = parse_pair("record:p695-ff/12").pair
+    R, levels = np.array([1.0, 4.0]), np.array([1.0, 2.0, 3.0, 4.0, 5.0])
+    whole = cylinder_spectrum(cyl, pair, R, levels, free_vibration=2.0)
+    calls = []
+    blocks = cylinder_spectrum(cyl, pair, R, levels, free_vibration=2.0, progress=lambda d, n: calls.append((d, n)))
+    assert calls == [(4, 10), (8, 10), (10, 10)]
+    for name in ("theta_max_over_alpha", "overturned", "quasi_impacts"):
+        assert np.array_equal(getattr(whole, name), getattr(blocks, name)), name
+
+
 def test_axes_and_errors():
     assert parse_cylinder_axis("R:0.5:30:60", "x")[1].size == 60
     assert parse_cylinder_axis("pga/up:1:6:51", "y")[1][-1] == 6.0
