@@ -23,12 +23,12 @@ def cylinder_spectrum_command(project, project_path, record, x, y, relative, out
     _, xs = parse_cylinder_axis("R:0.5:30:60" if x.startswith("omega_p/p:0.5:12:") else x, "x")
     _, ys = parse_cylinder_axis("pga/up:1:6:51" if y.startswith("ap/up:0:12:") else y, "y")
     a = project.analysis
-    from .cli_inputs import compile_kernels
-    compile_kernels("cylinder-spectrum")
     other = load_project(relative) if relative is not None else None
     if other is not None and other.system.kind != "cylinder":
         raise CylinderSpectrumError("a relative cylinder spectrum needs a second cylinder", key="--relative",
                                     expected="a [cylinder] project", found=f"a {other.system.kind}")
+    from .cli_inputs import compile_kernels
+    compile_kernels("cylinder-spectrum")
     from .progress import progress_bars
     with progress_bars(console, disable=as_json and not console.is_terminal) as bars:
         stage = f"cylinder spectrum of {pair.name}"

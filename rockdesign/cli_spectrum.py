@@ -126,8 +126,9 @@ def register(app: typer.Typer, handle_errors) -> None:
             raise RockdesignError("output path is a file", key="-o", expected="a folder", found=str(out_dir))
         out_dir.mkdir(parents=True, exist_ok=True)
         chunks_root = out_dir / "chunks"
-        from .cli_inputs import compile_kernels
-        compile_kernels("spectrum")
+        if dask is None or str(dask).startswith("local"):   # (a remote cluster's workers compile there)
+            from .cli_inputs import compile_kernels
+            compile_kernels("spectrum")
         executor = make_executor(dask, warm_up=warm_up)
         ny, nx = y_axis.n, x_axis.n
         runs = [("spectrum", proj, request, chunks_root / "project")]

@@ -55,6 +55,8 @@ def test_each_command_announces_its_own_kernels(command, args, prepared, tmp_pat
     ["simulate", CYLINDER, "--motion", "record:p695-ff/11", "--model", "bogus"],
     ["spectrum", CYLINDER, "--record", "p695-ff/11", "--x", "R:0.8:1", "--y", "bogus:1:2:2"],
     ["records", "spectrum", "nosuch/11a"],
+    ["spectrum", CYLINDER, "--record", "p695-ff/11", "--x", "R:0.8:1:2", "--y", "pga/up:1:2:2",
+     "--relative", PIER, "-o", "{tmp}/cylinder-spectrum"],
 ])
 def test_bad_input_is_refused_before_compiling(args, prepared, tmp_path):
     result = CliRunner().invoke(app, [a.format(tmp=tmp_path) for a in args])
