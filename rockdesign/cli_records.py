@@ -281,6 +281,8 @@ def synth_command(
     from .cli_inputs import output_folder
     output_folder(out_dir, "--out")
     motion = _load(seed, gravity, records_dir)
+    from .cli_inputs import compile_kernels
+    compile_kernels("records")                  # (SD_max of the seed and of every member)
     path, match = synthesize(motion, n, out_dir, seed_value=seed_value, scale_to=scale_to)
     console = _console()
     console.print(f"wrote {n} records to {path} (+ {path.with_suffix('.npz').name}, model.json, match.json)")

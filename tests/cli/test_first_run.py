@@ -32,6 +32,7 @@ def prepared(monkeypatch):
 
 @pytest.mark.parametrize("command,args", [
     ("records", ["records", "spectrum", "p695-ff/11a", "--n-periods", "20"]),
+    ("records", ["records", "synth", "--seed", "p695-ff/11a", "-n", "2", "-o", "{tmp}/synth"]),
     ("ensemble", ["ensemble", PIER, "--suite", "thesis-table-4.1", "-o", "{tmp}/analyses.csv"]),
     ("spectrum", ["spectrum", PIER, "--pulse", "ricker-anti", "--x", "omega_p/p:1:4:2", "--y", "ap/up:0:4:2",
                   "-o", "{tmp}/spectrum"]),
