@@ -60,6 +60,7 @@ from dataclasses import dataclass  # noqa: E402
 
 from .dynamics.response import Response  # noqa: E402
 from .dynamics.simulate import simulate  # noqa: E402
+from .motions.parse import MotionSpec  # noqa: E402
 
 
 @dataclass(frozen=True)
@@ -105,7 +106,7 @@ class SimulationRequest:
 
     project: Project
     motion_text: str
-    spec: object                  # motions.parse.MotionSpec: the motion and its initial state
+    spec: "MotionSpec"            # the parsed motion and its initial state
     model: str                    # exact | linear | linear-exact
     structure: str                # the resolved structural model (SPEC §6)
     rtol: float
