@@ -225,11 +225,11 @@ def register(app: typer.Typer, handle_errors) -> None:
         err = Console(stderr=True)
         with Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
                       console=err, disable=as_json and not err.is_terminal) as bar:
-            from .dynamics.compilation import prepare
+            from .cli_inputs import compile_kernels
             task = []
 
             def ready():        # the input is checked: compile (first run), then show the bar
-                prepare("ensemble", bar.console.print)
+                compile_kernels("ensemble", bar.console.print)
                 task.append(bar.add_task("ensemble analyses", total=None))
 
             result = run_ensemble(proj, suite, scale=scale, restitution=restitution,

@@ -81,11 +81,13 @@ def output_folder(path: Path, key: str) -> Path:
     return path
 
 
-def compile_kernels(command: str) -> float:
-    """Compile the kernels ``command`` needs on its first run, saying so on stderr ("compiling numerical
-    kernels, once per installation, ~N s"): the step after the input was checked and before the
-    analyses (:func:`rockdesign.dynamics.compilation.prepare`); seconds spent (0 when all are cached)."""
-    from rich.console import Console
-
+def compile_kernels(command: str, say=None) -> float:
+    """Compile the kernels ``command`` needs on its first run, saying so ("compiling numerical kernels,
+    once per installation, ~N s") with ``say`` (default: print on stderr): the step after the input was
+    checked and before the analyses (:func:`rockdesign.dynamics.compilation.prepare`); seconds spent (0
+    when all are cached)."""
     from .dynamics.compilation import prepare
-    return prepare(command, Console(stderr=True).print)
+    if say is None:
+        from rich.console import Console
+        say = Console(stderr=True).print
+    return prepare(command, say)

@@ -35,9 +35,10 @@ ENGINE = (("rockdesign.dynamics.batch", "_run_batch"), ("rockdesign.dynamics.eng
           ("rockdesign.dynamics.transitions", "top_displacements"))
 """The planar rocking engine: the batch kernel and the integrator it runs (also ``simulate``'s)."""
 ELASTIC_SPECTRUM = (("rockdesign.motions.spectra", "spectral_displacements"),)
+LINEAR_EXACT = (("rockdesign.dynamics.linear_exact", "integrate_linear_exact"),)
 CYLINDER = (("rockdesign.cylinder.kernel", "integrate"),)
 KERNELS: dict[str, tuple[tuple[str, str], ...]] = {
-    "check": ENGINE + (("rockdesign.dynamics.linear_exact", "integrate_linear_exact"),) + ELASTIC_SPECTRUM,
+    "check": ENGINE + LINEAR_EXACT + ELASTIC_SPECTRUM,
     "simulate": ENGINE,
     "ensemble": ENGINE,
     "calibrate": ENGINE,                       # the simulated free vibration of --plot
@@ -46,7 +47,7 @@ KERNELS: dict[str, tuple[tuple[str, str], ...]] = {
     "cylinder": CYLINDER,
     "cylinder-check": CYLINDER + ENGINE + ELASTIC_SPECTRUM,   # the 3D records and their planar components
     "cylinder-spectrum": (("rockdesign.cylinder.spectrum", "_grid"),),
-    "bench": ENGINE + (("rockdesign.dynamics.linear_exact", "integrate_linear_exact"),),
+    "bench": ENGINE + LINEAR_EXACT,
 }
 ENGINE_COMMANDS = ("check", "simulate", "ensemble", "calibrate", "spectrum", "cylinder-check", "bench")
 """Commands that run the planar integrator: a helper process compiles half of its callees (:func:`prepare`)."""
@@ -96,13 +97,13 @@ def _warm(command: str, parts: tuple[str, ...] = PARTS) -> None:
     g = 9.81
     system = block(1.5, 0.15)
     record = record_motion("warm-up", np.array([0.0, 0.3, -0.3, 0.0]) * g, 0.01)
-    if "engine" in parts and command in ENGINE_COMMANDS and command != "spectrum":
+    if "engine" in parts and command == "spectrum":          # the integrator inside the pulse-spectrum kernel
+        from ..spectra.kernel import warm_up
+        warm_up()
+    elif "engine" in parts and command in ENGINE_COMMANDS:   # the batch kernel and the integrator it runs
         simulate(system, record, t_end=0.05)
         sp = system_parameters(system, ModelChoice("block", "exact"))
         run_batch(sp, [record], [1.0], [0.05], batch_options())
-    if "engine" in parts and command == "spectrum":
-        from ..spectra.kernel import warm_up
-        warm_up()
     if "side" in parts and command in ("check", "bench"):
         from .accuracy import accuracy_problem
         system_b1, pulse = accuracy_problem()
