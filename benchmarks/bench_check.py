@@ -77,7 +77,7 @@ def suite_ratio(project: str, n_records: int = 3) -> dict:
     from rockdesign.design.quantities import design_quantities
     from rockdesign.dynamics.simulate import simulate
     from rockdesign.motions.config import resolve_motions
-    from rockdesign.project import load_project
+    from rockdesign.library import load_project
     from rockdesign.bench.baseline.scipy_engine import simulate_scipy
     proj = load_project(ROOT / project)
     q = design_quantities(proj.system)

@@ -40,7 +40,7 @@ def stage_times(project: str) -> dict:
     from rockdesign.checks.check import run_check
     from rockdesign.checks.fragility import check_fragility
     from rockdesign.checks.margins import SCAN_RATIO
-    from rockdesign.project import load_project
+    from rockdesign.library import load_project
     proj = load_project(ROOT / project)
     starts = {}
     t0 = time.perf_counter()

@@ -33,7 +33,7 @@ sys.path.insert(0, str(ROOT))
 from rockdesign.jsonable import json_ready  # noqa: E402
 from rockdesign.bench.timing import machine_info  # noqa: E402
 from rockdesign.checks.check import run_check  # noqa: E402
-from rockdesign.project import load_project  # noqa: E402
+from rockdesign.library import load_project  # noqa: E402
 
 RTOLS = (1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12)
 RATIO_RTOL = 1e-4

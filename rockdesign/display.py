@@ -73,43 +73,15 @@ def quantities_table(quantities: dict, console: Console, units: str | None, grav
 
 
 def response_table(result, console: Console) -> None:
-    """Print the summary of one time-history analysis."""
-    r = result.response
+    """Print the summary of one time-history analysis (``result.summary_rows()``: quantity, value, unit)."""
     table = Table(title=f"{result.project.name} — {result.motion_text}", title_justify="left")
     table.add_column("quantity")
     table.add_column("value", justify="right")
     table.add_column("unit")
-    rows = [
-        ("model", r.model, ""),
-        ("θ_max", format_value(r.theta_max), "rad"),
-        ("θ_max/α", format_value(r.theta_max_over_alpha), "-"),
-        ("θ_max/θc", format_value(r.theta_max_over_theta_c), "-"),
-        ("u_B,max (column top)", format_value(r.u_B_max), "m"),
-        ("u_B,max / capacity", format_value(r.u_B_max_over_capacity), "-"),
-        ("first uplift", "none" if r.uplift_time is None else format_value(r.uplift_time), "s"),
-        ("time uplifted", format_value(r.time_uplifted), "s"),
-        ("impacts", str(r.impacts), ""),
-        ("overturn mode", r.overturn_mode, ""),
-        (f"overturned ({r.overturn_criterion} criterion)", "YES" if r.overturned else "no", ""),
-        ("analysed until", format_value(r.t_end), "s"),
-        ("solver", f"{r.diagnostics['steps']} steps, {r.diagnostics['rejected_steps']} rejected, "
-                   f"{r.diagnostics['function_evaluations']} evaluations, {r.diagnostics['events']} events — "
-                   f"{r.status}", ""),
-    ]
-    if r.drift_max:
-        rows.insert(5, ("max |u_T − u_B| (sampled)", format_value(r.drift_max), "m"))
-    params = getattr(result, "motion_parameters", None)
-    if params:
-        g = result.project.system.g
-        extra = [("pulse amplitude a_p", f"{format_value(params['a_p'])} ({params['a_p'] / g:.4g} g)", "m/s^2"),
-                 ("pulse period T_p", format_value(params["T_p"]), "s")]
-        if "t_m" in params:
-            extra.append(("wavelet centre t_m", format_value(params["t_m"]), "s"))
-        rows[1:1] = extra
-    for row in rows:
+    for row in result.summary_rows():
         table.add_row(*row)
     console.print(table)
-    for w in getattr(result, "warnings", result.project.warnings):
+    for w in result.warnings:
         console.print(f"[yellow]warning:[/] {escape(w)}", highlight=False)
 
 
@@ -125,7 +97,7 @@ def check_summary(data: dict, out_dir, console: Console) -> None:
             c.get("role", "governs" if c["governs_verdict"] else ""), " (info)")
         table.add_row(escape(c["name"]), format_value(c["utilisation"]), res)
     console.print(table)
-    exc = data["excitation"]
+    exc = data.get("excitation", {})
     for m in exc.get("missing", []):
         console.print(f"[yellow]warning:[/] record {escape(m['id'])} not analysed: {escape(str(m['reason']))}",
                       highlight=False)
@@ -142,8 +114,9 @@ def check_summary(data: dict, out_dir, console: Console) -> None:
     console.print(f"model: {escape(data['model']['chosen'])} — records analysed: {s['n_records']}"
                   + (f" (+{s.get('n_failed')} failed)" if s.get("n_failed") else "")
                   + (f", missing: {len(exc.get('missing', []))}" if exc.get("missing") else "")
-                  + f", overturned: {s['n_overturned']} ({s['overturn_criterion']} criterion), false negatives "
-                  f"(class b): {s['n_false_negative']}, {prob}", highlight=False)
+                  + f", overturned: {s['n_overturned']} ({s['overturn_criterion']} criterion)"
+                  + (f", false negatives (class b): {s['n_false_negative']}" if "n_false_negative" in s else "")
+                  + f", {prob}", highlight=False)
     if exc.get("intensity_analysed"):
         console.print(f"intensity analysed: {escape(exc['intensity_analysed'])}", highlight=False)
     colour = "green" if data["verdict"] == "PASS" and data.get("verdict_robust", True) else (

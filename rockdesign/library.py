@@ -7,27 +7,47 @@
     c = rd.check(project, progress=False)               # c.verdict, c.records, c.fragility, c.as_json()
     rd.write_report(c, "out/")                          # report.pdf/html, results.json/csv
 
-Every result is a typed object whose ``as_json()`` is exactly the JSON of the matching CLI command
-(``quantities --json``, ``simulate --json``, ``check --json``).  Errors are
+Every kind of structure — planar (column, frame, podium) and the 3D cylinder — goes through these
+same functions: each asks the registry (:mod:`rockdesign.kinds`) once for the project's kind and
+calls it.  Every result is a typed object whose ``as_json()`` is exactly the JSON of the matching CLI
+command (``quantities --json``, ``simulate --json``, ``check --json``).  Errors are
 :class:`rockdesign.RockdesignError` subclasses whose ``key`` names the offending parameter of the
 function called (``motion``, ``model``, ``t_end``...), not a command-line flag.
+
+The second group of functions (:func:`simulation_request`, :func:`run_simulation`,
+:func:`check_options`, :func:`prepare_check`, :func:`run_check`, :func:`check_output_folder`,
+:func:`write_capacity_curve`, :func:`compile_kernels`) are the steps the commands take one by one
+(validate everything, compile on a first run, analyse, write); their errors name the command-line
+options.
 """
 from __future__ import annotations
 
-import dataclasses
 import functools
 import tomllib
 from collections.abc import Mapping
 from pathlib import Path
 
-from .api import SimulationResult, model_for_project, quantities_json, simulate_project
 from .design.quantities import Quantity
+from .dynamics import compilation
 from .errors import ProjectError, RockdesignError
-from .project import Project, load_project
-from .project import parse_project as _parse_raw
+from .execution.executor import make_executor
+from .kinds import kind_of, kind_of_document
+from .kinds.cylinder_simulation import CylinderSimulation
+from .kinds.planar_simulation import SimulationResult
+from .outdir import OutputFolder
+from .progress import progress_bars
+from .project_tables import Project, read_document
+from .report.pdf_worker import PdfWorker
+from .report.results import json_text  # noqa: F401  (the CLI prints results.json with it)
 
 __all__ = ["load_project", "parse_project", "design_quantities", "simulate", "check", "write_report",
-           "Quantities", "SimulationResponse"]
+           "Quantities", "SimulationResponse", "CylinderSimulation"]
+
+SimulationResponse = SimulationResult
+"""The result of :func:`simulate` for a planar structure (for a cylinder: :class:`CylinderSimulation`)."""
+
+CLI_KEYS = {"records_dir": "--records-dir", "executor": "--dask"}
+"""The command-line options of :func:`check`'s parameters (errors of the commands name these)."""
 
 
 def _parameter_names(func):
@@ -44,6 +64,23 @@ def _parameter_names(func):
             raise
 
     return wrapper
+
+
+def _require_project(project, function: str) -> None:
+    if not isinstance(project, Project):
+        raise ProjectError(f"{function} needs a project", key="project",
+                           expected="a Project (rd.load_project or rd.parse_project)", found=type(project).__name__)
+
+
+# --- the project ---------------------------------------------------------------------------------
+def load_project(path: str | Path) -> Project:
+    """Read and validate a project file (CONTRACT §1) of any kind of structure into a :class:`Project` (SI).
+
+    Everything is validated here, once — ``[excitation]`` and ``[analysis]`` included, parsed into the
+    typed ``project.excitation`` and ``project.analysis`` — so every command refuses the same input.
+    """
+    raw, text = read_document(path)
+    return kind_of_document(raw).parse(raw, file=str(path), text=text)
 
 
 def parse_project(toml_text: str, name: str = "<string>") -> Project:
@@ -64,9 +101,10 @@ def parse_project(toml_text: str, name: str = "<string>") -> Project:
         raw = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ProjectError(f"invalid TOML ({exc})", file=name) from None
-    return _parse_raw(raw, file=name, text=text)
+    return kind_of_document(raw).parse(raw, file=name, text=text)
 
 
+# --- design quantities ---------------------------------------------------------------------------
 class Quantities(Mapping):
     """The closed-form design quantities of a project (CONTRACT §3 names), by key or attribute.
 
@@ -77,9 +115,11 @@ class Quantities(Mapping):
     """
 
     def __init__(self, project: Project):
-        from .design.quantities import design_quantities as _compute
+        kind = kind_of(project)
         self.project = project
-        self._items: dict[str, Quantity] = dict(_compute(project.system, project.analysis.rigid_superstructure_ratio))
+        self.title = kind.quantities_title(project)
+        self._items: dict[str, Quantity] = dict(kind.quantities(project))
+        self._json = kind.quantities_json(project)
 
     def __getitem__(self, name: str) -> Quantity:
         return self._items[name]
@@ -101,7 +141,7 @@ class Quantities(Mapping):
 
     def as_json(self) -> dict:
         """The ``quantities --json`` object: ``{"quantities": {NAME: {"value", "unit", "equation"}}, "warnings"}``."""
-        return quantities_json(self.project)
+        return self._json
 
     def __repr__(self) -> str:
         body = ", ".join(f"{k}={q.value:.6g} {q.unit}" for k, q in self._items.items())
@@ -109,145 +149,157 @@ class Quantities(Mapping):
 
 
 def design_quantities(project: Project) -> Quantities:
-    """The closed-form design quantities of a project (uplift, θc, ρc, R̂, p, c_r...; thesis Ch. 2–4)."""
-    if not isinstance(project, Project):
-        raise ProjectError("design_quantities needs a project", key="project",
-                           expected="a Project (rd.load_project or rd.parse_project)", found=type(project).__name__)
+    """The closed-form design quantities of a project (uplift, θc, ρc, R̂, p, c_r...; thesis Ch. 2–5)."""
+    _require_project(project, "design_quantities")
     return Quantities(project)
 
 
-@dataclasses.dataclass(frozen=True)
-class SimulationResponse(SimulationResult):
-    """One time-history analysis of a project: the response and what was analysed.
+def write_capacity_curve(project: Project, path) -> None:
+    """``quantities --pushover PATH``: the pushover curve of a planar structure (Fig 3.15), the wobbling
+    period of a cylinder (Fig 5.2); .csv for the numbers, .png/.svg/.pdf for the figure."""
+    kind_of(project).write_curve(project, path)
 
-    Arrays: ``t`` [s], ``theta`` [rad], ``thetadot`` [rad/s], ``u_B`` (column top) [m], ``u_T``
-    (superstructure, relative to the ground) [m], ``ground_acceleration`` [m/s²].  Scalars:
-    ``theta_max`` [rad], ``theta_max_over_alpha`` [-], ``theta_max_over_theta_c`` [-], ``u_B_max`` [m],
-    ``uplift_time`` [s] (None without uplift), ``impacts``, ``overturned``, ``overturn_mode``; every
-    other attribute of :class:`rockdesign.dynamics.response.Response` is reached the same way.
-    ``as_json()`` is the ``simulate --json`` object.
-    """
 
-    @property
-    def t(self):
-        """Output times [s]."""
-        return self.response.t
+# --- one time-history analysis -------------------------------------------------------------------
+def simulation_request(project: Project, motion: str, *, model: str = "auto", t_end: float | None = None,
+                       rtol: float | None = None, records_dir: str | Path | None = None):
+    """Parse a CONTRACT §2 motion string and validate the whole request, analysing (and compiling)
+    nothing: bad input is reported at once, also on a first run."""
+    _require_project(project, "simulate")
+    return kind_of(project).simulation_request(project, motion, model=model, t_end=t_end, rtol=rtol,
+                                               records_dir=str(records_dir) if records_dir else None)
 
-    @property
-    def theta(self):
-        """Rotation θ(t) [rad]."""
-        return self.response.theta
 
-    @property
-    def theta_max(self) -> float:
-        """Peak |θ| [rad]."""
-        return self.response.theta_max
-
-    def __getattr__(self, name: str):
-        if name.startswith("__"):
-            raise AttributeError(name)
-        return getattr(self.__dict__["response"], name)
+def run_simulation(request, *, say=None):
+    """Analyse a validated request (:func:`simulation_request`).  With ``say`` (a print function) the
+    kernels are compiled first on a first run, and that is announced."""
+    kind = kind_of(request.project)
+    if say is not None:
+        compilation.prepare(kind.simulate_kernels, say)
+    return kind.run_simulation(request)
 
 
 @_parameter_names
 def simulate(project: Project, motion, *, model: str = "auto", t_end: float | None = None,
-             rtol: float | None = None, records_dir: str | Path | None = None) -> SimulationResponse:
-    """One nonlinear time-history analysis of a project (thesis Eq 3.12 / 3.46 / 4.13 and the impact maps).
+             rtol: float | None = None, records_dir: str | Path | None = None):
+    """One nonlinear time-history analysis of a project (thesis Eq 3.12 / 3.46 / 4.13; Eqs 5.22–5.31 for
+    a cylinder).
 
     Args:
         project: a :class:`Project`.
         motion: a motion string (``"ricker-anti:ap=0.38g,Tp=0.95s"``, ``"record:p695-ff/11a,scale=1.5"``,
-            ``"free:theta0=0.8alpha"``...) or a :class:`~rockdesign.motions.motion.GroundMotion`.
-        model: ``auto`` | ``exact`` | ``linear`` | ``linear-exact``.
+            ``"free:theta0=0.8alpha"``; for a cylinder ``"record:p695-ff/1,resultant_pga=0.3g"``...) or a
+            motion object (:class:`~rockdesign.motions.motion.GroundMotion`; a
+            :class:`~rockdesign.motions.pairs.MotionPair` for a cylinder).
+        model: ``auto`` | ``exact`` | ``linear`` | ``linear-exact`` (cylinder: ``auto`` | ``undamped`` | ``damped``).
         t_end: end time [s] (default: motion duration + the project's free vibration).
         rtol: relative tolerance (default: the project's).
         records_dir: folder of PEER AT2 files for ``file:``/``rsn:`` motions.
+
+    Returns:
+        A :class:`SimulationResponse` (planar) or :class:`CylinderSimulation`; ``as_json()`` is
+        ``simulate --json``.
     """
-    from .motions.motion import GroundMotion
+    _require_project(project, "simulate")
     if isinstance(motion, str):
-        result = simulate_project(project, motion, model=model, t_end=t_end, rtol=rtol,
-                                  records_dir=str(records_dir) if records_dir else None)
-    elif isinstance(motion, GroundMotion):
-        from .dynamics.simulate import simulate as _simulate
-        eq, structure = model_for_project(project, model)
-        a = project.analysis
-        response = _simulate(project.system, motion, model=eq, structure=structure, rtol=rtol or a.rtol,
-                             atol=a.atol, t_end=t_end if t_end is not None else motion.duration + a.free_vibration,
-                             overturn=a.overturn, rest_velocity=a.rest_velocity,
-                             rigid_ratio=a.rigid_superstructure_ratio)
-        result = SimulationResult(project, motion.name, response)
-    else:
-        raise RockdesignError("unknown motion", key="motion", expected="a motion string or a GroundMotion",
-                              found=type(motion).__name__)
-    return SimulationResponse(**{f.name: getattr(result, f.name) for f in dataclasses.fields(result)})
+        return run_simulation(simulation_request(project, motion, model=model, t_end=t_end, rtol=rtol,
+                                                 records_dir=records_dir))
+    if records_dir is not None:
+        raise RockdesignError("records_dir applies to a motion string", key="records_dir", expected="None",
+                              found=repr(str(records_dir)))
+    return kind_of(project).simulate_motion(project, motion, model=model, t_end=t_end, rtol=rtol)
+
+
+# --- the design check ----------------------------------------------------------------------------
+def check_options(project: Project, *, records_dir=None, dask=None) -> None:
+    """Refuse ``--records-dir`` / ``--dask`` where the project's kind has no use for them (exit 2)."""
+    kind_of(project).check_options(project, records_dir=records_dir, executor=dask, keys=CLI_KEYS)
+
+
+def prepare_check(project: Project, *, records_dir=None, say=None, report: bool = True,
+                  pdf_in_process: bool = True) -> None:
+    """Before the analyses of ``check``: stop on input errors that only reading the records shows, and
+    compile the kernels on a first run (announced with ``say``); ``report``: the report will be
+    written (its libraries are loaded while the engine compiles), ``pdf_in_process``: by this process."""
+    kind_of(project).prepare_check(project, records_dir=str(records_dir) if records_dir else None, say=say,
+                                   report=report, pdf_in_process=pdf_in_process)
+
+
+def run_check(project: Project, *, progress: bool = False, records_dir=None, margins: bool = True,
+              executor=None):
+    """The design check (see :func:`check`); ``executor`` may also be a ``--dask`` value ("local:N" or a
+    scheduler address), started and closed here."""
+    kind = kind_of(project)
+    owned = None
+    if isinstance(executor, str):
+        owned = executor = make_executor(executor)
+        executor.start()
+    try:
+        with progress_bars(disable=not progress) as tick:
+            return kind.check(project, progress=tick, records_dir=str(records_dir) if records_dir else None,
+                              margins=margins, executor=executor)
+    finally:
+        if owned is not None:
+            owned.close()
 
 
 @_parameter_names
 def check(project: Project, *, progress: bool = False, records_dir: str | Path | None = None,
           margins: bool = True, executor=None):
-    """The design check of a project (the work of ``rockdesign check``): a :class:`CheckResult`.
+    """The design check of a project (the work of ``rockdesign check``), for every kind of structure.
 
     Args:
         project: a :class:`Project`, however it was made.
         progress: draw progress bars (rich; works in a terminal and in a notebook).
-        records_dir: folder of PEER AT2 files for suites that name them.
+        records_dir: folder of PEER AT2 files for suites that name them (planar structures).
         margins: run the incremental overturning-margin analysis.
-        executor: a started executor of :mod:`rockdesign.execution.executor` (e.g. a dask cluster).
+        executor: a started executor of :mod:`rockdesign.execution.executor` (e.g. a dask cluster;
+            planar structures).
 
     Returns:
-        CheckResult with ``verdict`` ("PASS" | "FAIL"), ``records`` (one outcome per record: scale,
-        PGA [m/s²], SD_max [m], θ_max/α, class...), ``checks``, ``statistics``, ``fragility`` (None
-        until computed) and ``as_json()`` = results.json.  For a ``[cylinder]`` project a
-        :class:`~rockdesign.checks.cylinder_check.CylinderCheckResult` (``verdict``, ``records``,
-        ``checks``, ``summary``, ``histories``, ``as_json()``; docs/cylinder.md); ``records_dir`` and
-        ``executor`` do not apply to it.
+        A check result: ``verdict`` ("PASS" | "FAIL"), ``verdict_reason``, ``records`` (one outcome per
+        record, or per record pair of a cylinder), ``checks``, ``statistics`` and ``as_json()`` =
+        results.json (the same sections for every kind; docs/model.md, docs/cylinder.md).
     """
-    from .checks.check import run_check
-    from .progress import progress_bars
-    if not isinstance(project, Project):
-        raise ProjectError("check needs a project", key="project",
-                           expected="a Project (rd.load_project or rd.parse_project)", found=type(project).__name__)
-    if project.system.kind == "cylinder":     # the 3D cylinder (thesis Ch. 5): a CylinderCheckResult
-        from .checks.cylinder_check import cylinder_check
-        for key, value in (("records_dir", records_dir), ("executor", executor)):
-            if value is not None:
-                raise RockdesignError("not used by the check of a cylinder (built-in suites of record pairs, "
-                                      "analysed in this process)", key=key, expected="None",
-                                      found=type(value).__name__ if key == "executor" else repr(str(value)))
-        with progress_bars(disable=not progress) as tick:
-            return cylinder_check(project, progress=tick)
-    with progress_bars(disable=not progress) as tick:
-        return run_check(project, records_dir=str(records_dir) if records_dir else None, margins=margins,
-                         progress=tick, executor=executor)
+    _require_project(project, "check")
+    kind_of(project).check_options(project, records_dir=records_dir, executor=executor, keys={})
+    return run_check(project, progress=progress, records_dir=records_dir, margins=margins, executor=executor)
+
+
+def check_output_folder(project: Project, target, *, key: str = "out_dir") -> OutputFolder:
+    """The output folder of a project's check (validated; owns the files the kind writes there)."""
+    return kind_of(project).output_folder(target, key=key)
+
+
+def start_pdf_worker() -> PdfWorker | None:
+    """A second process that loads WeasyPrint while the check runs and writes the PDF at the end
+    (:mod:`rockdesign.report.pdf_worker`); None when it cannot start.  ``close()`` it afterwards."""
+    return PdfWorker.start()
 
 
 @_parameter_names
 def write_report(result, out_dir, *, pdf: bool = True, html: bool = True, pdf_worker=None) -> Path:
-    """Write a check's ``report.pdf``, ``report.html``, ``results.json``, ``results.csv`` into ``out_dir``
-    (for a cylinder check also the figures ``cylinder_vs_planar.png`` and ``wobbling_period.png``).
+    """Write a check's ``report.pdf``, ``report.html``, ``results.json``, ``results.csv`` (and its
+    figures) into ``out_dir``.
 
     The folder is written all or nothing (a temporary folder beside it is moved into place when
     complete), holds only this run's files afterwards, and is locked against concurrent runs (see
     :mod:`rockdesign.outdir`).  ``out_dir`` may also be a locked :class:`~rockdesign.outdir.OutputFolder`.
-    ``pdf_worker``: a started :class:`rockdesign.report.pdf_worker.PdfWorker` (``PdfWorker.start()``,
-    ``close()`` it afterwards) writes a planar check's PDF in a second process, as ``rockdesign check``
-    does; the files are the same without it.
+    ``pdf_worker``: a started :class:`rockdesign.report.pdf_worker.PdfWorker` (:func:`start_pdf_worker`,
+    ``close()`` it afterwards) writes the PDF in a second process, as ``rockdesign check`` does; the
+    files are the same without it.
 
     Returns:
         The output folder.
     """
-    from .checks.cylinder_check import CylinderCheckResult
-    from .outdir import OutputFolder
-    from .report.results import write_results_csv, write_results_json
-    if isinstance(result, CylinderCheckResult):
-        from .report.cylinder_report import write_cylinder_folder
-        return write_cylinder_folder(result, out_dir, pdf=pdf, html=html)
-    folder = out_dir if isinstance(out_dir, OutputFolder) else OutputFolder(out_dir, key="out_dir")
-    data = result.as_json()
+    kind = kind_of(result)
+    folder = out_dir if isinstance(out_dir, OutputFolder) else kind.output_folder(out_dir, key="out_dir")
     with folder.staging() as tmp:
-        write_results_json(data, tmp / "results.json")
-        write_results_csv(data, tmp / "results.csv")
-        if pdf or html:
-            from .report.render import write_report as _render
-            _render(result, tmp, pdf=pdf, html=html, pdf_worker=pdf_worker)
+        kind.write_report(result, tmp, pdf=pdf, html=html, pdf_worker=pdf_worker)
     return folder.target
+
+
+def compile_kernels(command: str, say=None) -> float:
+    """Compile the kernels a command needs on its first run (:mod:`rockdesign.dynamics.compilation`),
+    announcing it with ``say``; seconds spent (0 when every kernel is cached)."""
+    return compilation.prepare(command, say)

@@ -10,14 +10,14 @@ from __future__ import annotations
 import difflib
 import hashlib
 import math
-import tomllib
-from pathlib import Path
 
 from .design.mass import SECTIONS, STEEL_TO_CONCRETE_DENSITY, composite_column, section_area
 from .errors import ProjectError
+from .motions.config import parse_excitation
 from .systems import Column, RockingSystem, Superstructure
 from .project_tables import (ANALYSIS_KEYS, RESTITUTION_RULES, AnalysisSettings, Project,  # noqa: F401 (re-exported)
-                             _parse_analysis, _Table, _toml_error, project_info)
+                             _parse_analysis, _Table, project_info)
+from .validity import validity_warnings
 
 SECTIONS_TOP = ("project", "column", "podium", "superstructure", "excitation", "analysis")
 
@@ -28,36 +28,11 @@ PODIUM_KEYS = ("columns", "cap_beam_mass") + COLUMN_KEYS
 SUPERSTRUCTURE_KEYS = ("mass", "period", "frequency", "damping", "damping_correction")
 
 
+def parse_planar_project(raw: dict, *, file: str = "<project>", text: str = "") -> Project:
+    """Validate a TOML document of a planar structure ([column] or [podium]) into a :class:`Project`.
 
-
-
-
-
-
-
-
-def load_project(path: str | Path) -> Project:
-    """Read and validate a project file (CONTRACT §1) into a :class:`Project` in SI units."""
-    path = Path(path)
-    file = str(path)
-    try:
-        text = path.read_text(encoding="utf-8-sig")   # a UTF-8 BOM (Windows Notepad) is not content
-    except FileNotFoundError:
-        raise ProjectError("file not found", file=file, expected="an existing project file (.toml)") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ProjectError(f"cannot read file: {exc}", file=file) from None
-    try:
-        raw = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise _toml_error(file, exc) from None
-    return parse_project(raw, file=file, text=text)
-
-
-def parse_project(raw: dict, *, file: str = "<project>", text: str = "") -> Project:
-    """Validate an already-parsed TOML document (see :func:`load_project`)."""
-    if "cylinder" in raw or "overturn_tilt" in (raw.get("analysis") if isinstance(raw.get("analysis"), dict) else {}):
-        from .cylinder.project import parse_cylinder_project   # the 3D cylinder (thesis Ch. 5)
-        return parse_cylinder_project(raw, file=file, text=text)
+    Which parser reads a document is chosen by the registry of kinds of structure
+    (:mod:`rockdesign.kinds`; ``rd.load_project`` / ``rd.parse_project``)."""
     for section in raw:
         if section not in SECTIONS_TOP:
             close = difflib.get_close_matches(section, SECTIONS_TOP, n=1, cutoff=0.5)
@@ -92,14 +67,13 @@ def parse_project(raw: dict, *, file: str = "<project>", text: str = "") -> Proj
     if "excitation" in raw and not isinstance(raw["excitation"], dict):
         raise ProjectError("must be a table", file=file, key="excitation", expected="an [excitation] table",
                            found=repr(raw["excitation"]))
-    if raw.get("excitation") is not None:
-        # validated here so that every command (quantities, simulate, check) rejects the same input
-        from .motions.config import parse_excitation
-        parse_excitation(raw["excitation"], file=file, gravity=g)
-    from .validity import validity_warnings
+    # parsed once, here, so that every command (quantities, simulate, check) rejects the same input and
+    # the check consumes the typed table
+    excitation = (parse_excitation(raw["excitation"], file=file, gravity=g)
+                  if raw.get("excitation") is not None else None)
     return Project(file, info["name"], system, analysis, info, raw.get("excitation"), raw, text,
                    hashlib.sha256(text.encode("utf-8")).hexdigest() if text else "",
-                   tuple(validity_warnings(system, analysis)))
+                   tuple(validity_warnings(system, analysis)), excitation)
 
 
 def _parse_column(t: _Table) -> tuple[Column, float | None, str]:
@@ -221,16 +195,6 @@ def _parse_superstructure(t: _Table) -> Superstructure:
     if not isinstance(corr, bool):
         raise t.error("damping_correction", "wrong type", expected="true or false", found=corr)
     return Superstructure(mass, omega, zeta, corr)
-
-
-
-
-
-
-
-
-
-
 
 
 def _check_model_choice(analysis: AnalysisSettings, system: RockingSystem, file: str) -> None:

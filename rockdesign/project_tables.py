@@ -84,6 +84,10 @@ class Project:
     source_text: str = ""
     sha256: str = ""
     warnings: tuple[str, ...] = ()
+    excitation: object | None = None
+    """The ``[excitation]`` table parsed at load by the project's kind (planar:
+    :class:`~rockdesign.motions.config.ExcitationSpec`, None without the table; cylinder:
+    :class:`~rockdesign.cylinder.project.CylinderExcitation`).  The check reads this, never the raw table."""
 
 
 class _Table:
@@ -172,6 +176,25 @@ class _Table:
             raise ProjectError("missing required value", file=self.file, key=self.key(names[0]),
                                expected="one of " + " or ".join(f"'{n}'" for n in names), found="none")
         return present[0] if present else None
+
+
+def read_document(path) -> tuple[dict, str]:
+    """(TOML document, text) of a project file; a :class:`ProjectError` naming the file when it cannot be
+    read or is not TOML.  Which kind of structure the document describes is the registry's question
+    (:mod:`rockdesign.kinds`)."""
+    from pathlib import Path
+    file = str(path)
+    try:
+        text = Path(path).read_text(encoding="utf-8-sig")   # a UTF-8 BOM (Windows Notepad) is not content
+    except FileNotFoundError:
+        raise ProjectError("file not found", file=file, expected="an existing project file (.toml)") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ProjectError(f"cannot read file: {exc}", file=file) from None
+    try:
+        raw = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise _toml_error(file, exc) from None
+    return raw, text
 
 
 def _toml_error(path: str, exc: tomllib.TOMLDecodeError) -> ProjectError:

@@ -21,7 +21,7 @@ import numpy as np
 from .. import __version__
 from ..design.quantities import design_quantities
 from ..errors import ProjectError
-from ..motions.config import default_excitation, parse_excitation, resolve_motions
+from ..motions.config import default_excitation, resolve_motions
 from ..motions.spectra import motion_spectrum, period_grid, sd_max
 from ..project import Project
 from .criteria import CheckContext, analysis_failed, decide, evaluate_criteria, minimum_records
@@ -186,14 +186,16 @@ class CheckResult:
 
 
 def _excitation(project: Project):
-    g = project.system.g
-    if project.excitation_raw is None:
+    """The excitation the check analyses: the typed ``project.excitation`` (parsed once, at load), with
+    the default suite scaled to ``design_pga`` when the table names no suite or record."""
+    spec = project.excitation
+    if spec is None:
         raise ProjectError("the design check needs an excitation", file=project.path, key="excitation.design_pga",
                            expected="[excitation] with design_pga = \"0.3 g\" (the default runs the FEMA P695 "
                                     "far-field suite scaled to it) or suites/records with a scale rule",
                            found="no [excitation] table")
-    spec = parse_excitation(project.excitation_raw, file=project.path, gravity=g)
-    if not project.excitation_raw.get("suites") and not project.excitation_raw.get("records"):
+    given = project.excitation_raw or {}        # (which keys the user wrote; their values are in ``spec``)
+    if not given.get("suites") and not given.get("records"):
         if spec.design_pga is None:
             raise ProjectError("missing required value", file=project.path, key="excitation.design_pga",
                                expected="design_pga (the FEMA P695 far-field suite is scaled to it)", found="none")

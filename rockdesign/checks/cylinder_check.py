@@ -1,8 +1,8 @@
 """``check`` for a cylinder (thesis Ch. 5): the statistical verdict over a suite of record pairs, and
-whether a planar analysis would have sufficed.
+whether a planar analysis would have sufficed — judged like every other check.
 
-For every record pair of the suite (default ``p695-farfield-pairs``, scaled to the resultant PGA of
-``[excitation]``, Table 5.4's scaling):
+For every record pair of the suite (default ``p695-farfield-pairs``, scaled as ``[excitation]`` says,
+Table 5.4's scaling):
 
 * the 3D model of the project (undamped or damped) gives θ_max/α, quasi-impacts and overturning
   (θ reaching θ_ot = overturn_tilt·α);
@@ -11,225 +11,312 @@ For every record pair of the suite (default ``p695-farfield-pairs``, scaled to t
   would make; it overturns when θ_max ≥ α (the static capacity of the non-spinning cylinder);
 * Polyakov's rule 2 per component, SD_max/2B, is reported as information only.
 
-Verdict (as the planar check): the one-sided 95 % upper bound of the 3D P(overturn) (Clopper–Pearson)
-must not exceed ``[analysis] overturn_probability_limit``.  The comparison reports P(overturn) and
-θ_max of the planar model (worse of the two components) against the 3D model.
+Each pair is one typed :class:`PairOutcome` (one ground motion: ``ground_motion`` is the pair id).  The
+verdict is :func:`~rockdesign.checks.criteria.decide` over the criteria of :data:`CYLINDER_CRITERIA`
+(:mod:`rockdesign.checks.cylinder_criteria`): every analysis completed, and the one-sided 95 % upper
+bound of the 3D P(overturn) (Clopper–Pearson) within ``[analysis] overturn_probability_limit``.  Its
+robustness: a seeded perturbation ensemble (``[analysis] ensemble_size`` runs of the whole suite, each
+pair's amplitude × (1 ± 0.1 %), tolerances one decade tighter).
 """
 from __future__ import annotations
 
 import dataclasses
 import math
-import statistics as pystats
 
 import numpy as np
 
-from ..errors import ProjectError
-from ..units import QuantityParseError, parse_quantity
+from .. import __version__
+from ..cylinder.engine import simulate_cylinder
+from ..cylinder.kernel import ST_COMPLETED, ST_OVERTURNED
+from ..cylinder.engine import STATUS
+from ..cylinder.quantities import cylinder_quantities, restitution_root
+from ..dynamics.simulate import simulate
+from ..motions.motion import record_motion
+from ..motions.pairs import suite_pairs
+from ..motions.spectra import sd_max_of_samples
+from ..systems import Column, RockingSystem
+from .criteria import CheckContext, decide, evaluate_criteria, minimum_records
+from .cylinder_criteria import CYLINDER_CRITERIA
+from .ensemble import AMPLITUDE_VARIATION, TOLERANCE_FACTOR, perturbations
 from .statistics import overturning_probability
 
-EXCITATION_KEYS = ("design_pga", "suites", "scale", "records_dir")
-SCALE_METHODS = ("resultant_pga", "factor")
-DEFAULT_SUITE = "p695-farfield-pairs"
+GOVERNING_PAIRS = 2
+"""θ(t)/orbit histories kept for the report: the pairs with the largest 3D θ_max/α."""
+
+COMPLETED = (STATUS[ST_COMPLETED], STATUS[ST_OVERTURNED])
+"""Statuses of a cylinder analysis that ran to a conclusion."""
 
 
-def cylinder_excitation(project) -> tuple[list[str], str, float]:
-    """(suites of pairs, scaling method, target [m/s²] or factor) from ``[excitation]`` of a cylinder project.
-
-    ``scale = { method = "resultant_pga", target = "0.3 g" }`` or ``{ method = "factor", value = 1.2 }``;
-    ``design_pga`` alone means resultant-PGA scaling to it.  Default: resultant PGA 1.5 g tan α (the thesis's
-    Table 5.4 level relative to uplift)."""
-    from ..motions.pairs import PAIR_SUITES
-    raw = project.excitation_raw or {}
-    file, g = project.path, project.system.g
-    for key in raw:
-        if key not in EXCITATION_KEYS:
-            raise ProjectError("unknown key for a cylinder", file=file, key=f"excitation.{key}",
-                               expected="one of " + ", ".join(EXCITATION_KEYS), found=f"'{key}'")
-    suites = raw.get("suites", [DEFAULT_SUITE])
-    if not isinstance(suites, list) or not all(isinstance(s, str) for s in suites) or not suites:
-        raise ProjectError("wrong type", file=file, key="excitation.suites", expected="a list of suite names",
-                           found=repr(suites))
-    for s in suites:
-        if s not in PAIR_SUITES:
-            raise ProjectError("a cylinder needs suites of record pairs", file=file, key="excitation.suites",
-                               expected="one of " + ", ".join(PAIR_SUITES), found=repr(s))
-
-    def accel(value, key):
-        try:
-            v = parse_quantity(value, "acceleration", gravity=g)
-        except QuantityParseError as exc:
-            raise ProjectError(f"expects {exc}", file=file, key=key) from None
-        if not v > 0:
-            raise ProjectError("must be positive", file=file, key=key, expected="an acceleration > 0", found=repr(value))
-        return v
-
-    if "scale" in raw:
-        rule = raw["scale"]
-        if not isinstance(rule, dict) or rule.get("method") not in SCALE_METHODS:
-            raise ProjectError("invalid scaling for a cylinder", file=file, key="excitation.scale",
-                               expected='{ method = "resultant_pga", target = "0.3 g" } or { method = "factor", '
-                                        'value = 1.2 }', found=repr(rule))
-        if rule["method"] == "resultant_pga":
-            if set(rule) != {"method", "target"}:
-                raise ProjectError("resultant_pga scaling takes a target", file=file, key="excitation.scale",
-                                   expected='{ method = "resultant_pga", target = "0.3 g" }', found=repr(rule))
-            return suites, "resultant_pga", accel(rule["target"], "excitation.scale.target")
-        value = rule.get("value")
-        if set(rule) != {"method", "value"} or isinstance(value, bool) or not isinstance(value, (int, float)) \
-                or not value > 0:
-            raise ProjectError("factor scaling takes a positive value", file=file, key="excitation.scale",
-                               expected='{ method = "factor", value = 1.2 }', found=repr(rule))
-        return suites, "factor", float(value)
-    if "design_pga" in raw:
-        return suites, "resultant_pga", accel(raw["design_pga"], "excitation.design_pga")
-    return suites, "resultant_pga", 1.5 * g * project.system.tan_alpha
-
-
-def planar_block(cyl):
+def planar_block(cyl) -> RockingSystem:
     """The planar Housner model of the cylinder: a block with λ = I1*/R² = (3 + cos²α)/12 (Eq 5.20) and
     c_r of Eq 5.41."""
-    from ..cylinder.quantities import restitution_root
-    from ..systems import Column, RockingSystem
     lam = (3.0 + math.cos(cyl.alpha) ** 2) / 12.0
     system = RockingSystem(f"{cyl.name} (planar)", "column", Column(cyl.half_height, cyl.base_radius, cyl.mass, lam),
                            g=cyl.g)
     return system.with_restitution(restitution_root(cyl.alpha) ** 2)
 
 
-def _planar_component(block, samples, dt, a):
-    from ..dynamics.simulate import simulate
-    from ..motions.motion import record_motion
+@dataclasses.dataclass(frozen=True)
+class PairRun:
+    """The 3D response to one pair in the terms the criteria read (:class:`~rockdesign.checks.criteria.CheckContext`).
+
+    ``status`` is "completed" for an analysis that ran to a conclusion (overturned or not:
+    ``overturned`` says which) and the engine's status otherwise; ``engine_status`` is the engine's own
+    word (results.json ``status``).  ``theta_max_over_theta_c`` is θ_max/θ_ot (θ_ot: the 3D overturning tilt).
+    """
+
+    theta_max_over_alpha: float
+    theta_max_over_theta_c: float
+    overturned: bool
+    overturn_mode: str
+    quasi_impacts: int
+    uplift_time: float | None
+    engine_status: str
+    min_contact_force_over_weight: float | None = None
+
+    @property
+    def status(self) -> str:
+        return "completed" if self.engine_status in COMPLETED else self.engine_status
+
+
+@dataclasses.dataclass
+class PairOutcome:
+    """One record pair of the suite — one ground motion — with its 3D run, the planar runs along each
+    component and Polyakov's ratio per component.
+
+    Units: ``scale`` [-] (factor on the pair as recorded), ``resultant_pga`` [m/s²] (scaled); the planar
+    dicts hold θ_max/α [-], overturned, impacts.
+    """
+
+    id: str
+    suite: str
+    meta: dict
+    scale: float
+    resultant_pga: float
+    run: PairRun
+    planar_x: dict
+    planar_y: dict
+    polyakov_ratio_x: float
+    polyakov_ratio_y: float
+    damped: bool = False
+    ensemble_fraction: float | None = None
+    outcome_robust: bool | None = None
+    margin: None = None           # (no incremental analysis of pairs: IncrementalMargin is not a cylinder criterion)
+    klass: str = ""               # (Fig 4.9 classes are planar)
+
+    @property
+    def ground_motion(self) -> str:
+        """The ground motion this outcome belongs to: for a cylinder, the record pair itself."""
+        return self.id
+
+    @property
+    def polyakov_ratio(self) -> float:
+        """SD_max/2B of the worse component [-] (information only)."""
+        return max(self.polyakov_ratio_x, self.polyakov_ratio_y)
+
+    @property
+    def planar_theta_max_over_alpha(self) -> float:
+        return max(self.planar_x["theta_max_over_alpha"], self.planar_y["theta_max_over_alpha"])
+
+    @property
+    def planar_overturned(self) -> bool:
+        return self.planar_x["overturned"] or self.planar_y["overturned"]
+
+    def as_json(self) -> dict:
+        r = self.run
+        row = {"id": self.id, "ground_motion": self.ground_motion, "suite": self.suite,
+               "event": self.meta.get("event"), "station": self.meta.get("station"), "scale": self.scale,
+               "resultant_pga": self.resultant_pga, "theta_max_over_alpha": r.theta_max_over_alpha,
+               "overturned": r.overturned, "overturn_mode": r.overturn_mode, "quasi_impacts": r.quasi_impacts,
+               "uplift_time": r.uplift_time, "status": r.engine_status}
+        if self.damped:
+            row["min_contact_force_over_weight"] = r.min_contact_force_over_weight
+        row.update(polyakov_ratio_x=self.polyakov_ratio_x, planar_x=self.planar_x,
+                   polyakov_ratio_y=self.polyakov_ratio_y, planar_y=self.planar_y,
+                   planar_theta_max_over_alpha=self.planar_theta_max_over_alpha,
+                   planar_overturned=self.planar_overturned, theta_max_over_theta_ot=r.theta_max_over_theta_c,
+                   analysis_failed=r.status != "completed", ensemble_overturn_fraction=self.ensemble_fraction,
+                   outcome_robust=self.outcome_robust)
+        return row
+
+
+def _run_3d(cyl, pair, a, *, rtol=None, atol=None) -> PairRun:
+    r = simulate_cylinder(cyl, pair, free_vibration=a.free_vibration, rtol=rtol or a.rtol, atol=atol or a.atol,
+                          rest_velocity=a.rest_velocity)
+    return PairRun(r.theta_max / cyl.alpha, r.theta_max / cyl.theta_overturn, r.overturned, r.overturn_mode,
+                   r.quasi_impacts, r.uplift_time, r.status,
+                   r.min_contact_force_over_weight if cyl.damped else None)
+
+
+def _planar_component(block, samples, dt, a) -> dict:
     motion = record_motion("component", samples, dt)
     r = simulate(block, motion, model="exact", rtol=a.rtol, atol=a.atol, t_end=motion.duration + a.free_vibration,
                  overturn="static", rest_velocity=a.rest_velocity)
     return {"theta_max_over_alpha": r.theta_max_over_alpha, "overturned": bool(r.overturned), "impacts": r.impacts}
 
 
-def run_cylinder_check(project, progress=None) -> dict:
-    """The cylinder check: results as a JSON-ready dict (records, summary, checks, verdict)."""
-    from ..cylinder.quantities import quantities_json
-    from ..cylinder.engine import simulate_cylinder
-    from ..motions.pairs import suite_pairs
-    from ..motions.spectra import sd_max_of_samples
-    cyl, a = project.system, project.analysis
-    suites, method, target = cylinder_excitation(project)
-    pairs = [(s, p) for s in suites for p in suite_pairs(s, gravity=cyl.g)]
-    block = planar_block(cyl)
-    records = []
-    for i, (suite, pair) in enumerate(pairs):
-        factor = target / pair.resultant_pga if method == "resultant_pga" else target
-        scaled = pair.scaled(factor)
-        r = simulate_cylinder(cyl, scaled, free_vibration=a.free_vibration, rtol=a.rtol, atol=a.atol,
-                              rest_velocity=a.rest_velocity)
-        row = {"id": pair.meta.get("id", pair.name), "suite": suite, "event": pair.meta.get("event"),
-               "station": pair.meta.get("station"), "scale": factor, "resultant_pga": scaled.resultant_pga,
-               "theta_max_over_alpha": r.theta_max / cyl.alpha, "overturned": r.overturned,
-               "overturn_mode": r.overturn_mode, "quasi_impacts": r.quasi_impacts, "uplift_time": r.uplift_time,
-               "status": r.status}
-        if cyl.damped:
-            row["min_contact_force_over_weight"] = r.min_contact_force_over_weight
-        for comp, samples in (("x", pair.x), ("y", pair.y)):
-            accel = factor * samples
-            sd, _ = sd_max_of_samples(accel, pair.dt, a.sdmax_damping, a.sdmax_band)
-            row[f"polyakov_ratio_{comp}"] = sd / (2.0 * cyl.base_radius)
-            planar = _planar_component(block, accel, pair.dt, a)
-            row[f"planar_{comp}"] = planar
-        row["planar_theta_max_over_alpha"] = max(row["planar_x"]["theta_max_over_alpha"],
-                                                 row["planar_y"]["theta_max_over_alpha"])
-        row["planar_overturned"] = row["planar_x"]["overturned"] or row["planar_y"]["overturned"]
-        records.append(row)
-        if progress is not None:
-            progress("cylinder and planar analyses", i + 1, len(pairs))
-    n = len(records)
-    k3 = sum(r["overturned"] for r in records)
-    kp = sum(r["planar_overturned"] for r in records)
-    p3, lo3, hi3 = overturning_probability(k3, n, 0.90)
-    pp, lop, hip = overturning_probability(kp, n, 0.90)
-    unconservative = [r["id"] for r in records if r["overturned"] and not r["planar_overturned"]]
-    survived = [r for r in records if not r["overturned"] and not r["planar_overturned"]]
-    summary = {
-        "n_records": n, "n_overturned": k3, "p_overturn": p3, "p_overturn_ci90": [lo3, hi3],
-        "median_theta_max_over_alpha": pystats.median(r["theta_max_over_alpha"] for r in records),
-        "total_quasi_impacts": sum(r["quasi_impacts"] for r in records),
-        "planar": {"n_overturned": kp, "p_overturn": pp, "p_overturn_ci90": [lop, hip],
-                   "median_theta_max_over_alpha": pystats.median(r["planar_theta_max_over_alpha"] for r in records),
-                   "criterion": "θ_max ≥ α along either component (Housner block of equal inertia, c_r Eq 5.41)"},
-        "difference_p_overturn": p3 - pp,
-        "n_planar_unconservative": len(unconservative), "planar_unconservative_records": unconservative,
-        "median_theta_ratio_3d_over_planar": pystats.median(
-            r["theta_max_over_alpha"] / r["planar_theta_max_over_alpha"] for r in survived
-            if r["planar_theta_max_over_alpha"] > 0) if survived else None,
-        "max_polyakov_ratio": max(max(r["polyakov_ratio_x"], r["polyakov_ratio_y"]) for r in records),
-        "scaling": {"method": method, "target" if method == "resultant_pga" else "value": target},
-    }
-    limit = a.overturn_probability_limit
-    planar_ok = len(unconservative) == 0 and kp >= k3
-    checks = [
-        {"name": f"RHA (3D): P(overturn) ≤ {100 * limit:g} % at 95 % confidence (θ reaching θ_ot = "
-                 f"{cyl.overturn_tilt:g}α counts as overturning)",
-         "utilisation": hi3 / limit if limit > 0 else math.inf, "passed": hi3 <= limit, "governs_verdict": True,
-         "detail": f"{k3} of {n} record pairs overturn; P = {p3:.3g}, 90 % interval [{lo3:.3g}, {hi3:.3g}]"},
-        {"name": "Does a planar analysis suffice? (Housner along each component)",
-         "utilisation": (k3 / kp) if kp else (math.inf if k3 else 0.0), "passed": planar_ok, "governs_verdict": False,
-         "detail": f"planar: {kp} of {n} overturn (P = {pp:.3g}); 3D − planar ΔP = {p3 - pp:+.3g}; "
-                   f"{len(unconservative)} pair(s) overturn in 3D but not in the planar analysis"},
-        {"name": "Polyakov rule 2 per component: median SD_max < 2B (information)",
-         "utilisation": float(np.median([max(r["polyakov_ratio_x"], r["polyakov_ratio_y"]) for r in records])),
-         "passed": True, "governs_verdict": False, "detail": "informative only: Polyakov's rule is planar"},
-    ]
-    verdict = "PASS" if all(c["passed"] for c in checks if c["governs_verdict"]) else "FAIL"
-    cylinder = {"height": 2.0 * cyl.half_height, "diameter": 2.0 * cyl.base_radius, "slenderness": cyl.tan_alpha,
-                "mass": cyl.mass, "contact": cyl.contact, "overturn_tilt": cyl.overturn_tilt, "g": cyl.g}
-    if cyl.damped:
-        cylinder.update(contact_frequency=cyl.contact_frequency, contact_damping=cyl.contact_damping)
-    settings = {"rtol": a.rtol, "atol": a.atol, "rest_velocity": a.rest_velocity, "free_vibration": a.free_vibration,
-                "overturn_probability_limit": limit, "sd_max_damping": a.sdmax_damping,
-                "sd_max_band": list(a.sdmax_band)}
-    return {"project": {"name": project.name, "file": project.path, "system": "cylinder", "contact": cyl.contact},
-            "cylinder": cylinder, "units": CYLINDER_UNITS, "suites": suites, "settings": settings,
-            "quantities": quantities_json(project)["quantities"],
-            "model": {"chosen": "cylinder-" + ("damped" if cyl.damped else "undamped"),
-                      "reason": "[cylinder] project: the 3D rocking and wobbling model of thesis Ch. 5"},
-            "records": records, "summary": summary, "checks": checks, "verdict": verdict}
-
-
-GOVERNING_PAIRS = 2
-"""θ(t)/orbit histories kept for the report: the pairs with the largest 3D θ_max/α."""
-
-FIGURE_FILES = ("cylinder_vs_planar.png", "wobbling_period.png")
-"""The figures written beside results.json (besides the report, which embeds its own)."""
+def _median(values) -> float | None:
+    """The median, None for no values (a suite where nothing rocks has no ratio to take the median of)."""
+    values = list(values)
+    return float(np.median(values)) if values else None
 
 
 @dataclasses.dataclass
 class CylinderCheckResult:
-    """The check of a cylinder project: ``as_json()`` is results.json (``check --json``).
+    """The check of a cylinder project: ``as_json()`` is results.json (``check --json``), with the sections
+    of a planar check (project, quantities, model, excitation, records, summary, sensitivity, verdict,
+    verdict_reason, verdict_robust, failed_records, checks, settings, fragility, collapse_margin,
+    ensemble) and the cylinder's own (cylinder, units, suites).
 
     ``histories`` maps the ids of the governing pairs (largest 3D θ_max/α) to
     ``(CylinderResponse, scaled MotionPair)`` for the report's θ(t)/orbit figures.
     """
 
     project: object
-    data: dict
+    records: list[PairOutcome]
+    summary: dict
+    checks: list[dict]
+    verdict: str
+    verdict_reason: str
+    verdict_robust: bool
+    governing_check: str | None
+    ensemble: dict | None
     histories: dict = dataclasses.field(default_factory=dict)
 
     @property
-    def verdict(self) -> str:
-        return self.data["verdict"]
+    def statistics(self) -> dict:
+        return self.summary
 
     @property
-    def records(self) -> list[dict]:
-        return self.data["records"]
-
-    @property
-    def checks(self) -> list[dict]:
-        return self.data["checks"]
-
-    @property
-    def summary(self) -> dict:
-        return self.data["summary"]
+    def failed_records(self) -> list[PairOutcome]:
+        return [o for o in self.records if o.run.status != "completed"]
 
     def as_json(self) -> dict:
-        return self.data
+        p, cyl, a = self.project, self.project.system, self.project.analysis
+        e = p.excitation
+        cylinder = {"height": 2.0 * cyl.half_height, "diameter": 2.0 * cyl.base_radius, "slenderness": cyl.tan_alpha,
+                    "mass": cyl.mass, "contact": cyl.contact, "overturn_tilt": cyl.overturn_tilt, "g": cyl.g}
+        if cyl.damped:
+            cylinder.update(contact_frequency=cyl.contact_frequency, contact_damping=cyl.contact_damping)
+        settings = {"rtol": a.rtol, "atol": a.atol, "rest_velocity": a.rest_velocity,
+                    "free_vibration": a.free_vibration, "overturn_probability_limit": a.overturn_probability_limit,
+                    "sd_max_damping": a.sdmax_damping, "sd_max_band": list(a.sdmax_band)}
+        quantities = {k: q.as_json() for k, q in cylinder_quantities(cyl).items()}
+        return {"project": {"name": p.name, "file": p.path, "system": "cylinder", "contact": cyl.contact,
+                            "kind": "cylinder", "sha256": p.sha256,
+                            **{k: v for k, v in p.info.items() if k != "name"}, "tool_version": __version__,
+                            "warnings": list(p.warnings)},
+                "cylinder": cylinder, "units": CYLINDER_UNITS, "suites": list(e.suites), "settings": settings,
+                "quantities": quantities,
+                "model": {"chosen": "cylinder-" + ("damped" if cyl.damped else "undamped"),
+                          "reason": "[cylinder] project: the 3D rocking and wobbling model of thesis Ch. 5"},
+                "excitation": {"suites": list(e.suites), "scaling": e.as_json(), "default_used": e.default_used,
+                               "missing": [], "record_warnings": []},
+                "records": [o.as_json() for o in self.records], "summary": self.summary,
+                "sensitivity": dict(SENSITIVITY),
+                "checks": self.checks, "verdict": self.verdict, "verdict_reason": self.verdict_reason,
+                "verdict_robust": self.verdict_robust,
+                "failed_records": [{"id": o.id, "status": o.run.engine_status} for o in self.failed_records],
+                "fragility": None, "collapse_margin": None, "ensemble": self.ensemble}
+
+
+SENSITIVITY = {"variation": None, "runs": {}, "verdict_flips": 0,
+               "note": "no c_r ± variation for a cylinder under record pairs: the 3D model has no impact law "
+                       "(quasi-impacts are resolved by the step control, docs/cylinder.md); its robustness is "
+                       "the perturbation ensemble"}
+"""results.json ``sensitivity`` of a cylinder check (the section of a planar check, saying why it is empty)."""
+
+
+def _summary(records: list[PairOutcome], e, ensemble: dict | None) -> dict:
+    valid = [o for o in records if o.run.status == "completed"]
+    n = len(valid)
+    k3 = sum(o.run.overturned for o in valid)
+    kp = sum(o.planar_overturned for o in valid)
+    p3, lo3, hi3 = overturning_probability(k3, n, 0.90)
+    pp, lop, hip = overturning_probability(kp, n, 0.90)
+    unconservative = [o.id for o in valid if o.run.overturned and not o.planar_overturned]
+    survived = [o for o in valid if not o.run.overturned and not o.planar_overturned]
+    return {
+        "n_records": n, "n_overturned": k3, "p_overturn": p3, "p_overturn_ci90": [lo3, hi3],
+        "median_theta_max_over_alpha": _median(o.run.theta_max_over_alpha for o in valid),
+        "total_quasi_impacts": sum(o.run.quasi_impacts for o in valid),
+        "planar": {"n_overturned": kp, "p_overturn": pp, "p_overturn_ci90": [lop, hip],
+                   "median_theta_max_over_alpha": _median(o.planar_theta_max_over_alpha for o in valid),
+                   "criterion": "θ_max ≥ α along either component (Housner block of equal inertia, c_r Eq 5.41)"},
+        "difference_p_overturn": p3 - pp,
+        "n_planar_unconservative": len(unconservative), "planar_unconservative_records": unconservative,
+        "median_theta_ratio_3d_over_planar": _median(
+            o.run.theta_max_over_alpha / o.planar_theta_max_over_alpha for o in survived
+            if o.planar_theta_max_over_alpha > 0),
+        "max_polyakov_ratio": max((o.polyakov_ratio for o in valid), default=None),
+        "scaling": e.as_json(),
+        "overturn_criterion": "θ reaching θ_ot",
+        "n_failed": len(records) - n,
+        "p_overturn_ensemble": None if ensemble is None else ensemble["p_overturn"],
+    }
+
+
+def _ensembles(cyl, pairs, factors, nominal: list[PairRun], a, progress) -> dict | None:
+    """The perturbation ensemble (thesis Ch. 7): ``ensemble_size`` runs of the whole suite, each pair's
+    amplitude × (1 ± 0.1 %) and the tolerances one decade tighter; None for ``ensemble_size = 0``."""
+    size, n = a.ensemble_size, len(pairs)
+    if not size:
+        return None
+    amplitude, _ = perturbations(n, size, a.seed)
+    overturned = np.zeros((size, n), dtype=bool)
+    for m in range(size):
+        for i, pair in enumerate(pairs):
+            run = _run_3d(cyl, pair.scaled(factors[i] * amplitude[m, i]), a, rtol=a.rtol * TOLERANCE_FACTOR,
+                          atol=a.atol * TOLERANCE_FACTOR)
+            overturned[m, i] = run.overturned
+            if progress is not None:
+                progress(f"perturbation ensembles ({size} runs per pair)", m * n + i + 1, size * n)
+    nominal_ot = np.array([r.overturned for r in nominal], dtype=bool)
+    fractions = overturned.mean(axis=0)
+    robust = (overturned == nominal_ot[None, :]).all(axis=0)
+    return {"overturned": overturned, "restitution": np.ones(size), "robust": robust, "fractions": fractions,
+            "size": size, "seed": a.seed, "amplitude_variation": AMPLITUDE_VARIATION,
+            "tolerance_factor": TOLERANCE_FACTOR, "p_overturn": float(fractions.mean()),
+            "n_not_robust": int((~robust).sum())}
+
+
+def run_cylinder_check(project, progress=None) -> CylinderCheckResult:
+    """The cylinder check (see module docstring): typed outcomes, the criteria and the one verdict."""
+    cyl, a, e = project.system, project.analysis, project.excitation
+    pairs = [(s, p) for s in e.suites for p in suite_pairs(s, gravity=cyl.g)]
+    block = planar_block(cyl)
+    records, factors = [], []
+    for i, (suite, pair) in enumerate(pairs):
+        factor = e.factor(pair.resultant_pga)
+        scaled = pair.scaled(factor)
+        planar, ratios = {}, {}
+        for comp, samples in (("x", pair.x), ("y", pair.y)):
+            accel = factor * samples
+            sd, _ = sd_max_of_samples(accel, pair.dt, a.sdmax_damping, a.sdmax_band)
+            ratios[comp] = sd / (2.0 * cyl.base_radius)
+            planar[comp] = _planar_component(block, accel, pair.dt, a)
+        records.append(PairOutcome(pair.meta.get("id", pair.name), suite, pair.meta, factor, scaled.resultant_pga,
+                                   _run_3d(cyl, scaled, a), planar["x"], planar["y"], ratios["x"], ratios["y"],
+                                   cyl.damped))
+        factors.append(factor)
+        if progress is not None:
+            progress("cylinder and planar analyses", i + 1, len(pairs))
+    ens = _ensembles(cyl, [p for _, p in pairs], factors, [o.run for o in records], a, progress)
+    if ens is not None:
+        for i, o in enumerate(records):
+            o.ensemble_fraction, o.outcome_robust = float(ens["fractions"][i]), bool(ens["robust"][i])
+    summary = _summary(records, e, ens)
+    summary["min_records_for_bound"] = minimum_records(a.overturn_probability_limit)
+    context = CheckContext(records, a, {}, {}, margins_run=False,
+                           extra={"ensemble": ens, "cylinder": cyl, "summary": summary})
+    items, skipped = evaluate_criteria(context, CYLINDER_CRITERIA)
+    decision = decide(items, skipped)
+    checks = [i.as_json() for i in items]
+    checks.sort(key=lambda c: (not c["governs_verdict"], -c["utilisation"]))
+    ensemble_json = None if ens is None else {
+        k: ens[k] for k in ("size", "seed", "amplitude_variation", "tolerance_factor", "p_overturn", "n_not_robust")}
+    return CylinderCheckResult(project, records, summary, checks, decision.verdict, decision.reason,
+                               decision.robust, decision.governing, ensemble_json)
 
 
 def governing_ids(data: dict, n: int = GOVERNING_PAIRS) -> list[str]:
@@ -241,17 +328,15 @@ def governing_ids(data: dict, n: int = GOVERNING_PAIRS) -> list[str]:
 def cylinder_check(project, progress=None) -> CylinderCheckResult:
     """:func:`run_cylinder_check` plus the histories of the governing pairs (re-analysed: the engine is
     deterministic, so they are the histories behind the rows of results.json)."""
-    from ..cylinder.engine import simulate_cylinder
-    from ..motions.pairs import load_pair
-    data = run_cylinder_check(project, progress=progress)
+    result = run_cylinder_check(project, progress=progress)
     cyl, a = project.system, project.analysis
-    rows = {r["id"]: r for r in data["records"]}
-    histories = {}
-    for rid in governing_ids(data):
-        pair = load_pair(rid, gravity=cyl.g).scaled(rows[rid]["scale"])
-        histories[rid] = (simulate_cylinder(cyl, pair, free_vibration=a.free_vibration, rtol=a.rtol, atol=a.atol,
-                                            rest_velocity=a.rest_velocity), pair)
-    return CylinderCheckResult(project, data, histories)
+    by_id = {o.id: o for o in result.records}
+    pairs = {p.meta.get("id", p.name): p for s in project.excitation.suites for p in suite_pairs(s, gravity=cyl.g)}
+    for rid in governing_ids(result.as_json()):
+        pair = pairs[rid].scaled(by_id[rid].scale)
+        result.histories[rid] = (simulate_cylinder(cyl, pair, free_vibration=a.free_vibration, rtol=a.rtol,
+                                                   atol=a.atol, rest_velocity=a.rest_velocity), pair)
+    return result
 
 
 CYLINDER_UNITS = {"height": "m", "diameter": "m", "slenderness": "-", "mass": "kg", "overturn_tilt": "-",
@@ -262,47 +347,6 @@ CYLINDER_UNITS = {"height": "m", "diameter": "m", "slenderness": "-", "mass": "k
 
 CSV_COLUMNS = ["id", "suite", "event", "station", "scale", "resultant_pga", "theta_max_over_alpha", "overturned",
                "overturn_mode", "quasi_impacts", "uplift_time", "planar_theta_max_over_alpha", "planar_overturned",
-               "polyakov_ratio_x", "polyakov_ratio_y", "min_contact_force_over_weight"]
-
-
-def write_cylinder_results(data: dict, out_dir) -> None:
-    """results.json, results.csv and a figure (3D against planar θ_max/α per record pair) into ``out_dir``."""
-    import csv
-    import json
-    from pathlib import Path
-
-    from ..plots import save
-    out_dir = Path(out_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
-    (out_dir / "results.json").write_text(json.dumps(data, indent=2, ensure_ascii=False) + "\n", encoding="utf-8")
-    with open(out_dir / "results.csv", "w", newline="", encoding="utf-8") as fh:
-        w = csv.writer(fh)
-        w.writerow(CSV_COLUMNS)
-        for row in data["records"]:
-            w.writerow(["" if row.get(c) is None else row.get(c) for c in CSV_COLUMNS])
-    save(comparison_figure(data), out_dir / "cylinder_vs_planar.png")
-
-
-def comparison_figure(data: dict, cap: float = 2.0):
-    """3D θ_max/α against the planar Housner θ_max/α (worse component) per record pair; planar values
-    beyond ``cap`` (the planar block overturned) are drawn at ``cap``."""
-    from ..plots import STYLE, plt
-    tilt = data.get("cylinder", {}).get("overturn_tilt")
-    with plt.rc_context(STYLE):
-        fig, ax = plt.subplots(figsize=(5.0, 4.6))
-        x = np.minimum([r["planar_theta_max_over_alpha"] for r in data["records"]], cap)
-        y = np.array([r["theta_max_over_alpha"] for r in data["records"]])
-        ot = np.array([r["overturned"] for r in data["records"]])
-        top = max(cap, float(np.max(y)) * 1.05)
-        ax.plot([0, cap], [0, cap], color="0.6", lw=0.8)
-        ax.axvline(1.0, color="0.3", lw=0.7, ls=":", label="planar overturning (θ_max = α)")
-        if tilt:
-            ax.axhline(tilt, color="C3", lw=0.7, ls="--", label="θ_ot (3D overturning)")
-        ax.scatter(x[~ot], y[~ot], s=14, color="C0", label="3D survives")
-        ax.scatter(x[ot], y[ot], s=18, color="C3", marker="x", label="3D overturns (θ_ot)")
-        ax.set_xlim(0, cap * 1.03)
-        ax.set_ylim(0, top * 1.03)
-        ax.set_xlabel(f"planar Housner θ_max/α (worse component; drawn at {cap:g} beyond)")
-        ax.set_ylabel("3D cylinder θ_max/α")
-        ax.legend(fontsize=7, loc="upper left")
-        return fig
+               "polyakov_ratio_x", "polyakov_ratio_y", "min_contact_force_over_weight",
+               "ensemble_overturn_fraction", "outcome_robust", "status", "analysis_failed"]
+"""Columns of a cylinder check's results.csv (one row per record pair)."""

@@ -10,7 +10,7 @@ from pathlib import Path
 def cylinder_spectrum_command(project, project_path, record, x, y, relative, out, as_json, figures, console) -> None:
     """Compute the cylinder spectrum (and the reference's for ``--relative``), write npz/json/figures."""
     from ..motions.pairs import parse_pair
-    from ..project import load_project
+    from ..library import load_project
     from ..cylinder.spectrum_output import write_cylinder_spectrum
     from ..cylinder.spectrum import CylinderSpectrumError, cylinder_spectrum, parse_cylinder_axis
     if not record:

@@ -151,7 +151,7 @@ def register(app: typer.Typer, handle_errors) -> None:
         """Back-calculate p, λ and c_r (left/right) from a free-vibration test (thesis Sec 6.3.5, 6.4.3)."""
         from ..experiments.calibrate import calibrate as run, simulated_history
         from ..experiments.free_vibration import read_tilt_csv
-        from ..project import load_project
+        from ..library import load_project
         proj = load_project(project)
         history = read_tilt_csv(free_vibration)
         cal = run(proj.system, history, max_half_cycles=half_cycles, min_amplitude=min_amplitude)
@@ -220,7 +220,7 @@ def register(app: typer.Typer, handle_errors) -> None:
                  as_json: bool = typer.Option(False, "--json", metavar=" ", help="Print the results as JSON.")):
         """Run a project over a ground-motion ensemble and write the analyses.csv that 'validate' reads."""
         from ..experiments.ensemble import run_ensemble, write_analyses_csv
-        from ..project import load_project
+        from ..library import load_project
         proj = load_project(project)
         err = Console(stderr=True)
         with Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),

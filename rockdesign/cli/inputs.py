@@ -86,7 +86,7 @@ def compile_kernels(command: str, say=None) -> float:
     once per installation, ~N s") with ``say`` (default: print on stderr): the step after the input was
     checked and before the analyses (:func:`rockdesign.dynamics.compilation.prepare`); seconds spent (0
     when all are cached)."""
-    from ..dynamics.compilation import prepare
+    from ..library import compile_kernels as prepare
     if say is None:
         from rich.console import Console
         say = Console(stderr=True).print

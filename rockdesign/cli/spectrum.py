@@ -82,7 +82,7 @@ def register(app: typer.Typer, handle_errors) -> None:
     ):
         """Rocking spectra: θ_max/α, overturning by impacts, limit states, Polyakov's line (docs/spectra.md)."""
         from ..errors import RockdesignError
-        from ..project import load_project
+        from ..library import load_project
         from ..spectra.axes import parse_axis
         from ..execution.executor import make_executor
         from ..spectra.kernel import warm_up

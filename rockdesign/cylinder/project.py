@@ -18,10 +18,15 @@ keys (``model``, ``equations``, ``overturn``...).
 """
 from __future__ import annotations
 
+import difflib
 import hashlib
 import math
+from dataclasses import dataclass
 
 from ..errors import ProjectError
+from ..motions.pairs import PAIR_SUITES
+from ..project_tables import Project, _parse_analysis, _Table, project_info
+from ..units import QuantityParseError, parse_quantity
 from .system import (CONTACTS, DEFAULT_CONTACT_DAMPING, DEFAULT_CONTACT_FREQUENCY, DEFAULT_OVERTURN_TILT,
                      Cylinder)
 
@@ -32,6 +37,106 @@ PLANAR_ONLY_KEYS = ("width", "extended_width", "radius", "curvature", "depth", "
 PLANAR_ANALYSIS_KEYS = ("model", "equations", "overturn", "linearization_tolerance", "restitution_variation",
                         "rigid_superstructure_ratio")
 PLANAR_SECTIONS = ("column", "podium", "superstructure")
+EXCITATION_KEYS = ("design_pga", "suites", "scale", "records_dir")
+SCALE_METHODS = ("resultant_pga", "factor")
+DEFAULT_SUITE = "p695-farfield-pairs"
+
+
+def claims(raw: dict) -> bool:
+    """True when a TOML document describes a cylinder: a ``[cylinder]`` section, or ``[analysis]
+    overturn_tilt`` (which only a cylinder has; the parser then says what is missing)."""
+    analysis = raw.get("analysis")
+    return "cylinder" in raw or "overturn_tilt" in (analysis if isinstance(analysis, dict) else {})
+
+
+@dataclass(frozen=True)
+class CylinderExcitation:
+    """The ``[excitation]`` table of a cylinder project, parsed at load (SI).
+
+    Attributes:
+        suites: suites of record pairs (``rockdesign.motions.pairs.PAIR_SUITES``), in order.
+        method: ``resultant_pga`` (each pair scaled to a peak resultant ground acceleration, Table 5.4)
+            or ``factor`` (every pair multiplied by one factor).
+        target: the resultant PGA [m/s²] (``resultant_pga``) or the factor [-] (``factor``).
+        records_dir: folder of the user's PEER AT2 files for ``simulate`` motions, or None.
+        default_used: True when neither ``scale`` nor ``design_pga`` was given (1.5 g tan α, Table 5.4's
+            level relative to uplift).
+    """
+
+    suites: tuple[str, ...] = (DEFAULT_SUITE,)
+    method: str = "resultant_pga"
+    target: float = 0.0
+    records_dir: str | None = None
+    default_used: bool = True
+
+    def factor(self, resultant_pga: float) -> float:
+        """The factor on a pair whose peak resultant ground acceleration is ``resultant_pga`` [m/s²]."""
+        return self.target / resultant_pga if self.method == "resultant_pga" else self.target
+
+    def as_json(self) -> dict:
+        """``summary.scaling`` of results.json."""
+        return {"method": self.method, "target" if self.method == "resultant_pga" else "value": self.target}
+
+
+def parse_cylinder_excitation(raw: dict | None, *, file: str, g: float, tan_alpha: float) -> CylinderExcitation:
+    """The typed ``[excitation]`` of a cylinder project (every command validates it at load).
+
+    ``scale = { method = "resultant_pga", target = "0.3 g" }`` or ``{ method = "factor", value = 1.2 }``;
+    ``design_pga`` alone means resultant-PGA scaling to it.  Default: resultant PGA 1.5 g tan α (the
+    thesis's Table 5.4 level relative to uplift)."""
+    raw = raw or {}
+    if not isinstance(raw, dict):
+        raise ProjectError("must be a table", file=file, key="excitation", expected="an [excitation] table",
+                           found=repr(raw))
+    for key in raw:
+        if key not in EXCITATION_KEYS:
+            raise ProjectError("unknown key for a cylinder", file=file, key=f"excitation.{key}",
+                               expected="one of " + ", ".join(EXCITATION_KEYS), found=f"'{key}'")
+    suites = raw.get("suites", [DEFAULT_SUITE])
+    if not isinstance(suites, list) or not all(isinstance(s, str) for s in suites) or not suites:
+        raise ProjectError("wrong type", file=file, key="excitation.suites", expected="a list of suite names",
+                           found=repr(suites))
+    for s in suites:
+        if s not in PAIR_SUITES:
+            raise ProjectError("a cylinder needs suites of record pairs", file=file, key="excitation.suites",
+                               expected="one of " + ", ".join(PAIR_SUITES), found=repr(s))
+    records_dir = raw.get("records_dir")
+    if records_dir is not None and not isinstance(records_dir, str):
+        raise ProjectError("wrong type", file=file, key="excitation.records_dir", expected="a folder name",
+                           found=repr(records_dir))
+
+    def accel(value, key):
+        try:
+            v = parse_quantity(value, "acceleration", gravity=g)
+        except QuantityParseError as exc:
+            raise ProjectError(f"expects {exc}", file=file, key=key) from None
+        if not v > 0:
+            raise ProjectError("must be positive", file=file, key=key, expected="an acceleration > 0", found=repr(value))
+        return v
+
+    def typed(method, target, default_used=False):
+        return CylinderExcitation(tuple(suites), method, float(target), records_dir, default_used)
+
+    if "scale" in raw:
+        rule = raw["scale"]
+        if not isinstance(rule, dict) or rule.get("method") not in SCALE_METHODS:
+            raise ProjectError("invalid scaling for a cylinder", file=file, key="excitation.scale",
+                               expected='{ method = "resultant_pga", target = "0.3 g" } or { method = "factor", '
+                                        'value = 1.2 }', found=repr(rule))
+        if rule["method"] == "resultant_pga":
+            if set(rule) != {"method", "target"}:
+                raise ProjectError("resultant_pga scaling takes a target", file=file, key="excitation.scale",
+                                   expected='{ method = "resultant_pga", target = "0.3 g" }', found=repr(rule))
+            return typed("resultant_pga", accel(rule["target"], "excitation.scale.target"))
+        value = rule.get("value")
+        if set(rule) != {"method", "value"} or isinstance(value, bool) or not isinstance(value, (int, float)) \
+                or not value > 0:
+            raise ProjectError("factor scaling takes a positive value", file=file, key="excitation.scale",
+                               expected='{ method = "factor", value = 1.2 }', found=repr(rule))
+        return typed("factor", value)
+    if "design_pga" in raw:
+        return typed("resultant_pga", accel(raw["design_pga"], "excitation.design_pga"))
+    return typed("resultant_pga", 1.5 * g * tan_alpha, default_used=True)
 
 
 def parse_cylinder_project(raw: dict, *, file: str = "<project>", text: str = ""):
@@ -40,9 +145,6 @@ def parse_cylinder_project(raw: dict, *, file: str = "<project>", text: str = ""
     The ``[analysis]`` table is validated by the planar loader, except ``overturn_tilt`` (read here)
     and the planar keys, which are refused.
     """
-    import difflib
-
-    from ..project_tables import Project, _parse_analysis, _Table
     sections = ("project", "cylinder", "excitation", "analysis")
     for section in raw:
         if section not in sections and section not in PLANAR_SECTIONS:
@@ -78,15 +180,13 @@ def parse_cylinder_project(raw: dict, *, file: str = "<project>", text: str = ""
                                    found=f"'{key}'", hint="the cylinder's inertia and contact follow from its "
                                    "height and diameter (Eqs 5.20-5.21)" if key == "mass_distribution" else None)
     t = _Table(data, "cylinder", CYLINDER_KEYS, file, analysis.g)
-    from ..project_tables import project_info
     info = project_info(raw, file, analysis.g, example="museum column")
     system = _parse_cylinder(t, info["name"], analysis.g, _overturn_tilt(analysis_raw, file))
     excitation = raw.get("excitation")
-    if excitation is not None and not isinstance(excitation, dict):
-        raise ProjectError("must be a table", file=file, key="excitation", expected="an [excitation] table",
-                           found=repr(excitation))
+    # parsed once, here: every command (quantities, simulate, check) rejects the same input
+    typed = parse_cylinder_excitation(excitation, file=file, g=analysis.g, tan_alpha=system.tan_alpha)
     return Project(file, info["name"], system, analysis, info, excitation, raw, text,
-                   hashlib.sha256(text.encode("utf-8")).hexdigest() if text else "", ())
+                   hashlib.sha256(text.encode("utf-8")).hexdigest() if text else "", (), typed)
 
 
 def _overturn_tilt(analysis_raw: dict, file: str) -> float:

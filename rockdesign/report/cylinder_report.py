@@ -16,8 +16,20 @@ from pathlib import Path
 
 import jinja2
 
+from .. import __version__
+from ..checks.cylinder_check import CSV_COLUMNS, governing_ids
+from ..cylinder.quantities import cylinder_quantities
 from ..paths import templates_dir
-from .formatting import DIGITS
+from ..plots import save
+from .context import report_date, software_versions
+from .cylinder_figures import comparison_figure, cylinder_history_figure, wobbling_figure
+from .figures import svg
+from .formatting import DIGITS, fmt
+from .render import environment, stylesheet, write_report
+from .results import write_results_csv, write_results_json
+
+FIGURE_FILES = ("cylinder_vs_planar.png", "wobbling_period.png")
+"""The figures written beside results.json (besides the report, which embeds its own)."""
 
 TEMPLATE = "cylinder_report.html.j2"
 
@@ -28,9 +40,6 @@ SCALING_TEXT = {"resultant_pga": "each pair scaled to a peak resultant ground ac
 
 def render_cylinder_figures(result) -> dict[str, str]:
     """Inline SVG of the report's figures: ``wobbling``, ``comparison`` and ``history:<pair id>``."""
-    from ..checks.cylinder_check import comparison_figure
-    from ..cylinder.figures import cylinder_history_figure, wobbling_figure
-    from .figures import svg
     cyl = result.project.system
     out = {"wobbling": svg(wobbling_figure(cyl), "wobbling"),
            "comparison": svg(comparison_figure(result.as_json()), "comparison")}
@@ -39,19 +48,8 @@ def render_cylinder_figures(result) -> dict[str, str]:
     return out
 
 
-def verdict_reason(data: dict) -> str:
-    """One sentence: why the verdict is what it is (the governing check against its limit)."""
-    s, lim = data["summary"], data["settings"]["overturn_probability_limit"]
-    from .formatting import fmt
-    hi = s["p_overturn_ci90"][1]
-    relation = "is within" if data["verdict"] == "PASS" else "exceeds"
-    return (f"{s['n_overturned']} of {s['n_records']} record pairs overturn the cylinder in 3D (θ reaching θ_ot); "
-            f"the one-sided 95 % upper bound of P(overturn), {fmt(hi)}, {relation} the limit {fmt(lim)}.")
-
-
 def planar_answer(data: dict) -> str:
     """"Is a planar analysis enough?" answered from the summary (the informative check)."""
-    from .formatting import fmt
     s = data["summary"]
     kp, k3, n = s["planar"]["n_overturned"], s["n_overturned"], s["n_records"]
     unsafe = s["n_planar_unconservative"]
@@ -71,11 +69,6 @@ def planar_answer(data: dict) -> str:
 
 def build_cylinder_context(result, *, figures: dict, date: str | None = None) -> dict:
     """The template's data: results.json (``data``) plus texts, figures and the input echo."""
-    from .. import __version__
-    from ..checks.cylinder_check import governing_ids
-    from ..cylinder.quantities import cylinder_quantities
-    from .context import report_date, software_versions
-    from .formatting import fmt
     project, data = result.project, result.as_json()
     scaling = data["summary"]["scaling"]
     text = SCALING_TEXT[scaling["method"]]
@@ -92,7 +85,10 @@ def build_cylinder_context(result, *, figures: dict, date: str | None = None) ->
         "quantities": [dict(q.as_json(), name=name, symbol=q.symbol, description=q.description,
                             formula=q.formula, substituted=q.substituted, note=q.note)
                        for name, q in quantities.items()],
-        "verdict_reason": verdict_reason(data), "governing": governing[0] if governing else None,
+        "verdict_reason": data["verdict_reason"], "governing": governing[0] if governing else None,
+        "polyakov_median": next((c["utilisation"] for c in data["checks"] if c["criterion"] == "polyakov_rule_2"),
+                                None),
+        "robustness": [c for c in data["checks"] if c["role"] == "robustness"],
         "planar_answer": planar_answer(data), "scaling_text": scaling_text,
         "histories": [{"id": rid, "row": rows[rid], "figure": figures.get(f"history:{rid}")}
                       for rid in governing_ids(data) if f"history:{rid}" in figures],
@@ -103,7 +99,6 @@ def build_cylinder_context(result, *, figures: dict, date: str | None = None) ->
 
 def render_cylinder_html(result, *, figures: dict | None = None, date: str | None = None) -> str:
     """The cylinder report as one self-contained HTML document (CSS and SVG figures inline)."""
-    from .render import environment, stylesheet
     folder = templates_dir()
     env = environment(folder)
     ctx = build_cylinder_context(result, figures=figures if figures is not None else render_cylinder_figures(result),
@@ -112,33 +107,13 @@ def render_cylinder_html(result, *, figures: dict | None = None, date: str | Non
     return env.get_template(TEMPLATE).render(**ctx)
 
 
-def write_cylinder_report(result, out_dir, *, pdf: bool = True, html: bool = True) -> dict[str, Path]:
-    """Write ``report.html`` and/or ``report.pdf`` of a cylinder check into ``out_dir``."""
-    from .render import write_report
-    return write_report(result, out_dir, pdf=pdf, html=html, render=render_cylinder_html)
-
-
-def cylinder_output_folder(target, *, key: str = "out_dir"):
-    """The :class:`~rockdesign.outdir.OutputFolder` of a cylinder check (it also owns the two PNG figures)."""
-    from ..checks.cylinder_check import FIGURE_FILES
-    from ..outdir import RUN_FILES, OutputFolder
-    return OutputFolder(target, key=key, owned=RUN_FILES | set(FIGURE_FILES))
-
-
-def write_cylinder_folder(result, out_dir, *, pdf: bool = True, html: bool = True) -> Path:
-    """results.json, results.csv, the figures and report.pdf/html of a cylinder check, written all or
-    nothing into ``out_dir`` (a path or a locked OutputFolder of :func:`cylinder_output_folder`).
-
-    Returns:
-        The output folder.
-    """
-    from ..checks.cylinder_check import write_cylinder_results
-    from ..cylinder.figures import wobbling_figure
-    from ..outdir import OutputFolder
-    from ..plots import save
-    folder = out_dir if isinstance(out_dir, OutputFolder) else cylinder_output_folder(out_dir)
-    with folder.staging() as tmp:
-        write_cylinder_results(result.as_json(), tmp)
-        save(wobbling_figure(result.project.system), tmp / "wobbling_period.png")   # Fig 5.2 for this cylinder
-        write_cylinder_report(result, tmp, pdf=pdf, html=html)
-    return folder.target
+def write_cylinder_files(result, folder, *, pdf: bool = True, html: bool = True, pdf_worker=None) -> None:
+    """results.json, results.csv (:mod:`rockdesign.report.results`), the figures and report.pdf/html of a
+    cylinder check into ``folder`` (the staging folder of the output folder)."""
+    folder = Path(folder)
+    data = result.as_json()
+    write_results_json(data, folder / "results.json")
+    write_results_csv(data, folder / "results.csv", columns=CSV_COLUMNS)
+    save(comparison_figure(data), folder / "cylinder_vs_planar.png")
+    save(wobbling_figure(result.project.system), folder / "wobbling_period.png")   # Fig 5.2 for this cylinder
+    write_report(result, folder, pdf=pdf, html=html, render=render_cylinder_html, pdf_worker=pdf_worker)

@@ -16,7 +16,9 @@ CSV_COLUMNS = ["id", "suite", "event", "station", "rsn", "component", "scale", "
 
 CSV_UNITS = {"scale": "-", "pga": "m/s^2", "sd_max": "m", "sd_max_period": "s", "polyakov_ratio": "-",
              "theta_max_over_alpha": "-", "theta_max_over_theta_c": "-", "u_B_max": "m", "u_B_max_over_2B": "-",
-             "uplift_time": "s", "overturn_scale": "-", "polyakov_scale": "-", "ensemble_overturn_fraction": "-"}
+             "uplift_time": "s", "overturn_scale": "-", "polyakov_scale": "-", "ensemble_overturn_fraction": "-",
+             "resultant_pga": "m/s^2", "planar_theta_max_over_alpha": "-", "polyakov_ratio_x": "-",
+             "polyakov_ratio_y": "-", "min_contact_force_over_weight": "-"}
 """Units of the results.csv columns (header "pga [m/s^2]"); the others are counts, ids or words."""
 
 
@@ -37,12 +39,14 @@ def write_results_json(data: dict, path: Path) -> Path:
     return path
 
 
-def write_results_csv(data: dict, path: Path) -> Path:
-    """Write ``results.csv``: one row per record, the columns of :data:`CSV_COLUMNS` (SI units)."""
+def write_results_csv(data: dict, path: Path, *, columns: list[str] | None = None) -> Path:
+    """Write ``results.csv``: one row per record (per record pair of a cylinder), the ``columns`` (default
+    :data:`CSV_COLUMNS`; SI units, named in the header)."""
     path = Path(path)
+    columns = CSV_COLUMNS if columns is None else columns
     with open(path, "w", newline="", encoding="utf-8") as fh:
         w = csv.writer(fh)
-        w.writerow([csv_header(c) for c in CSV_COLUMNS])
+        w.writerow([csv_header(c) for c in columns])
         for row in data["records"]:
-            w.writerow(["" if row.get(c) is None else row.get(c) for c in CSV_COLUMNS])
+            w.writerow(["" if row.get(c) is None else row.get(c) for c in columns])
     return path

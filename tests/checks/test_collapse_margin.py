@@ -11,7 +11,7 @@ from scipy.stats import norm
 from rockdesign.checks.collapse_margin import (acceptable_acmr, beta_total, collapse_margin,
                                                collapse_margin_criterion, collapse_probability)
 from rockdesign.errors import ProjectError
-from rockdesign.project import parse_project
+from rockdesign.kinds import parse_document as parse_project
 
 B = {"design_requirements": "B", "test_data": "B", "modeling": "B"}
 

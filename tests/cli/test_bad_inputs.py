@@ -114,12 +114,12 @@ def test_simulate_csv_into_a_directory(tmp_path):
 
 def test_bad_output_files_are_refused_before_the_analysis(tmp_path, monkeypatch):
     # nothing is analysed (the engine is not even called) when the output cannot be written
-    import rockdesign.api as api
+    import rockdesign.library as library
 
     def boom(*a, **k):  # pragma: no cover - must not run
         raise AssertionError("the analysis ran before the output was checked")
 
-    monkeypatch.setattr(api, "simulate", boom)
+    monkeypatch.setattr(library, "run_simulation", boom)
     assert_one_line_error(invoke("simulate", PIER, "--motion", PULSE, "--plot", tmp_path / "x.jpg"), "--plot")
 
 
@@ -141,7 +141,7 @@ def test_simulate_shows_the_resolved_pulse():
     assert r.exit_code == 0, r.output
     data = json.loads(r.stdout)
     from rockdesign.design.quantities import design_quantities
-    from rockdesign.project import load_project
+    from rockdesign.library import load_project
     q = design_quantities(load_project("examples/podium_flat.toml").system)
     assert data["motion_parameters"]["a_p"] == pytest.approx(2.5 * q["uplift_acceleration"].value, rel=1e-12)
     assert data["motion_parameters"]["T_p"] == pytest.approx(2 * math.pi / (3 * q["p"].value), rel=1e-12)
@@ -374,12 +374,12 @@ def test_ctrl_c_is_exit_130_with_one_line(tmp_path, delay):
 def test_a_bug_is_exit_3_not_fail(monkeypatch):
     """An exception that is not an input error (a bug) ends with its traceback, one line saying it is an
     internal error, and exit code 3 — never 1, which scripts read as 'the design failed'."""
-    import rockdesign.api
+    import rockdesign.library
 
     def broken(project):
         raise ZeroDivisionError("simulated bug")
 
-    monkeypatch.setattr(rockdesign.api, "quantities_json", broken)
+    monkeypatch.setattr(rockdesign.library, "design_quantities", broken)
     result = runner.invoke(app, ["quantities", PIER, "--json"])
     assert result.exit_code == 3
     text = result.output + (result.stderr if hasattr(result, "stderr") else "")

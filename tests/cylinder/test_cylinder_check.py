@@ -9,12 +9,12 @@ from scipy.stats import binomtest
 from typer.testing import CliRunner
 
 from casedata import expected
-from rockdesign.checks.cylinder_check import cylinder_excitation, planar_block
+from rockdesign.checks.cylinder_check import planar_block
 from rockdesign.cli import app
 from rockdesign.cylinder.engine import simulate_cylinder
 from rockdesign.errors import ProjectError
 from rockdesign.motions.pairs import load_pair
-from rockdesign.project import parse_project
+from rockdesign.kinds import parse_document as parse_project
 
 runner = CliRunner()
 TOML = ('[project]\nname = "check cylinder"\n[cylinder]\nheight = "3 m"\nslenderness = 0.2\nmass = "2 t"\n'
@@ -71,15 +71,41 @@ def test_one_row_reproduces_simulate(result):
     ({"spectrum": "ec8"}, "excitation.spectrum"),
 ])
 def test_excitation_errors(excitation, key):
-    proj = parse_project({"project": {"name": "x"}, "cylinder": {"height": "3 m", "slenderness": 0.2, "mass": "2 t"},
-                          "excitation": excitation}, file="c.toml")
+    """[excitation] is parsed once, at load: every command refuses the same input."""
     with pytest.raises(ProjectError) as err:
-        cylinder_excitation(proj)
+        parse_project({"project": {"name": "x"}, "cylinder": {"height": "3 m", "slenderness": 0.2, "mass": "2 t"},
+                       "excitation": excitation}, file="c.toml")
     assert err.value.key == key and err.value.file == "c.toml"
+
+
+BAD_TARGET = """[project]
+name = "bad target"
+[cylinder]
+height = "3 m"
+slenderness = 0.2
+mass = "2 t"
+[excitation]
+scale = { method = "resultant_pga", target = "0.3" }
+"""
+
+
+@pytest.mark.parametrize("command", [["quantities"], ["quantities", "--json"],
+                                     ["simulate", "--motion", "free:theta0=0.5alpha"], ["check", "--no-pdf"]])
+def test_a_bad_scale_target_fails_every_command(tmp_path, command):
+    """A cylinder's [excitation] is validated by quantities and simulate as by check: exit 2, one message."""
+    from typer.testing import CliRunner
+
+    from rockdesign.cli import app
+    path = tmp_path / "bad.toml"
+    path.write_text(BAD_TARGET, encoding="utf-8")
+    args = [command[0], str(path), *command[1:]] + (["-o", str(tmp_path / "out")] if command[0] == "check" else [])
+    result = CliRunner().invoke(app, args)
+    assert result.exit_code == 2, result.output
+    assert "excitation.scale.target" in result.output and "Traceback" not in result.output
 
 
 def test_default_scaling_is_one_and_a_half_uplift():
     proj = parse_project({"project": {"name": "x"}, "cylinder": {"height": "3 m", "slenderness": 0.2, "mass": "2 t"}})
-    suites, method, target = cylinder_excitation(proj)
-    assert suites == ["p695-farfield-pairs"] and method == "resultant_pga"
-    assert target == pytest.approx(1.5 * 9.81 * 0.2)
+    e = proj.excitation
+    assert e.suites == ("p695-farfield-pairs",) and e.method == "resultant_pga" and e.default_used
+    assert e.target == pytest.approx(1.5 * 9.81 * 0.2)

@@ -11,8 +11,8 @@ from typer.testing import CliRunner
 from rockdesign.checks import cylinder_check
 from rockdesign.cli import app
 from rockdesign.motions import pairs
-from rockdesign.project import load_project
-from rockdesign.report.cylinder_report import cylinder_output_folder
+from rockdesign.library import load_project
+from rockdesign.library import check_output_folder
 
 runner = CliRunner()
 SUITE = "test-two-pairs"
@@ -50,7 +50,7 @@ def test_foreign_folder_and_busy_folder_are_refused(project, tmp_path, no_analys
     (foreign / "notes.txt").write_text("keep")
     r = runner.invoke(app, ["check", str(project), "-o", str(foreign)])
     assert r.exit_code == 2 and "notes.txt" in r.output and (foreign / "notes.txt").read_text() == "keep"
-    busy = cylinder_output_folder(tmp_path / "busy")
+    busy = check_output_folder(load_project(project), tmp_path / "busy")
     with busy.locked():
         r = runner.invoke(app, ["check", str(project), "-o", str(tmp_path / "busy")])
     assert r.exit_code == 2 and "in use by another rockdesign run" in r.output

@@ -12,7 +12,7 @@ from rockdesign.cylinder.quantities import (angle_of_turn, cylinder_quantities, 
                                             wobbling_period, wobbling_spin)
 from rockdesign.cylinder.system import Cylinder, cylinder
 from rockdesign.errors import ProjectError
-from rockdesign.project import parse_project
+from rockdesign.kinds import parse_document as parse_project
 
 BASE = {"project": {"name": "museum column"}, "cylinder": {"height": "3.0 m", "diameter": "0.6 m", "mass": "2 t"}}
 

@@ -16,7 +16,7 @@ import pytest
 
 from rockdesign.design.quantities import design_quantities
 from rockdesign.paths import REPO_ROOT
-from rockdesign.project import load_project
+from rockdesign.library import load_project
 
 EXAMPLES = [p for p in sorted((REPO_ROOT / "examples").glob("*.toml"))
             if "[cylinder]" not in p.read_text(encoding="utf-8")]

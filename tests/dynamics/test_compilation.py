@@ -34,12 +34,12 @@ def _signatures(command):
 def test_the_real_calls_use_the_warm_up_machine_code():
     """A warm-up of other argument types would compile again on the real call, after the announcement
     said it was over: each command's real work adds no signature to its kernels."""
-    from rockdesign.cylinder.commands import simulate_project as simulate_cylinder_project
+    from rockdesign.library import simulate
     from rockdesign.cylinder.spectrum import cylinder_spectrum
     from rockdesign.experiments.ensemble import run_ensemble
     from rockdesign.motions.pairs import load_pair
     from rockdesign.paths import REPO_ROOT
-    from rockdesign.project import load_project
+    from rockdesign.library import load_project
     from rockdesign.spectra.spectrum import compute_spectrum, request_from_project
     from rockdesign.spectra.axes import parse_axis
     pier = load_project(REPO_ROOT / "examples" / "bridge_pier.toml")
@@ -48,7 +48,7 @@ def test_the_real_calls_use_the_warm_up_machine_code():
         "ensemble": lambda: run_ensemble(pier, "thesis-table-4.1", scale=0.5),
         "spectrum": lambda: compute_spectrum(pier.system, request_from_project(
             pier, "ricker-anti", x=parse_axis("omega_p/p:1:4:3", "x"), y=parse_axis("ap/up:0:4:3", "y"))),
-        "cylinder": lambda: simulate_cylinder_project(cyl, "record:p695-ff/11", t_end=2.0),
+        "cylinder": lambda: simulate(cyl, "record:p695-ff/11", t_end=2.0),
         "cylinder-spectrum": lambda: cylinder_spectrum(cyl.system, load_pair("p695-ff/11"), [0.8], [1.5],
                                                        free_vibration=0.5),
     }

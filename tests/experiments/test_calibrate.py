@@ -149,7 +149,7 @@ def test_cli_json_and_plot(specimen, tmp_path):
 def test_measured_restitution_goes_into_the_project(tmp_path):
     """The calibrated values are project keys: restitution = 0.9417 (a measured number in (0, 1])."""
     from rockdesign.design.quantities import coefficient_of_restitution
-    from rockdesign.project import load_project
+    from rockdesign.library import load_project
     path = tmp_path / "measured.toml"
     path.write_text(SPECIMEN_TOML.replace("mass_distribution = 0.543", "mass_distribution = 0.54\nrestitution = 0.9417"))
     system = load_project(path).system

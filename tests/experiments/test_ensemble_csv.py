@@ -12,7 +12,7 @@ from rockdesign.experiments.ensemble import run_ensemble, write_analyses_csv
 from rockdesign.experiments.validate import read_results_csv
 from rockdesign.motions.library import load_record
 from rockdesign.motions.suites import save_suite
-from rockdesign.project import load_project
+from rockdesign.library import load_project
 
 COLUMN = """
 [project]

@@ -12,7 +12,7 @@ from casedata import expected
 from typer.testing import CliRunner
 
 from rockdesign.cli import app
-from rockdesign.project import load_project
+from rockdesign.library import load_project
 
 runner = CliRunner()
 

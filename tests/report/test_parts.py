@@ -8,7 +8,7 @@ import pytest
 
 from rockdesign.design.quantities import design_quantities
 from rockdesign.paths import REPO_ROOT
-from rockdesign.project import load_project
+from rockdesign.library import load_project
 from rockdesign.design.substitutions import substitution
 from rockdesign.report.context import pretty_exponents
 from rockdesign.report.formatting import fmt, number

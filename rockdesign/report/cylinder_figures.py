@@ -1,9 +1,10 @@
-"""Figures of the cylinder: the time history with the plan-view orbit (thesis Figs 5.9–5.15) and the
-wobbling period against the tilt (Fig 5.2)."""
+"""Figures of the cylinder: the time history with the plan-view orbit (thesis Figs 5.9–5.15), the
+wobbling period against the tilt (Fig 5.2) and the check's 3D against planar θ_max/α per record pair."""
 from __future__ import annotations
 
 import numpy as np
 
+from ..cylinder.quantities import wobbling_curve
 from ..plots import STYLE, plt
 
 
@@ -61,7 +62,7 @@ def cylinder_history_figure(response, g: float, title: str = "", pair=None):
 
 def wobbling_figure(cyl):
     """T_w p against θ/α (Eq 5.29) next to Housner's planar period (Eq 2.8), as thesis Fig 5.2."""
-    from .quantities import wobbling_curve
+
     ratio, tw_p, housner_p = wobbling_curve(cyl)
     with plt.rc_context(STYLE):
         fig, ax = plt.subplots(figsize=(5.5, 3.8))
@@ -71,4 +72,28 @@ def wobbling_figure(cyl):
         ax.set_ylabel("T p [-]")
         ax.set_ylim(0, min(60.0, float(np.nanmax(tw_p)) * 1.05))
         ax.legend(fontsize=7)
+        return fig
+
+
+def comparison_figure(data: dict, cap: float = 2.0):
+    """3D θ_max/α against the planar Housner θ_max/α (worse component) per record pair (results.json
+    ``data`` of a cylinder check); planar values beyond ``cap`` (the planar block overturned) are drawn at ``cap``."""
+    tilt = data.get("cylinder", {}).get("overturn_tilt")
+    with plt.rc_context(STYLE):
+        fig, ax = plt.subplots(figsize=(5.0, 4.6))
+        x = np.minimum([r["planar_theta_max_over_alpha"] for r in data["records"]], cap)
+        y = np.array([r["theta_max_over_alpha"] for r in data["records"]])
+        ot = np.array([r["overturned"] for r in data["records"]], dtype=bool)
+        top = max(cap, float(np.max(y)) * 1.05 if y.size else cap)
+        ax.plot([0, cap], [0, cap], color="0.6", lw=0.8)
+        ax.axvline(1.0, color="0.3", lw=0.7, ls=":", label="planar overturning (θ_max = α)")
+        if tilt:
+            ax.axhline(tilt, color="C3", lw=0.7, ls="--", label="θ_ot (3D overturning)")
+        ax.scatter(x[~ot], y[~ot], s=14, color="C0", label="3D survives")
+        ax.scatter(x[ot], y[ot], s=18, color="C3", marker="x", label="3D overturns (θ_ot)")
+        ax.set_xlim(0, cap * 1.03)
+        ax.set_ylim(0, top * 1.03)
+        ax.set_xlabel(f"planar Housner θ_max/α (worse component; drawn at {cap:g} beyond)")
+        ax.set_ylabel("3D cylinder θ_max/α")
+        ax.legend(fontsize=7, loc="upper left")
         return fig

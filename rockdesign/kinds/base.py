@@ -1,0 +1,96 @@
+"""The interface every kind of structure supplies (the registry is :mod:`rockdesign.kinds`).
+
+A kind of structure (planar: column, frame, podium; the 3D cylinder) is one object with these
+methods; ``rd.load_project``, ``rd.design_quantities``, ``rd.simulate``, ``rd.check`` and
+``rd.write_report`` ask the registry for the kind once and call it — no other module branches on the
+kind of a structure.  The pattern is scipy's ``METHODS`` table of ``solve_ivp``: one entry per
+method, one call site.
+"""
+from __future__ import annotations
+
+import abc
+from pathlib import Path
+
+from ..outdir import RUN_FILES, OutputFolder
+
+
+class StructureKind(abc.ABC):
+    """One kind of structure: its project parser, design quantities, time-history analysis, check and
+    report.  Subclasses set the class attributes and implement every abstract method."""
+
+    name: str = ""
+    """The kind's name ("planar", "cylinder")."""
+    systems: tuple[str, ...] = ()
+    """``project.system.kind`` values of this kind's systems ("column", "podium"; "cylinder")."""
+    simulate_kernels: str = "simulate"
+    """The first-run compilation command (:mod:`rockdesign.dynamics.compilation`) of ``simulate``."""
+    check_kernels: str = "check"
+    """The first-run compilation command of ``check``."""
+    report_files: frozenset[str] = frozenset()
+    """Files a check writes into its output folder besides :data:`~rockdesign.outdir.RUN_FILES`."""
+
+    # --- the project file -------------------------------------------------------------------
+    @abc.abstractmethod
+    def claims(self, raw: dict) -> bool:
+        """True when the TOML document ``raw`` describes a structure of this kind."""
+
+    @abc.abstractmethod
+    def parse(self, raw: dict, *, file: str, text: str):
+        """The validated :class:`~rockdesign.project_tables.Project` (SI; ``[excitation]`` and ``[analysis]``
+        typed) or a :class:`~rockdesign.errors.ProjectError`."""
+
+    # --- design quantities ------------------------------------------------------------------
+    @abc.abstractmethod
+    def quantities(self, project) -> dict:
+        """Design quantities: name → :class:`~rockdesign.design.quantities.Quantity` (SI, thesis equation)."""
+
+    @abc.abstractmethod
+    def quantities_title(self, project) -> str:
+        """The title of the console table of the quantities."""
+
+    def quantities_json(self, project) -> dict:
+        """The ``quantities --json`` object of CONTRACT §3 (SI values)."""
+        return {"quantities": {name: q.as_json() for name, q in self.quantities(project).items()},
+                "warnings": list(project.warnings)}
+
+    @abc.abstractmethod
+    def write_curve(self, project, path: Path) -> None:
+        """``quantities --pushover PATH``: the kind's capacity curve (.csv numbers, .png/.svg/.pdf figure)."""
+
+    # --- one time-history analysis ----------------------------------------------------------
+    @abc.abstractmethod
+    def simulation_request(self, project, motion: str, *, model: str, t_end, rtol, records_dir):
+        """Parse a motion string and validate the whole request without analysing or compiling anything."""
+
+    @abc.abstractmethod
+    def run_simulation(self, request):
+        """Analyse a request: a result with ``response``, ``failed``, ``as_json()``, ``write_csv(path)``,
+        ``write_figure(path)``, ``summary_rows()`` and ``warnings``."""
+
+    @abc.abstractmethod
+    def simulate_motion(self, project, motion, *, model: str, t_end, rtol):
+        """One analysis under a motion object (a GroundMotion for a planar structure, a MotionPair for a
+        cylinder); the same result type as :meth:`run_simulation`."""
+
+    # --- the design check -------------------------------------------------------------------
+    @abc.abstractmethod
+    def check_options(self, project, *, records_dir, executor, keys: dict[str, str]) -> None:
+        """Refuse options that do not apply to this kind (``keys`` maps option → the name to quote)."""
+
+    @abc.abstractmethod
+    def prepare_check(self, project, *, records_dir, say, report: bool, pdf_in_process: bool) -> None:
+        """Before the analyses: read what can be wrong in the input and compile the kernels on a first run
+        (announced with ``say``)."""
+
+    @abc.abstractmethod
+    def check(self, project, *, progress, records_dir, margins: bool, executor):
+        """The design check: a result with ``project``, ``verdict``, ``verdict_reason``, ``records``,
+        ``checks`` and ``as_json()`` (= results.json)."""
+
+    def output_folder(self, target, *, key: str) -> OutputFolder:
+        """The check's output folder (it owns :data:`report_files` besides the run files)."""
+        return OutputFolder(target, key=key, owned=RUN_FILES | set(self.report_files))
+
+    @abc.abstractmethod
+    def write_report(self, result, folder: Path, *, pdf: bool, html: bool, pdf_worker) -> None:
+        """results.json, results.csv, the figures and report.pdf/html of a check into ``folder`` (staging)."""
