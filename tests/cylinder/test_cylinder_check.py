@@ -44,8 +44,11 @@ def test_statistics_are_clopper_pearson_over_22_pairs(result):
     assert s["p_overturn_ci90"] == pytest.approx([ci.low, ci.high], abs=1e-12)
     assert all(r["resultant_pga"] == pytest.approx(0.3 * 9.81, rel=1e-12) for r in result["records"])
     assert s["difference_p_overturn"] == pytest.approx(s["p_overturn"] - s["planar"]["p_overturn"])
-    gov = [c for c in result["checks"] if c["governs_verdict"]]
-    assert len(gov) == 1 and result["verdict"] == ("PASS" if gov[0]["passed"] else "FAIL")
+    # the verdict is criteria.decide's: every analysis completed and the probability bound, as for a planar check
+    gov = {c["criterion"]: c for c in result["checks"] if c["governs_verdict"]}
+    assert set(gov) == {"analyses_completed", "overturning_probability"}
+    assert result["verdict"] == ("PASS" if all(c["passed"] for c in gov.values()) else "FAIL")
+    assert result["verdict_reason"].startswith(result["verdict"])
 
 
 def test_one_row_reproduces_simulate(result):

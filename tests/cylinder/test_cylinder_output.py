@@ -83,7 +83,7 @@ def test_failed_run_leaves_the_previous_folder(project, tmp_path, monkeypatch):
 
     def broken(*args, **kwargs):
         raise RuntimeError("renderer broke")
-    monkeypatch.setattr(cylinder_report, "write_cylinder_report", broken)
+    monkeypatch.setattr(cylinder_report, "render_cylinder_html", broken)
     r = runner.invoke(app, ["check", str(project), "-o", str(out), "--no-pdf", "--html"])
     assert r.exit_code != 0
     assert {p.name: p.read_bytes() for p in out.iterdir()} == before
