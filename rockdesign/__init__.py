@@ -12,21 +12,65 @@ The library API (imported on first use, so ``import rockdesign`` stays light)::
 __version__ = "0.1.0"
 
 _EXPORTS = {
+    # the library (every kind of structure through one front door: rockdesign.library, rockdesign.kinds)
     "load_project": "rockdesign.library", "parse_project": "rockdesign.library",
     "design_quantities": "rockdesign.library", "simulate": "rockdesign.library", "check": "rockdesign.library",
     "write_report": "rockdesign.library", "Quantities": "rockdesign.library",
-    "SimulationResponse": "rockdesign.library", "Project": "rockdesign.project",
+    "SimulationResponse": "rockdesign.library", "CylinderSimulation": "rockdesign.library",
+    "Project": "rockdesign.project_tables",
     "CheckResult": "rockdesign.checks.check", "Quantity": "rockdesign.design.quantities",
     "RockdesignError": "rockdesign.errors", "ProjectError": "rockdesign.errors", "MotionError": "rockdesign.errors",
     "RecordError": "rockdesign.errors", "ModelError": "rockdesign.errors", "OutputError": "rockdesign.outdir",
+    # ground-motion records (``rockdesign records``)
+    "load_record": "rockdesign.motions.library", "list_records": "rockdesign.motions.suites",
+    "motion_measures": "rockdesign.motions.measures", "plausibility_warnings": "rockdesign.motions.measures",
+    "sd_max": "rockdesign.motions.spectra", "motion_spectrum": "rockdesign.motions.spectra",
+    "period_grid": "rockdesign.motions.spectra", "synthesize": "rockdesign.motions.synth",
+    "SCALE_CHOICES": "rockdesign.motions.synth", "DEFAULT_BAND": "rockdesign.motions.defaults",
+    "DEFAULT_DAMPING": "rockdesign.motions.defaults", "DEFAULT_N_PERIODS": "rockdesign.motions.defaults",
+    "record_history_figure": "rockdesign.motions.figures", "record_spectrum_figure": "rockdesign.motions.figures",
+    "parse_pair": "rockdesign.motions.pairs", "parse_quantity": "rockdesign.units",
+    "QuantityParseError": "rockdesign.units", "save_figure": "rockdesign.plots:save",
+    "progress_bars": "rockdesign.progress", "json_ready": "rockdesign.jsonable",
+    # rocking spectra (``rockdesign spectrum``)
+    "parse_axis": "rockdesign.spectra.axes", "spectrum_scales": "rockdesign.spectra.axes",
+    "compute_spectrum": "rockdesign.spectra.spectrum", "request_from_project": "rockdesign.spectra.spectrum",
+    "SpectrumError": "rockdesign.spectra.spectrum", "analyse_spectrum": "rockdesign.spectra.output:analyse",
+    "write_spectrum_outputs": "rockdesign.spectra.output:write_outputs",
+    "spectrum_warm_up": "rockdesign.spectra.kernel:warm_up", "resolve_structure": "rockdesign.dynamics.model",
+    "make_executor": "rockdesign.execution.executor", "remove_tree": "rockdesign.execution.executor",
+    "cylinder_spectrum": "rockdesign.cylinder.spectrum", "parse_cylinder_axis": "rockdesign.cylinder.spectrum",
+    "CylinderSpectrumError": "rockdesign.cylinder.spectrum",
+    "write_cylinder_spectrum": "rockdesign.cylinder.spectrum_output",
+    # experiments (``rockdesign calibrate | validate | ensemble | records scale-model``)
+    "calibrate": "rockdesign.experiments.calibrate", "simulated_history": "rockdesign.experiments.calibrate",
+    "read_tilt_csv": "rockdesign.experiments.free_vibration", "validate": "rockdesign.experiments.validate",
+    "read_results_csv": "rockdesign.experiments.validate",
+    "write_validation": "rockdesign.experiments.validate_report",
+    "run_ensemble": "rockdesign.experiments.ensemble", "write_analyses_csv": "rockdesign.experiments.ensemble",
+    "parse_limits": "rockdesign.experiments.scale_model", "scale_record": "rockdesign.experiments.scale_model",
+    "write_at2": "rockdesign.experiments.scale_model",
+    "scale_model_figure": "rockdesign.experiments.figures", "calibration_figure": "rockdesign.experiments.figures",
+    "validation_figure": "rockdesign.experiments.figures",
+    # benchmarks (``rockdesign bench``; never loaded by a check)
+    "problem_set": "rockdesign.bench.problems", "run_study": "rockdesign.bench.runner",
+    "highlights": "rockdesign.bench.runner", "speed_summary": "rockdesign.bench.speed",
+    "speed_format_value": "rockdesign.bench.speed:format_value",
+    "write_study_figures": "rockdesign.bench.figures", "run_stability": "rockdesign.bench.stability",
+    "stability_markdown": "rockdesign.bench.stability", "write_stability_figures": "rockdesign.bench.stability",
+    "publish_docs": "rockdesign.bench.publish",
 }
+"""The public names: ``name → "module"`` (the attribute of the same name) or ``"module:attribute"``.
+Imported on first use, so ``import rockdesign`` stays light; the command line imports nothing else
+from the package (tests/architecture/test_front_door.py)."""
 __all__ = sorted(_EXPORTS)
 
 
 def __getattr__(name):
     if name in _EXPORTS:
         import importlib
-        value = getattr(importlib.import_module(_EXPORTS[name]), name)
+        module, _, attribute = _EXPORTS[name].partition(":")
+        value = getattr(importlib.import_module(module), attribute or name)
         globals()[name] = value
         return value
     raise AttributeError(f"module 'rockdesign' has no attribute '{name}'")

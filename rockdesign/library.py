@@ -160,6 +160,12 @@ def write_capacity_curve(project: Project, path) -> None:
     kind_of(project).write_curve(project, path)
 
 
+def spectrum_excitation(project: Project) -> str:
+    """What a rocking spectrum of the project runs over: "pulse" (planar structures, docs/spectra.md) or
+    "record pair" (a cylinder, docs/cylinder.md)."""
+    return kind_of(project).spectrum_excitation
+
+
 # --- one time-history analysis -------------------------------------------------------------------
 def simulation_request(project: Project, motion: str, *, model: str = "auto", t_end: float | None = None,
                        rtol: float | None = None, records_dir: str | Path | None = None):

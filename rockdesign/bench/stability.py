@@ -17,10 +17,10 @@ from .stability_outcome import ALL_METHODS, VERDICTS, Outcome, StabilityCase  # 
 
 def case_functions() -> dict[str, Callable]:
     """key → case function ``f(quick=False, methods=ALL_METHODS) -> StabilityCase``."""
-    from . import stability_cases as c
+    from . import stability_cases as c, stability_long_cases as lc   # (the scipy baseline: only when run)
     return {"missed-events": c.missed_events, "zeno": c.zeno, "stiff-superstructure": c.stiff_superstructure,
-            "overturning-threshold": c.overturning_threshold, "long-record-drift": c.long_record_drift,
-            "coarse-sampling": c.coarse_sampling, "event-location-crash": c.event_location_crash}
+            "overturning-threshold": c.overturning_threshold, "long-record-drift": lc.long_record_drift,
+            "coarse-sampling": lc.coarse_sampling, "event-location-crash": lc.event_location_crash}
 
 
 def run_stability(quick: bool = False, methods=ALL_METHODS, keys=None,

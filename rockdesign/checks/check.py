@@ -19,16 +19,20 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .. import __version__
-from ..design.quantities import design_quantities
+from ..design.quantities import at_critical_curvature, design_quantities
+from ..dynamics.accuracy import engine_accuracy
+from ..dynamics.compilation import compilation_pending, finish_compilation
+from ..dynamics.simulate import simulate
 from ..errors import ProjectError
 from ..motions.config import default_excitation, resolve_motions
+from ..motions.measures import plausibility_warnings
 from ..motions.spectra import motion_spectrum, period_grid, sd_max
 from ..project import Project
 from .criteria import CheckContext, analysis_failed, decide, evaluate_criteria, minimum_records
 from .collapse_margin import collapse_margin, collapse_margin_criterion
 from .ensemble import ensemble_summary, record_fields, run_ensembles, verdict_basis
 from .fragility import check_fragility
-from .margins import SCAN_AFTER_FIRST, SCAN_RATIO, Margin, overturning_margins
+from .margins import SCAN_AFTER_FIRST, SCAN_RATIO, Margin, _scan_grid, overturning_margins
 from .polyakov import CLASS_MEANING, CLASSES, PolyakovRule, classify
 from .runner import RunSummary, run_jobs
 from .selection import ModelSelection, select_model
@@ -239,7 +243,6 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     spec, resolved = _records(project, q, records_dir)
     motions = [r.motion for r in resolved.records]
     n = len(motions)
-    from ..motions.measures import plausibility_warnings
     record_warnings = [w for r in resolved.records for w in plausibility_warnings(r.motion, system.g)]
     record_warnings += [f"{r.id}: amplitude factor {r.scale:.3g} is implausible — check the record's units"
                         for r in resolved.records if not 1e-3 <= r.scale <= 1e3]
@@ -269,7 +272,6 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
         up = q["uplift_acceleration"].value
         uplift_factors = [up / m.pga if m.pga > 0 else a.margin_max_scale for m in motions]
         total = 0
-        from .margins import _scan_grid
         for f_up in uplift_factors:
             total += len(_scan_grid(min(max(0.5 * f_up, 1e-3), a.margin_max_scale / 4), a.margin_max_scale,
                                     SCAN_RATIO))
@@ -324,7 +326,6 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     checks.sort(key=lambda c: (not c["governs_verdict"], -c["utilisation"]))
     verdict = decision.verdict
     histories = {}
-    from ..dynamics.simulate import simulate
     for o in (valid[i] for i in history_records([o.run.theta_max_over_theta_c for o in valid])):
         histories[o.id] = simulate(system, o.motion, model=chosen.equations, structure=chosen.structure, rtol=a.rtol,
                                    atol=a.atol, t_end=o.motion.duration + a.free_vibration, overturn=a.overturn,
@@ -338,14 +339,12 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
                 "overturn_probability_limit": a.overturn_probability_limit,
                 "rigid_superstructure_ratio": a.rigid_superstructure_ratio,
                 "scale_basis": "overturn_scale and polyakov_scale multiply the design-level (scaled) record"}
-    from ..design.quantities import at_critical_curvature
     if at_critical_curvature(system) and "R_hat" in q:
         settings["equivalent_block"] = (
             f"ρ = ρc: to linear order and up to the first impact the columns respond like flat-based blocks of "
             f"size R̂ = {q['R_hat'].value:.4g} m ({q['R_hat'].equation}); not used as a substitute model because "
             "impacts differ (c_r) — the curved column itself is analysed (docs/model.md §3)")
     # the engine's error against a closed form at the tolerance used (report appendix)
-    from ..dynamics.accuracy import engine_accuracy
     acc = engine_accuracy(a.rtol, a.atol)
     settings["engine_accuracy"] = {k: v for k, v in acc.items() if k != "seconds"}
     intensity = {"design_pga": spec.design_pga, "intensity_analysed": resolved.scale_description,
@@ -360,7 +359,6 @@ def _finish_compilation(stage) -> None:
     """On the first run the rocking engine may still be compiling in a helper process while the records
     were read and SD_max computed (:func:`rockdesign.dynamics.compilation.prepare`): wait for it here,
     as a progress stage."""
-    from ..dynamics.compilation import compilation_pending, finish_compilation
     if compilation_pending():
         tick = stage("compiling numerical kernels (first run)", 1)
         finish_compilation()

@@ -9,10 +9,10 @@ from pathlib import Path
 
 def cylinder_spectrum_command(project, project_path, record, x, y, relative, out, as_json, figures, console) -> None:
     """Compute the cylinder spectrum (and the reference's for ``--relative``), write npz/json/figures."""
-    from ..motions.pairs import parse_pair
-    from ..library import load_project
-    from ..cylinder.spectrum_output import write_cylinder_spectrum
-    from ..cylinder.spectrum import CylinderSpectrumError, cylinder_spectrum, parse_cylinder_axis
+    from .. import parse_pair
+    from ..library import load_project, spectrum_excitation
+    from .. import write_cylinder_spectrum
+    from .. import CylinderSpectrumError, cylinder_spectrum, parse_cylinder_axis
     if not record:
         raise CylinderSpectrumError("a cylinder spectrum needs a record pair", key="--record",
                                     expected="--record p695-ff/11 (or any record/files motion string)", found="none")
@@ -24,12 +24,12 @@ def cylinder_spectrum_command(project, project_path, record, x, y, relative, out
     _, ys = parse_cylinder_axis("pga/up:1:6:51" if y.startswith("ap/up:0:12:") else y, "y")
     a = project.analysis
     other = load_project(relative) if relative is not None else None
-    if other is not None and other.system.kind != "cylinder":
+    if other is not None and spectrum_excitation(other) != "record pair":
         raise CylinderSpectrumError("a relative cylinder spectrum needs a second cylinder", key="--relative",
                                     expected="a [cylinder] project", found=f"a {other.system.kind}")
     from .inputs import compile_kernels
     compile_kernels("cylinder-spectrum")
-    from ..progress import progress_bars
+    from .. import progress_bars
     with progress_bars(console, disable=as_json and not console.is_terminal) as bars:
         stage = f"cylinder spectrum of {pair.name}"
         spec = cylinder_spectrum(cyl, pair, xs, ys, rtol=a.rtol, atol=a.atol, free_vibration=a.free_vibration,

@@ -16,7 +16,7 @@ from rich.console import Console
 from rich.table import Table
 
 from ..errors import MotionError
-from ..motions.defaults import DEFAULT_BAND, DEFAULT_DAMPING, DEFAULT_N_PERIODS
+from .. import DEFAULT_BAND, DEFAULT_DAMPING, DEFAULT_N_PERIODS
 
 # the records, spectra and units modules (numba, pint) are imported by the commands that use them: the
 # CLI mounts this module for every command, `--help` and `init` included
@@ -42,9 +42,9 @@ def _record_id(text: str) -> str:
 
 def _load(record_id: str, gravity: float, records_dir: Optional[Path]):
     from .inputs import gravity as check_gravity
-    from ..motions.measures import plausibility_warnings
+    from .. import plausibility_warnings
     check_gravity(gravity)
-    from ..motions.library import load_record
+    from .. import load_record
     motion = load_record(_record_id(record_id), gravity=gravity, records_dir=records_dir)
     for text in plausibility_warnings(motion, gravity):
         Console(stderr=True, highlight=False, markup=False, soft_wrap=True).print(f"warning: {text}")
@@ -64,7 +64,7 @@ def _parse_band(text: str) -> tuple[float, float]:
 
 
 def _parse_damping(text: str) -> float:
-    from ..units import QuantityParseError, parse_quantity
+    from .. import QuantityParseError, parse_quantity
     try:
         value = parse_quantity(float(text) if _is_number(text) else text, "dimensionless")
     except QuantityParseError:
@@ -103,7 +103,7 @@ def list_command(
     """List built-in records, or the records of a suite (table: dt in s, PGA in g; --json: SI, PGA in m/s²)."""
     from .inputs import gravity as check_gravity
     check_gravity(gravity)
-    from ..motions.suites import list_records
+    from .. import list_records
     rows = list_records(suite, gravity=gravity, records_dir=records_dir)
     if as_json:
         typer.echo(json.dumps(rows))
@@ -136,8 +136,7 @@ def show_command(
     """Metadata and intensity measures of one record."""
     from .inputs import FIGURE_SUFFIXES, output_file
     output_file(plot, "--plot", FIGURE_SUFFIXES)
-    from ..motions.measures import motion_measures
-    from ..motions.spectra import sd_max
+    from .. import motion_measures, record_history_figure, save_figure, sd_max
     motion = _load(record_id, gravity, records_dir)
     from .inputs import compile_kernels
     compile_kernels("records")
@@ -166,29 +165,8 @@ def show_command(
     table.add_row("SD_max (2 % damping, 0.05–10 s)", f"{sd:.4g} m at T = {period:.3f} s")
     _console().print(table)
     if plot is not None:
-        _plot_history(motion, plot)
+        save_figure(record_history_figure(motion), plot, dpi=130)
         _console().print(f"plot written to {plot}")
-
-
-def _plot_history(motion, path: Path) -> None:
-    import numpy as np
-
-    from .. import mplfig as plt
-    from ..plots import save
-
-    from ..motions.measures import velocity_displacement
-    t, accel = motion.sampled()
-    velocity, displacement = velocity_displacement(np.ascontiguousarray(accel), motion.dt)
-    fig, axes = plt.subplots(3, 1, figsize=(8, 6.5), sharex=True)
-    for ax, values, label in zip(axes, (accel, velocity, displacement),
-                                 ("ü_g [m/s²]", "u̇_g [m/s]", "u_g [m] (uncorrected)")):
-        ax.plot(t, values, lw=0.7)
-        ax.set_ylabel(label)
-        ax.grid(alpha=0.3)
-    axes[-1].set_xlabel("t [s]")
-    axes[0].set_title(motion.name)
-    fig.tight_layout()
-    save(fig, path, dpi=130)
 
 
 @app.command("spectrum")
@@ -208,8 +186,7 @@ def spectrum_command(
     output_file(plot, "--plot", FIGURE_SUFFIXES)
     zeta = _parse_damping(damping)
     lo, hi = _parse_band(band)
-    from ..motions.measures import motion_measures
-    from ..motions.spectra import motion_spectrum, period_grid, sd_max
+    from .. import motion_measures, motion_spectrum, period_grid, record_spectrum_figure, save_figure, sd_max
     motion = _load(record_id, gravity, records_dir)
     from .inputs import compile_kernels
     compile_kernels("records")
@@ -222,7 +199,7 @@ def spectrum_command(
               **{k: measures[k] for k in ("pga", "pgv", "pgd", "arias", "cav", "bracketed_duration",
                                           "significant_duration", "a_rms", "predominant_frequency")}}
     if plot is not None:
-        _plot_spectrum(result, plot, gravity)
+        save_figure(record_spectrum_figure(result, gravity), plot, dpi=130)
     if as_json:
         typer.echo(json.dumps(result))
         return
@@ -240,29 +217,6 @@ def spectrum_command(
         console.print(f"plot written to {plot}")
 
 
-def _plot_spectrum(result: dict, path: Path, gravity: float) -> None:
-    import numpy as np
-
-    from .. import mplfig as plt
-    from ..plots import save
-
-    fig, (ax_sd, ax_psa) = plt.subplots(1, 2, figsize=(10, 4))
-    ax_sd.plot(result["periods"], result["SD"], lw=1)
-    ax_sd.plot([result["t_sd_max"]], [result["sd_max"]], "o", label=f"SD_max = {result['sd_max']:.3f} m")
-    ax_sd.set_xlabel("T [s]")
-    ax_sd.set_ylabel("SD [m]")
-    ax_sd.legend()
-    ax_psa.plot(result["periods"], np.asarray(result["PSA"]) / gravity, lw=1)
-    ax_psa.set_xlabel("T [s]")
-    ax_psa.set_ylabel("PSA [g]")
-    for ax in (ax_sd, ax_psa):
-        ax.set_xscale("log")
-        ax.grid(alpha=0.3, which="both")
-    fig.suptitle(f"{result['id']} — {100 * result['damping']:g} % damping")
-    fig.tight_layout()
-    save(fig, path, dpi=130)
-
-
 @app.command("synth")
 def synth_command(
     seed: str = typer.Option(..., "--seed", help="Seed record id, file:path or a path."),
@@ -274,7 +228,7 @@ def synth_command(
     gravity: float = typer.Option(9.81, "--gravity", help=GRAVITY_HELP),
 ) -> None:
     """Synthetic ensemble (sgsim stochastic model fitted to the seed), saved as a suite."""
-    from ..motions.synth import SCALE_CHOICES, synthesize
+    from .. import SCALE_CHOICES, synthesize
     if scale_to not in SCALE_CHOICES:
         raise MotionError("invalid --scale-to", key="--scale-to", expected=" | ".join(SCALE_CHOICES),
                           found=repr(scale_to))

@@ -49,6 +49,10 @@ KERNELS: dict[str, tuple[tuple[str, str], ...]] = {
     "cylinder-spectrum": (("rockdesign.cylinder.spectrum", "_grid"),),
     "bench": ENGINE + LINEAR_EXACT,
 }
+WARM_UPS: dict[str, tuple[str, str]] = {"spectrum": ("rockdesign.spectra.kernel", "warm_up")}
+"""Warm-up functions (module, function) of kernels that live above the dynamics layer, by command: reached
+by name through :func:`_dispatcher` like the kernels of :data:`KERNELS`, so this module imports no analysis
+module (the pulse-spectrum kernel stays in ``rockdesign.spectra``; no dynamics ↔ spectra cycle)."""
 ENGINE_COMMANDS = ("check", "simulate", "ensemble", "calibrate", "spectrum", "cylinder-check", "bench")
 """Commands that run the planar integrator: a helper process compiles half of its callees (:func:`prepare`)."""
 ESTIMATE_SECONDS = {"check": 30, "simulate": 30, "ensemble": 30, "calibrate": 30, "records": 5, "spectrum": 30,
@@ -97,9 +101,8 @@ def _warm(command: str, parts: tuple[str, ...] = PARTS) -> None:
     g = 9.81
     system = block(1.5, 0.15)
     record = record_motion("warm-up", np.array([0.0, 0.3, -0.3, 0.0]) * g, 0.01)
-    if "engine" in parts and command == "spectrum":          # the integrator inside the pulse-spectrum kernel
-        from ..spectra.kernel import warm_up
-        warm_up()
+    if "engine" in parts and command in WARM_UPS:            # e.g. the integrator inside the pulse-spectrum kernel
+        _dispatcher(*WARM_UPS[command])()
     elif "engine" in parts and command in ENGINE_COMMANDS:   # the batch kernel and the integrator it runs
         simulate(system, record, t_end=0.05)
         sp = system_parameters(system, ModelChoice("block", "exact"))

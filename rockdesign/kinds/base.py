@@ -26,6 +26,9 @@ class StructureKind(abc.ABC):
     """The first-run compilation command (:mod:`rockdesign.dynamics.compilation`) of ``simulate``."""
     check_kernels: str = "check"
     """The first-run compilation command of ``check``."""
+    spectrum_excitation: str = "pulse"
+    """What the kind's rocking spectrum runs over: "pulse" (planar: a pulse family, thesis Ch. 3) or
+    "record pair" (cylinder: one record pair over R and PGA, Figs 5.16–5.17)."""
     report_files: frozenset[str] = frozenset()
     """Files a check writes into its output folder besides :data:`~rockdesign.outdir.RUN_FILES`."""
 

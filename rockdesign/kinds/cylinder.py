@@ -26,6 +26,7 @@ class Cylinder(StructureKind):
     simulate_kernels = "cylinder"
     check_kernels = "cylinder-check"
     report_files = frozenset(FIGURE_FILES)
+    spectrum_excitation = "record pair"
 
     def claims(self, raw):
         return claims(raw)

@@ -16,7 +16,7 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
                 "rockdesign.cylinder.quantities")),
     ("motions", ("rockdesign.motions",)),
     ("project", ("rockdesign.project", "rockdesign.project_tables", "rockdesign.cylinder.project")),
-    ("dynamics", ("rockdesign.dynamics", "rockdesign.cylinder", "rockdesign.spectra.kernel")),
+    ("dynamics", ("rockdesign.dynamics", "rockdesign.cylinder")),
     ("analyses", ("rockdesign.spectra", "rockdesign.checks")),
     ("report", ("rockdesign.report",)),
     ("experiments", ("rockdesign.experiments",)),
@@ -26,8 +26,8 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
 )
 """Layers, lowest first, and the modules (prefixes) in each: a module may import only from its own
 layer or a lower one.  The most specific prefix wins (``rockdesign.cylinder.project`` is in *project*
-although ``rockdesign.cylinder`` is in *dynamics*; the pulse-spectrum kernel ``rockdesign.spectra.kernel``
-is a numba kernel like the engines, so the first-run compilation can warm it); ``rockdesign.cli`` covers
+although ``rockdesign.cylinder`` is in *dynamics*; the first-run compilation warms the pulse-spectrum kernel
+``rockdesign.spectra.kernel`` through its table of warm-up functions, by name); ``rockdesign.cli`` covers
 every module of the command-line package.
 ``rockdesign`` itself (the package's ``__init__``) imports nothing at import time: its lazy
 ``__getattr__`` names the library modules as strings, which this check does not read."""
