@@ -16,6 +16,10 @@ Commands compile only their own kernels (:data:`KERNELS`): ``simulate`` never co
 linear integrator, ``records`` only the elastic response spectrum, the cylinder's commands their own
 integrator.  Every CLI command that runs kernels calls :func:`prepare` after checking its input, so a
 typo is reported at once on a first run too (docs/engine.md, "First run").
+
+Imports of the kernels' modules stay inside the functions here, on purpose: each command imports only
+the modules of its own kernels (``records`` never loads the engine, ``simulate`` never the cylinder),
+which is what keeps a first run of a light command light; the table names them as strings.
 """
 from __future__ import annotations
 

@@ -95,6 +95,13 @@ def test_installed_wheel_runs_every_command_from_a_temporary_directory(venv, tmp
     s = json.loads(_run([rockdesign, "simulate", "podium.toml", "--motion", "record:p695-ff/11a,scale=0.5", "--json"],
                         work, env).stdout)
     assert s["t_end"] > 20 and s["theta_max"] >= 0   # the Landers record is read from the installed package
+    # the cylinder through the same front door (the registry of kinds is in the wheel)
+    _run([rockdesign, "init", "cylinder", "cyl.toml"], work, env)
+    qc = json.loads(_run([rockdesign, "quantities", "cyl.toml", "--json"], work, env).stdout)
+    assert qc["quantities"]["alpha"]["unit"] == "rad"
+    sc = json.loads(_run([rockdesign, "simulate", "cyl.toml", "--motion", "free:theta0=0.5alpha", "--t-end", "1",
+                          "--json"], work, env).stdout)
+    assert sc["model"].startswith("cylinder-") and sc["theta_max_over_alpha"] > 0.49
     listing = _run([rockdesign, "records", "list", "--json"], work, env)
     assert len(json.loads(listing.stdout)) == 100
     check = _run([rockdesign, "check", "podium.toml", "-o", "out"], work, env, timeout=1800)
