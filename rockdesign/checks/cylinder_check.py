@@ -14,7 +14,9 @@ Table 5.4's scaling):
 Each pair is one typed :class:`PairOutcome` (one ground motion: ``ground_motion`` is the pair id).  The
 verdict is :func:`~rockdesign.checks.criteria.decide` over the criteria of :data:`CYLINDER_CRITERIA`
 (:mod:`rockdesign.checks.cylinder_criteria`): every analysis completed, and the one-sided 95 % upper
-bound of the 3D P(overturn) (Clopper–Pearson) within ``[analysis] overturn_probability_limit``.  Its
+bound of the 3D P(overturn) (Clopper–Pearson) within ``[analysis] overturn_probability_limit``, at the
+design level and at every intensity below it (each pair scanned, :mod:`rockdesign.checks.cylinder_margins`;
+``--no-margins`` skips the scan and the verdict says so).  Its
 robustness: a seeded perturbation ensemble (``[analysis] ensemble_size`` runs of the whole suite, each
 pair's amplitude × (1 ± 0.1 %), tolerances one decade tighter).
 """
@@ -37,7 +39,9 @@ from ..motions.spectra import sd_max_of_samples
 from ..systems import Column, RockingSystem
 from .criteria import CheckContext, decide, evaluate_criteria, minimum_records
 from .cylinder_criteria import CYLINDER_CRITERIA
+from .cylinder_margins import pair_margins
 from .ensemble import AMPLITUDE_VARIATION, TOLERANCE_FACTOR, perturbations
+from .margins import Margin
 from .statistics import overturning_probability
 
 GOVERNING_PAIRS = 2
@@ -101,7 +105,7 @@ class PairOutcome:
     damped: bool = False
     ensemble_fraction: float | None = None
     outcome_robust: bool | None = None
-    margin: None = None           # (no incremental analysis of pairs: IncrementalMargin is not a cylinder criterion)
+    margin: Margin | None = None  # overturning factors at and below the design level (checks/cylinder_margins.py)
     klass: str = ""               # (Fig 4.9 classes are planar)
 
     @property
@@ -137,6 +141,10 @@ class PairOutcome:
                    planar_overturned=self.planar_overturned, theta_max_over_theta_ot=r.theta_max_over_theta_c,
                    analysis_failed=r.status != "completed", ensemble_overturn_fraction=self.ensemble_fraction,
                    outcome_robust=self.outcome_robust)
+        m = self.margin
+        row.update(overturn_scale=None if m is None else m.overturn_scale,
+                   overturn_intervals=None if m is None else [list(iv) for iv in m.intervals],
+                   margin_scanned_up_to=None if m is None else m.scanned_up_to)
         return row
 
 
@@ -280,8 +288,9 @@ def _ensembles(cyl, pairs, factors, nominal: list[PairRun], a, progress) -> dict
             "n_not_robust": int((~robust).sum())}
 
 
-def run_cylinder_check(project, progress=None) -> CylinderCheckResult:
-    """The cylinder check (see module docstring): typed outcomes, the criteria and the one verdict."""
+def run_cylinder_check(project, progress=None, margins: bool = True) -> CylinderCheckResult:
+    """The cylinder check (see module docstring): typed outcomes, the criteria and the one verdict.
+    ``margins``: scan each pair below the design level for overturning (the incremental criterion)."""
     cyl, a, e = project.system, project.analysis, project.excitation
     pairs = [(s, p) for s in e.suites for p in suite_pairs(s, gravity=cyl.g)]
     block = planar_block(cyl)
@@ -301,13 +310,22 @@ def run_cylinder_check(project, progress=None) -> CylinderCheckResult:
         factors.append(factor)
         if progress is not None:
             progress("cylinder and planar analyses", i + 1, len(pairs))
+    if margins:
+        found = pair_margins(cyl, [p.scaled(f) for (_, p), f in zip(pairs, factors)], [o.run for o in records], a,
+                             lambda pair, rtol: _run_3d(cyl, pair, a, rtol=rtol), progress)
+        for o, m in zip(records, found):
+            o.margin = m
     ens = _ensembles(cyl, [p for _, p in pairs], factors, [o.run for o in records], a, progress)
     if ens is not None:
         for i, o in enumerate(records):
             o.ensemble_fraction, o.outcome_robust = float(ens["fractions"][i]), bool(ens["robust"][i])
     summary = _summary(records, e, ens)
     summary["min_records_for_bound"] = minimum_records(a.overturn_probability_limit)
-    context = CheckContext(records, a, {}, {}, margins_run=False,
+    summary["min_margin"] = min((o.margin.overturn_scale for o in records
+                                 if o.margin is not None and o.margin.overturn_scale is not None), default=None)
+    summary["n_margin_below_design"] = sum(1 for o in records if o.margin is not None
+                                           and o.margin.overturn_scale is not None and o.margin.overturn_scale < 1.0)
+    context = CheckContext(records, a, {}, {}, margins_run=margins,
                            extra={"ensemble": ens, "cylinder": cyl, "summary": summary})
     items, skipped = evaluate_criteria(context, CYLINDER_CRITERIA)
     decision = decide(items, skipped)
@@ -325,10 +343,10 @@ def governing_ids(data: dict, n: int = GOVERNING_PAIRS) -> list[str]:
     return [r["id"] for r in rows[:n]]
 
 
-def cylinder_check(project, progress=None) -> CylinderCheckResult:
+def cylinder_check(project, progress=None, margins: bool = True) -> CylinderCheckResult:
     """:func:`run_cylinder_check` plus the histories of the governing pairs (re-analysed: the engine is
     deterministic, so they are the histories behind the rows of results.json)."""
-    result = run_cylinder_check(project, progress=progress)
+    result = run_cylinder_check(project, progress=progress, margins=margins)
     cyl, a = project.system, project.analysis
     by_id = {o.id: o for o in result.records}
     pairs = {p.meta.get("id", p.name): p for s in project.excitation.suites for p in suite_pairs(s, gravity=cyl.g)}

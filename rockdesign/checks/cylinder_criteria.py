@@ -12,8 +12,8 @@ import dataclasses
 import math
 import statistics
 
-from .criteria import (GOVERNS, INFORMATIVE, ROBUSTNESS, AnalysesCompleted, Criterion, OverturningProbability,
-                       probability_bound)
+from .criteria import (GOVERNS, INFORMATIVE, ROBUSTNESS, AnalysesCompleted, Criterion, IncrementalMargin,
+                       OverturningProbability, probability_bound)
 
 
 def _pct(x: float) -> str:
@@ -110,6 +110,6 @@ class PolyakovPerComponent(Criterion):
                          f"median SD_max/2B = {median:.3g}")
 
 
-CYLINDER_CRITERIA: list[type[Criterion]] = [AnalysesCompleted, CylinderOverturning, CylinderEnsembleRobustness,
-                                            PlanarSuffices, PolyakovPerComponent]
+CYLINDER_CRITERIA: list[type[Criterion]] = [AnalysesCompleted, CylinderOverturning, IncrementalMargin,
+                                            CylinderEnsembleRobustness, PlanarSuffices, PolyakovPerComponent]
 """The criteria of a cylinder's check in evaluation order (:func:`~rockdesign.checks.criteria.evaluate_criteria`)."""

@@ -76,7 +76,7 @@ class Cylinder(StructureKind):
         compilation.prepare(self.check_kernels, say)
 
     def check(self, project, *, progress, records_dir, margins, executor):
-        return cylinder_check.cylinder_check(project, progress=progress)
+        return cylinder_check.cylinder_check(project, progress=progress, margins=margins)
 
     def write_report(self, result, folder, *, pdf, html, pdf_worker):
         write_cylinder_files(result, folder, pdf=pdf, html=html, pdf_worker=pdf_worker)

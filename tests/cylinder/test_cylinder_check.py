@@ -46,7 +46,7 @@ def test_statistics_are_clopper_pearson_over_22_pairs(result):
     assert s["difference_p_overturn"] == pytest.approx(s["p_overturn"] - s["planar"]["p_overturn"])
     # the verdict is criteria.decide's: every analysis completed and the probability bound, as for a planar check
     gov = {c["criterion"]: c for c in result["checks"] if c["governs_verdict"]}
-    assert set(gov) == {"analyses_completed", "overturning_probability"}
+    assert set(gov) == {"analyses_completed", "overturning_probability", "incremental_margin"}
     assert result["verdict"] == ("PASS" if all(c["passed"] for c in gov.values()) else "FAIL")
     assert result["verdict_reason"].startswith(result["verdict"])
 
@@ -65,6 +65,26 @@ def test_one_row_reproduces_simulate(result):
     block = planar_block(proj.system)
     assert block.column.mass_distribution == pytest.approx((3 + np.cos(proj.system.alpha) ** 2) / 12)
     assert block.restitution == pytest.approx(expected("eq5.41") ** 2, abs=2e-5)
+
+
+def test_margins_below_the_design_level_are_real(result):
+    """Each overturning factor ≤ 1 the scan reports overturns the cylinder when analysed alone (at the
+    scan's tolerance); a pair without one does not overturn at the design level; the incremental
+    criterion counts exactly the pairs overturning at some factor ≤ 1."""
+    proj = parse_project({"project": {"name": "x"}, "cylinder": {"height": "3 m", "slenderness": 0.2,
+                                                                "mass": "2 t"}})
+    a = proj.analysis
+    rows = [r for r in result["records"] if r["overturn_scale"] is not None]
+    assert rows, "the 0.3 g suite has pairs that overturn at or below the design level"
+    assert all(r["overturn_scale"] <= 1.0 and r["margin_scanned_up_to"] == 1.0 for r in rows)
+    for r in rows[:3]:
+        pair = load_pair(r["id"]).scaled(r["scale"] * r["overturn_scale"])
+        run = simulate_cylinder(proj.system, pair, rtol=max(a.rtol, a.scan_rtol), atol=a.atol,
+                                rest_velocity=a.rest_velocity)
+        assert run.overturned, r["id"]
+    assert all(r["overturn_scale"] is not None for r in result["records"] if r["overturned"])
+    inc = next(c for c in result["checks"] if c["criterion"] == "incremental_margin")
+    assert inc["detail"].startswith(f"{len(rows)} of 22 records overturn at some intensity")
 
 
 @pytest.mark.parametrize("excitation, key", [
