@@ -32,7 +32,7 @@ from .dynamics import compilation
 from .errors import ProjectError, RockdesignError
 from .execution.executor import make_executor
 from .kinds import kind_of, kind_of_document
-from .kinds.cylinder_simulation import CylinderSimulation
+from .kinds.cylinder_simulation import CylinderSimulation  # noqa: F401  (exported: rd.CylinderSimulation)
 from .kinds.planar_simulation import SimulationResult
 from .outdir import OutputFolder
 from .progress import progress_bars

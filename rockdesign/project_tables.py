@@ -10,6 +10,7 @@ import math
 import re
 import tomllib
 from dataclasses import dataclass, field
+from pathlib import Path
 
 from .design.quantities import RIGID_SUPERSTRUCTURE_RATIO
 from .errors import ProjectError
@@ -182,7 +183,6 @@ def read_document(path) -> tuple[dict, str]:
     """(TOML document, text) of a project file; a :class:`ProjectError` naming the file when it cannot be
     read or is not TOML.  Which kind of structure the document describes is the registry's question
     (:mod:`rockdesign.kinds`)."""
-    from pathlib import Path
     file = str(path)
     try:
         text = Path(path).read_text(encoding="utf-8-sig")   # a UTF-8 BOM (Windows Notepad) is not content
