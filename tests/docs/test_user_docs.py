@@ -99,6 +99,7 @@ def test_changelog_has_unreleased_and_the_current_version():
     text = (ROOT / "CHANGELOG.md").read_text(encoding="utf-8")
     heads = re.findall(r"^## \[([^\]]+)\]", text, flags=re.MULTILINE)
     assert heads[:2] == ["Unreleased", version], heads
-    current = text.split(f"## [{version}]", 1)[1]
-    for sub in ("### Added", "### Changed", "### Fixed"):
-        assert sub in current, sub
+    unreleased, current = text.split("## [Unreleased]", 1)[1].split(f"## [{version}]", 1)
+    for sub in ("### Added", "### Changed", "### Fixed"):  # where merged work adds its lines
+        assert sub in unreleased, sub
+    assert "### Added" in current
