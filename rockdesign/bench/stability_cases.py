@@ -676,7 +676,7 @@ def event_location_crash(quick: bool = False, methods=ALL_METHODS) -> StabilityC
     return StabilityCase("event-location-crash", "Event location crashes (inconsistent dense output)",
                          f"{p.system_name} under {p.description}, rtol {_fmt_tols(tols)}. scipy's LSODA dense output "
                          "does not reproduce the step's start value, so brentq's bracket check raises "
-                         "(scipy issue #14480).", outcomes,
+                         "(reported upstream: https://github.com/scipy/scipy/issues/14480).", outcomes,
                          _diag(diag, run=f"rtol {tols[-1]:g}") if diag is not None else {}, behaviour,
                          _plot_crash, data)
 
