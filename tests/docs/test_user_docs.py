@@ -68,7 +68,8 @@ def test_the_scan_finds_history(tmp_path, text, kind):
 @pytest.mark.parametrize("text", [
     "a decade of records, a facade", "rtol 1e-10, 2.4e-9 rad", "seed 20090601", "colour #1f77b4 in a figure",
     "[§9](#9-corrections-to-the-printed-thesis)", "<a id=\"drift\"></a>", "before overturning",
-    "impacts before and after", "https://github.com/scipy/scipy/issues/14480", "its error is measured against", "t* = 4.474460593 s",
+    "impacts before and after", "https://github.com/scipy/scipy/issues/14480", "its error is measured against",
+    "t* = 4.474460593 s",
     "FEMA P695 far-field record 11a", "the ratio of kinetic energies after/before an impact",
 ])
 def test_the_scan_leaves_technical_text_alone(tmp_path, text):
@@ -87,7 +88,7 @@ def _section(text: str, title: str) -> list[str]:
 def test_readme_speed_section_fits_on_one_screen():
     section = _section((ROOT / "README.md").read_text(encoding="utf-8"), "Speed and accuracy")
     body = [ln for ln in section if ln.strip()]
-    assert len(section) <= 45, f"{len(section)} lines"
+    assert len(section) <= 40, f"{len(section)} lines"
     # a screen is ~160 characters wide: a cell of a paragraph does not fit
     long = [ln[:60] + "…" for ln in body if not ln.startswith("![") and len(ln) > 400]
     assert not long, f"lines too long to read at a glance: {long}"
