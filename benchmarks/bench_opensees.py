@@ -10,11 +10,11 @@ tan α = 0.15, λ = 0.33, c_r = 0.90, exact equations).  The OpenSees model is t
 idealisation of a rocking block: a node at the centre of mass (mass m, rotational inertia λ m R²) joined
 to the two base corners by very stiff elastic beams with a corotational transformation (large rotations;
 OpenSees' rigid links are small-rotation constraints and would turn the restoring moment mgR sin(α − θ)
-into the constant mgB); each corner stands on a zero-length ``flatSliderBearing`` element whose axial
-spring is elastic in compression and carries no tension (``ENT``, stiffness K_V) and whose shear is
-Coulomb friction (μ = 1: no sliding, and no horizontal restraint once the corner lifts).  Impacts lose
-energy through stiffness-proportional damping of the contact elements on their committed stiffness (a
-lifted corner is undamped); β_K is calibrated so that free rocking rebounds after its first impact to the
+into the constant mgB).  Each corner stands on a zero-length ``flatSliderBearing`` (Coulomb friction,
+μ = 1: no sliding, and no horizontal restraint once the corner lifts) and a vertical zero-length spring,
+each with half of the no-tension contact stiffness K_V (``ENT``).  Impacts lose energy through
+stiffness-proportional damping of the vertical springs on their committed stiffness (a lifted corner is
+undamped); β_K is calibrated at Δt = 1e-4 s so that free rocking rebounds after its first impact to the
 amplitude rockdesign gives with c_r = 0.90 — the same restitution in both models.  Newmark's average
 acceleration method with Newton iterations, at a fixed time step.
 
