@@ -1,12 +1,12 @@
 """Where rockdesign finds its data: the bundled records and suites, templates, and ../shared.
 
-The built-in record sets, suite manifests and the report/project templates are package data
-(``rockdesign/data/ground_motions`` and ``rockdesign/data/templates``): they ship inside the wheel
-and the sdist and are found with :mod:`importlib.resources`, so every command works from any
-directory with a normal (non-editable) install, an editable install or a plain checkout alike.
-They live inside the package rather than at the top of the repository because one lookup then
-serves every kind of installation; ``ROCKDESIGN_GROUND_MOTIONS`` / ``ROCKDESIGN_TEMPLATES``
-point rockdesign at other folders.
+The built-in record sets, suite manifests and the report/project templates live at the top of the
+checkout (``ground_motions/`` and ``templates/``).  The wheel carries them as package data
+(``rockdesign/data/ground_motions`` and ``rockdesign/data/templates``, mapped by the build backend),
+so :func:`data_dir` looks in the installed package first and then in the checkout beside the
+package: an installed wheel, an editable install and a plain checkout all go through that one lookup,
+and every command works from any directory.  ``ROCKDESIGN_GROUND_MOTIONS`` /
+``ROCKDESIGN_TEMPLATES`` point rockdesign at other folders.
 """
 from __future__ import annotations
 
@@ -28,21 +28,27 @@ def child_environment() -> dict[str, str]:
 
 
 def data_dir(name: str) -> Path:
-    """A folder of package data (``ground_motions`` | ``templates``) found by :mod:`importlib.resources`."""
+    """The folder of built-in data ``name`` (``ground_motions`` | ``templates``): the installed wheel's
+    package data (``rockdesign/data/NAME``, found by :mod:`importlib.resources`), else the checkout's
+    top-level folder ``NAME`` beside the package (editable install or plain checkout)."""
     folder = resources.files("rockdesign") / "data" / name
-    if not isinstance(folder, Path):   # a zipped install: not supported (setuptools installs unzipped)
-        raise RuntimeError(f"rockdesign's package data '{name}' is not on the file system ({folder})")
-    return folder
+    if isinstance(folder, Path) and folder.is_dir():
+        return folder
+    checkout = REPO_ROOT / name
+    if checkout.is_dir() and (PACKAGE_DIR / "__init__.py").is_file():
+        return checkout
+    raise RuntimeError(f"rockdesign's built-in data '{name}' was found neither in the package ({folder}) "
+                       f"nor in the checkout ({checkout})")
 
 
 def ground_motions_dir() -> Path:
-    """Folder of the built-in record sets and suite manifests (package data ``rockdesign/data/ground_motions``)."""
+    """Folder of the built-in record sets and suite manifests (``ground_motions/`` of the checkout, package data in the wheel)."""
     env = os.environ.get("ROCKDESIGN_GROUND_MOTIONS")
     return Path(env) if env else data_dir("ground_motions")
 
 
 def templates_dir() -> Path:
-    """Folder of the report and project templates (package data ``rockdesign/data/templates``)."""
+    """Folder of the report and project templates (``templates/`` of the checkout, package data in the wheel)."""
     env = os.environ.get("ROCKDESIGN_TEMPLATES")
     return Path(env) if env else data_dir("templates")
 

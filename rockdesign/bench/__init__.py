@@ -7,7 +7,7 @@ Modules: :mod:`~rockdesign.bench.problems` (3 excitations × 3 systems), :mod:`~
 :mod:`~rockdesign.bench.stability` and :mod:`~rockdesign.bench.stability_cases` (stability.md),
 :mod:`~rockdesign.dynamics.accuracy` (``engine_accuracy`` for the check report),
 :mod:`~rockdesign.bench.speed` (summary of ``benchmarks/results``), :mod:`~rockdesign.bench.timing`.
-The CLI is ``rockdesign bench`` (:mod:`rockdesign.cli_bench`).
+The CLI is ``rockdesign bench`` (:mod:`rockdesign.cli.bench`).
 """
 from ..dynamics.accuracy import engine_accuracy
 

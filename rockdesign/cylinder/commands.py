@@ -1,5 +1,5 @@
 """The library face of the cylinder: ``quantities`` and ``simulate`` for a ``[cylinder]`` project (the
-console tables that print them live in rockdesign.cli_cylinder)."""
+console tables that print them live in rockdesign.cli.cylinder)."""
 from __future__ import annotations
 
 from dataclasses import dataclass

@@ -4,7 +4,7 @@ Record ids understood by :func:`load_record`:
 
 * ``p695-ff/<n><c>`` (far-field, n = 1…22), ``p695-nfp/<n><c>`` (near-field pulse, n = 1…14),
   ``p695-nfnp/<n><c>`` (near-field no-pulse, n = 15…28), c = a | b: the FEMA P695 records
-  (FEMA 2009, Appendix A) shipped in ``rockdesign/data/ground_motions/p695_*.npz`` (as recorded, in g).
+  (FEMA 2009, Appendix A) shipped in ``ground_motions/p695_*.npz`` (as recorded, in g).
 * ``p695-…/<n>@<azimuth>``: the horizontal component of FEMA record n rotated to the given
   azimuth [degrees clockwise from north], exact 2-D rotation of the two orthogonal components
   (e.g. ``p695-nfp/6@0`` is Erzincan 1992 NS, recovering the as-recorded NGA-West1 component).
@@ -47,7 +47,7 @@ ID_FORMS = ("p695-ff/<1..22><a|b>, p695-nfp/<1..14><a|b>, p695-nfnp/<15..28><a|b
 
 @lru_cache(maxsize=1)
 def _catalogue() -> dict[str, dict]:
-    """Rows of ``rockdesign/data/ground_motions/p695_records.csv`` keyed by record id (types converted)."""
+    """Rows of ``ground_motions/p695_records.csv`` keyed by record id (types converted)."""
     path = ground_motions_dir() / "p695_records.csv"
     if not path.is_file():
         raise RecordError("built-in record table missing", file=str(path),

@@ -1,6 +1,6 @@
 """Record suites: named lists of records with metadata and a default scaling rule.
 
-A suite is a TOML manifest (built-in ones in ``rockdesign/data/ground_motions/*.toml``)::
+A suite is a TOML manifest (built-in ones in ``ground_motions/*.toml``)::
 
     name = "thesis-table-4.1"
     description = "..."

@@ -4,7 +4,7 @@ WeasyPrint PDF (CONTRACT §4: ``report.html``, ``report.pdf``).
     write_report(result, out_dir, pdf=True, html=True) -> {"html": Path, "pdf": Path}
     render_html(result) -> str
 
-The template is ``rockdesign/data/templates/report.html.j2`` with ``report.css`` (folder
+The template is ``templates/report.html.j2`` with ``report.css`` (folder
 :func:`rockdesign.paths.templates_dir`).  Numbers are printed by the ``fmt`` filter
 (:func:`rockdesign.report.formatting.fmt`) from the values of ``result.as_json()``, so the report
 and results.json agree.  Rendering is deterministic apart from the date (``SOURCE_DATE_EPOCH``

@@ -22,13 +22,13 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
     ("experiments", ("rockdesign.experiments",)),
     ("library", ("rockdesign.library", "rockdesign.api", "rockdesign.cylinder.commands")),
     ("bench", ("rockdesign.bench",)),
-    ("cli", ("rockdesign.cli", "rockdesign.cli_", "rockdesign.templates")),
+    ("cli", ("rockdesign.cli", "rockdesign.templates")),
 )
 """Layers, lowest first, and the modules (prefixes) in each: a module may import only from its own
 layer or a lower one.  The most specific prefix wins (``rockdesign.cylinder.project`` is in *project*
 although ``rockdesign.cylinder`` is in *dynamics*; the pulse-spectrum kernel ``rockdesign.spectra.kernel``
-is a numba kernel like the engines, so the first-run compilation can warm it); ``rockdesign.cli_`` covers
-every ``cli_*`` module.
+is a numba kernel like the engines, so the first-run compilation can warm it); ``rockdesign.cli`` covers
+every module of the command-line package.
 ``rockdesign`` itself (the package's ``__init__``) imports nothing at import time: its lazy
 ``__getattr__`` names the library modules as strings, which this check does not read."""
 

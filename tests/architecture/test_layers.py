@@ -68,7 +68,7 @@ def test_the_checker_sees_lazy_relative_and_from_package_imports(tmp_path):
 def test_most_specific_prefix_wins():
     assert LAYERS[layer_of("rockdesign.cylinder.project")][0] == "project"
     assert LAYERS[layer_of("rockdesign.cylinder.kernel")][0] == "dynamics"
-    assert LAYERS[layer_of("rockdesign.cli_records")][0] == "cli"
+    assert LAYERS[layer_of("rockdesign.cli.records")][0] == "cli"
     assert LAYERS[layer_of("rockdesign.bench.baseline.scipy_engine")][0] == "bench"
 
 

@@ -1,4 +1,4 @@
-"""``rockdesign records ...`` through typer's CliRunner (sub-app of rockdesign.cli_records).
+"""``rockdesign records ...`` through typer's CliRunner (sub-app of rockdesign.cli.records).
 
 User errors surface as RockdesignError subclasses (the main CLI turns them into exit code 2)."""
 from __future__ import annotations
@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from rockdesign.cli_records import app
+from rockdesign.cli.records import app
 from rockdesign.errors import MotionError, RecordError
 from rockdesign.motions.library import load_record
 from rockdesign.motions.spectra import sd_max

@@ -66,7 +66,7 @@ def test_synthesize_writes_a_loadable_suite(tmp_path, seed):
 
 
 def test_cli_synth(tmp_path):
-    from rockdesign.cli_records import app
+    from rockdesign.cli.records import app
     result = CliRunner().invoke(app, ["synth", "--seed", "p695-ff/11a", "-n", "2", "-o", str(tmp_path / "cli"),
                                       "--seed-value", "4", "--scale-to", "spectrum"])
     assert result.exit_code == 0, result.output

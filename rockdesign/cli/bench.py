@@ -17,7 +17,7 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
-from .errors import RockdesignError
+from ..errors import RockdesignError
 
 
 class BenchError(RockdesignError):
@@ -44,11 +44,11 @@ def run_bench(out_dir: Path, quick: bool = False, only: Optional[str] = None, st
         progress: callback for progress lines.
         stages: ``stages(stage, done, total)`` as problems and stability cases finish (progress bars).
     """
-    from .bench.figures import write_study_figures
-    from .bench.problems import problem_set
-    from .bench.runner import highlights, run_study
-    from .jsonable import json_ready
-    from .bench.speed import speed_summary
+    from ..bench.figures import write_study_figures
+    from ..bench.problems import problem_set
+    from ..bench.runner import highlights, run_study
+    from ..jsonable import json_ready
+    from ..bench.speed import speed_summary
     t0 = time.perf_counter()
     problems = problem_set(quick=quick)
     if only:
@@ -68,7 +68,7 @@ def run_bench(out_dir: Path, quick: bool = False, only: Optional[str] = None, st
     figures = write_study_figures(study, out_dir, histories)
     study["highlights"] = highlights(study)
     if stability:
-        from .bench.stability import run_stability, stability_markdown, write_stability_figures
+        from ..bench.stability import run_stability, stability_markdown, write_stability_figures
         cases = run_stability(quick=quick, progress=progress,
                               step=lambda done, total: bar("stability cases", done, total))
         stab_figs = write_stability_figures(cases, out_dir)
@@ -111,7 +111,7 @@ def print_summary(study: dict, console: Console) -> None:
             verdicts = {o["method"]: o["verdict"] for o in c["outcomes"]}
             s.add_row(c["condition"], *[verdicts.get(name, "–") for name in methods])
         console.print(s)
-    from .bench.speed import format_value
+    from ..bench.speed import format_value
     speed = study.get("speed_benchmarks") or []
     if speed:
         b = Table(title="Speed benchmarks (benchmarks/results/*.json)")
@@ -144,24 +144,24 @@ def register(app: typer.Typer, handle_errors) -> None:
                                                   "workprecision.md and ../benchmarks/README.md."),
               verbose: bool = typer.Option(False, "--verbose", "-v", metavar=" ", help="Print one line per measured point.")):
         """Work-precision charts (error vs wall time) and the solver stability study."""
-        from .cli_inputs import output_folder
+        from .inputs import output_folder
         output_folder(out, "--out")
         if docs is not None:
             output_folder(docs, "--docs")
         err = Console(stderr=True, highlight=False, soft_wrap=True)
-        from .cli_inputs import compile_kernels
+        from .inputs import compile_kernels
         compile_kernels("bench")      # (every point's first run is untimed anyway: this is for the screen)
         progress = (lambda line: err.print(line, markup=False)) if verbose else None
-        from .progress import progress_bars
+        from ..progress import progress_bars
         with progress_bars(err, disable=as_json and not err.is_terminal) as stages:
             study = run_bench(out, quick=quick, only=only, stability=not no_stability, progress=progress,
                               stages=stages)
         if docs is not None:
-            from .bench.publish import publish_docs
+            from ..bench.publish import publish_docs
             written = publish_docs(study, out, docs, readmes=[docs.parent / "benchmarks" / "README.md"])
             err.print(f"published {len(written)} files into {docs}", markup=False)
         if as_json:
-            from .jsonable import json_ready
+            from ..jsonable import json_ready
             sys.stdout.write(json.dumps(json_ready(study), indent=1, ensure_ascii=False) + "\n")
             return
         console = _console()

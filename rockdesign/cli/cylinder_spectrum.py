@@ -9,10 +9,10 @@ from pathlib import Path
 
 def cylinder_spectrum_command(project, project_path, record, x, y, relative, out, as_json, figures, console) -> None:
     """Compute the cylinder spectrum (and the reference's for ``--relative``), write npz/json/figures."""
-    from .motions.pairs import parse_pair
-    from .project import load_project
-    from .cylinder.spectrum_output import write_cylinder_spectrum
-    from .cylinder.spectrum import CylinderSpectrumError, cylinder_spectrum, parse_cylinder_axis
+    from ..motions.pairs import parse_pair
+    from ..project import load_project
+    from ..cylinder.spectrum_output import write_cylinder_spectrum
+    from ..cylinder.spectrum import CylinderSpectrumError, cylinder_spectrum, parse_cylinder_axis
     if not record:
         raise CylinderSpectrumError("a cylinder spectrum needs a record pair", key="--record",
                                     expected="--record p695-ff/11 (or any record/files motion string)", found="none")
@@ -27,9 +27,9 @@ def cylinder_spectrum_command(project, project_path, record, x, y, relative, out
     if other is not None and other.system.kind != "cylinder":
         raise CylinderSpectrumError("a relative cylinder spectrum needs a second cylinder", key="--relative",
                                     expected="a [cylinder] project", found=f"a {other.system.kind}")
-    from .cli_inputs import compile_kernels
+    from .inputs import compile_kernels
     compile_kernels("cylinder-spectrum")
-    from .progress import progress_bars
+    from ..progress import progress_bars
     with progress_bars(console, disable=as_json and not console.is_terminal) as bars:
         stage = f"cylinder spectrum of {pair.name}"
         spec = cylinder_spectrum(cyl, pair, xs, ys, rtol=a.rtol, atol=a.atol, free_vibration=a.free_vibration,

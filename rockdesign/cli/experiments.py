@@ -1,6 +1,6 @@
 """``rockdesign calibrate | validate | ensemble``: experiments (thesis Ch. 6–7, docs/experiments.md).
 
-``records scale-model`` lives in :mod:`rockdesign.cli_records` and calls
+``records scale-model`` lives in :mod:`rockdesign.cli.records` and calls
 :func:`scale_model_command` here.
 """
 from __future__ import annotations
@@ -28,7 +28,7 @@ def _fmt(value, digits: int = 4) -> str:
 
 
 def _save(fig, path: Path) -> None:
-    from .plots import save
+    from ..plots import save
     Path(path).parent.mkdir(parents=True, exist_ok=True)
     save(fig, path)
 
@@ -92,8 +92,8 @@ def validation_tables(data: dict, console: Console) -> None:
 def scale_model_command(record_id: str, length_ratio: float, table: Optional[str], out: Optional[Path],
                         plot: Optional[Path], band: Optional[str], as_json: bool, gravity: float, motion) -> int:
     """Body of ``records scale-model`` (the motion already loaded): returns the exit code (1 = a limit exceeded)."""
-    from .errors import MotionError
-    from .experiments.scale_model import parse_limits, scale_record, write_at2
+    from ..errors import MotionError
+    from ..experiments.scale_model import parse_limits, scale_record, write_at2
     limits = parse_limits(table, gravity)
     corners = None
     if band:
@@ -107,7 +107,7 @@ def scale_model_command(record_id: str, length_ratio: float, table: Optional[str
     if out is not None:
         write_at2(scaled, out, gravity, motion.meta)
     if plot is not None:
-        from .experiments.figures import scale_model_figure
+        from ..experiments.figures import scale_model_figure
         _save(scale_model_figure(scaled, gravity, limits, f"{record_id} for R_m/R_p = {length_ratio:g} (Eq 6.5)"),
               plot)
     data = scaled.as_json()
@@ -149,15 +149,15 @@ def register(app: typer.Typer, handle_errors) -> None:
                   min_amplitude: float = typer.Option(0.05, "--min-amplitude", help="Ignore half-cycles with "
                                                       "θ0 below this fraction of α.")):
         """Back-calculate p, λ and c_r (left/right) from a free-vibration test (thesis Sec 6.3.5, 6.4.3)."""
-        from .experiments.calibrate import calibrate as run, simulated_history
-        from .experiments.free_vibration import read_tilt_csv
-        from .project import load_project
+        from ..experiments.calibrate import calibrate as run, simulated_history
+        from ..experiments.free_vibration import read_tilt_csv
+        from ..project import load_project
         proj = load_project(project)
         history = read_tilt_csv(free_vibration)
         cal = run(proj.system, history, max_half_cycles=half_cycles, min_amplitude=min_amplitude)
         if plot is not None:
-            from .cli_inputs import compile_kernels
-            from .experiments.figures import calibration_figure
+            from .inputs import compile_kernels
+            from ..experiments.figures import calibration_figure
             compile_kernels("calibrate")
             sim = simulated_history(proj.system, cal, history)
             _save(calibration_figure(history, cal, sim, f"{proj.name}: {free_vibration.name}"), plot)
@@ -186,17 +186,17 @@ def register(app: typer.Typer, handle_errors) -> None:
                  no_pdf: bool = typer.Option(False, "--no-pdf", metavar=" ", help="With -o: HTML report only."),
                  plot: Optional[Path] = typer.Option(None, "--plot", help="Write the CDF figure (png/svg/pdf).")):
         """Compare test and model statistics of θ_max/α (thesis Ch. 7: Eq 7.1, Tables 7.2, 7.3)."""
-        from .experiments.validate import read_results_csv, validate as run
+        from ..experiments.validate import read_results_csv, validate as run
         result = run(read_results_csv(tests, "tests"), read_results_csv(analyses, "analyses"),
                      read_results_csv(measured, "analyses_measured_cr") if measured else None, seed=seed)
         data = result.as_json()
         if out is not None:
-            from .experiments.validate_report import write_validation
+            from ..experiments.validate_report import write_validation
             files = {"tests": str(tests), "analyses": str(analyses),
                      "analyses_measured_cr": str(measured) if measured else None}
             write_validation(result, out, files, title=f"{tests.name} vs {analyses.name}", pdf=not no_pdf)
         if plot is not None:
-            from .experiments.figures import validation_figure
+            from ..experiments.figures import validation_figure
             _save(validation_figure(result, f"{tests.name} vs {analyses.name}"), plot)
         if as_json:
             sys.stdout.write(json.dumps(data, indent=2) + "\n")
@@ -219,13 +219,13 @@ def register(app: typer.Typer, handle_errors) -> None:
                  records_dir: Optional[Path] = typer.Option(None, "--records-dir", help="Folder of PEER AT2 files."),
                  as_json: bool = typer.Option(False, "--json", metavar=" ", help="Print the results as JSON.")):
         """Run a project over a ground-motion ensemble and write the analyses.csv that 'validate' reads."""
-        from .experiments.ensemble import run_ensemble, write_analyses_csv
-        from .project import load_project
+        from ..experiments.ensemble import run_ensemble, write_analyses_csv
+        from ..project import load_project
         proj = load_project(project)
         err = Console(stderr=True)
         with Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
                       console=err, disable=as_json and not err.is_terminal) as bar:
-            from .cli_inputs import compile_kernels
+            from .inputs import compile_kernels
             task = []
 
             def ready():        # the input is checked: compile (first run), then show the bar

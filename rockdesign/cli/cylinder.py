@@ -7,7 +7,7 @@ import sys
 
 def quantities_command(project, console, as_json: bool, units, curve) -> None:
     """Print the cylinder's quantities (or JSON); ``--pushover F`` writes the wobbling-period curve (Fig 5.2)."""
-    from .cylinder.commands import quantities_json, write_wobbling
+    from ..cylinder.commands import quantities_json, write_wobbling
     if curve is not None:
         write_wobbling(project, curve)
     if as_json:
@@ -18,16 +18,16 @@ def quantities_command(project, console, as_json: bool, units, curve) -> None:
 
 def simulate_command(project, motion, model, as_json, plot, csv, t_end, rtol, records_dir, console) -> None:
     """Run one cylinder analysis; JSON, CSV and the time-history/orbit figure on request."""
-    from .cylinder.commands import simulate_project, write_history_csv
-    from .cli_inputs import compile_kernels
+    from ..cylinder.commands import simulate_project, write_history_csv
+    from .inputs import compile_kernels
     result = simulate_project(project, motion, model=model, t_end=t_end, rtol=rtol,
                               records_dir=str(records_dir) if records_dir else None,
                               before_analysis=lambda: compile_kernels("cylinder"))
     if csv:
         write_history_csv(result.response, csv)
     if plot:
-        from .plots import save
-        from .cylinder.figures import cylinder_history_figure
+        from ..plots import save
+        from ..cylinder.figures import cylinder_history_figure
         save(cylinder_history_figure(result.response, project.system.g, f"{project.name} — {motion}",
                                      result.pair), plot)
     if as_json:
@@ -54,8 +54,8 @@ def check_summary(data: dict, out_dir, console) -> None:
 
 def quantities_table(project, console, units: str | None = None) -> None:
     """Print the cylinder's quantities with their thesis equations."""
-    from .cylinder.quantities import cylinder_quantities
-    from .display import quantities_table as table
+    from ..cylinder.quantities import cylinder_quantities
+    from ..display import quantities_table as table
     table(cylinder_quantities(project.system), console, units, project.system.g,
           f"{project.name} — design quantities (cylinder, {project.system.contact} contact)", project.warnings)
 
@@ -64,7 +64,7 @@ def response_table(result, console) -> None:
     """Print the summary of one cylinder analysis."""
     from rich.table import Table
 
-    from .display import format_value
+    from ..display import format_value
     r = result.response
     table = Table(title=f"{result.project.name} — {result.motion_text}", title_justify="left")
     for col in ("quantity", "value", "unit"):

@@ -81,19 +81,19 @@ def register(app: typer.Typer, handle_errors) -> None:
         quiet: bool = typer.Option(False, "--quiet", "-q", metavar=" ", help="No progress bar."),
     ):
         """Rocking spectra: θ_max/α, overturning by impacts, limit states, Polyakov's line (docs/spectra.md)."""
-        from .errors import RockdesignError
-        from .project import load_project
-        from .spectra.axes import parse_axis
-        from .execution.executor import make_executor
-        from .spectra.kernel import warm_up
-        from .spectra.output import analyse, write_outputs
-        from .spectra.spectrum import SpectrumError, compute_spectrum, request_from_project
+        from ..errors import RockdesignError
+        from ..project import load_project
+        from ..spectra.axes import parse_axis
+        from ..execution.executor import make_executor
+        from ..spectra.kernel import warm_up
+        from ..spectra.output import analyse, write_outputs
+        from ..spectra.spectrum import SpectrumError, compute_spectrum, request_from_project
 
         t_start = time.perf_counter()
         console = Console(stderr=True, highlight=False)
         proj = load_project(project)
         if proj.system.kind == "cylinder":                  # the 3D cylinder (thesis Ch. 5)
-            from .cli_cylinder_spectrum import cylinder_spectrum_command
+            from .cylinder_spectrum import cylinder_spectrum_command
             return cylinder_spectrum_command(proj, project, record, x, y, relative, out, as_json, figures, console)
         if pulse is None:
             raise RockdesignError("missing pulse", key="--pulse", expected="--pulse ricker-anti (or another pulse)",
@@ -112,7 +112,7 @@ def register(app: typer.Typer, handle_errors) -> None:
                                        overturn=overturn, rtol=rtol, t_free=t_free, tm_ratio=tm_ratio,
                                        energy_stop=energy_stop, stop_at_capacity=stop_at_capacity)
         ref_proj = load_project(relative) if relative is not None else None
-        from .dynamics.model import resolve_structure
+        from ..dynamics.model import resolve_structure
         resolve_structure(proj.system, request.structure, request.rigid_ratio)  # fail before any work
         if ref_proj is not None:
             ref_request = request_from_project(ref_proj, pulse_name, x=x_axis, y=y_axis, equations=model,
@@ -127,14 +127,14 @@ def register(app: typer.Typer, handle_errors) -> None:
         out_dir.mkdir(parents=True, exist_ok=True)
         chunks_root = out_dir / "chunks"
         if dask is None or str(dask).startswith("local"):   # (a remote cluster's workers compile there)
-            from .cli_inputs import compile_kernels
+            from .inputs import compile_kernels
             compile_kernels("spectrum")
         executor = make_executor(dask, warm_up=warm_up)
         ny, nx = y_axis.n, x_axis.n
         runs = [("spectrum", proj, request, chunks_root / "project")]
         if ref_proj is not None:
             runs.append(("reference", ref_proj, ref_request, chunks_root / "reference"))
-        from .spectra.axes import spectrum_scales
+        from ..spectra.axes import spectrum_scales
         # the reference is analysed at the project's pulses (T_p, a_p): the axes keep their meaning
         project_scales = spectrum_scales(proj.system)
         total = ny * nx * len(runs)
@@ -171,7 +171,7 @@ def register(app: typer.Typer, handle_errors) -> None:
                                 reference_project=_project_json(ref_proj) if ref_proj else None, figures=figures,
                                 title=proj.name, reference_title=ref_proj.name if ref_proj else None, timings=timings)
         if not keep_chunks:
-            from .execution.executor import remove_tree
+            from ..execution.executor import remove_tree
             remove_tree(chunks_root)
         if as_json:
             sys.stdout.write(json.dumps(summary, indent=1, ensure_ascii=False) + "\n")

@@ -15,8 +15,8 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
-from .errors import MotionError
-from .motions.defaults import DEFAULT_BAND, DEFAULT_DAMPING, DEFAULT_N_PERIODS
+from ..errors import MotionError
+from ..motions.defaults import DEFAULT_BAND, DEFAULT_DAMPING, DEFAULT_N_PERIODS
 
 # the records, spectra and units modules (numba, pint) are imported by the commands that use them: the
 # CLI mounts this module for every command, `--help` and `init` included
@@ -41,10 +41,10 @@ def _record_id(text: str) -> str:
 
 
 def _load(record_id: str, gravity: float, records_dir: Optional[Path]):
-    from .cli_inputs import gravity as check_gravity
-    from .motions.measures import plausibility_warnings
+    from .inputs import gravity as check_gravity
+    from ..motions.measures import plausibility_warnings
     check_gravity(gravity)
-    from .motions.library import load_record
+    from ..motions.library import load_record
     motion = load_record(_record_id(record_id), gravity=gravity, records_dir=records_dir)
     for text in plausibility_warnings(motion, gravity):
         Console(stderr=True, highlight=False, markup=False, soft_wrap=True).print(f"warning: {text}")
@@ -64,7 +64,7 @@ def _parse_band(text: str) -> tuple[float, float]:
 
 
 def _parse_damping(text: str) -> float:
-    from .units import QuantityParseError, parse_quantity
+    from ..units import QuantityParseError, parse_quantity
     try:
         value = parse_quantity(float(text) if _is_number(text) else text, "dimensionless")
     except QuantityParseError:
@@ -101,9 +101,9 @@ def list_command(
     gravity: float = typer.Option(9.81, "--gravity", help=GRAVITY_HELP),
 ) -> None:
     """List built-in records, or the records of a suite (table: dt in s, PGA in g; --json: SI, PGA in m/s²)."""
-    from .cli_inputs import gravity as check_gravity
+    from .inputs import gravity as check_gravity
     check_gravity(gravity)
-    from .motions.suites import list_records
+    from ..motions.suites import list_records
     rows = list_records(suite, gravity=gravity, records_dir=records_dir)
     if as_json:
         typer.echo(json.dumps(rows))
@@ -134,12 +134,12 @@ def show_command(
     gravity: float = typer.Option(9.81, "--gravity", help=GRAVITY_HELP),
 ) -> None:
     """Metadata and intensity measures of one record."""
-    from .cli_inputs import FIGURE_SUFFIXES, output_file
+    from .inputs import FIGURE_SUFFIXES, output_file
     output_file(plot, "--plot", FIGURE_SUFFIXES)
-    from .motions.measures import motion_measures
-    from .motions.spectra import sd_max
+    from ..motions.measures import motion_measures
+    from ..motions.spectra import sd_max
     motion = _load(record_id, gravity, records_dir)
-    from .cli_inputs import compile_kernels
+    from .inputs import compile_kernels
     compile_kernels("records")
     measures = motion_measures(motion, gravity)
     sd, period = sd_max(motion, DEFAULT_DAMPING, DEFAULT_BAND)
@@ -173,10 +173,10 @@ def show_command(
 def _plot_history(motion, path: Path) -> None:
     import numpy as np
 
-    from . import mplfig as plt
-    from .plots import save
+    from .. import mplfig as plt
+    from ..plots import save
 
-    from .motions.measures import velocity_displacement
+    from ..motions.measures import velocity_displacement
     t, accel = motion.sampled()
     velocity, displacement = velocity_displacement(np.ascontiguousarray(accel), motion.dt)
     fig, axes = plt.subplots(3, 1, figsize=(8, 6.5), sharex=True)
@@ -204,14 +204,14 @@ def spectrum_command(
 ) -> None:
     """Elastic response spectrum (exact, free vibration after the record included), SD_max and
     intensity measures."""
-    from .cli_inputs import FIGURE_SUFFIXES, output_file
+    from .inputs import FIGURE_SUFFIXES, output_file
     output_file(plot, "--plot", FIGURE_SUFFIXES)
     zeta = _parse_damping(damping)
     lo, hi = _parse_band(band)
-    from .motions.measures import motion_measures
-    from .motions.spectra import motion_spectrum, period_grid, sd_max
+    from ..motions.measures import motion_measures
+    from ..motions.spectra import motion_spectrum, period_grid, sd_max
     motion = _load(record_id, gravity, records_dir)
-    from .cli_inputs import compile_kernels
+    from .inputs import compile_kernels
     compile_kernels("records")
     periods = period_grid((lo, hi), n_periods)
     sd, psv, psa = motion_spectrum(motion, periods, zeta)
@@ -243,8 +243,8 @@ def spectrum_command(
 def _plot_spectrum(result: dict, path: Path, gravity: float) -> None:
     import numpy as np
 
-    from . import mplfig as plt
-    from .plots import save
+    from .. import mplfig as plt
+    from ..plots import save
 
     fig, (ax_sd, ax_psa) = plt.subplots(1, 2, figsize=(10, 4))
     ax_sd.plot(result["periods"], result["SD"], lw=1)
@@ -274,14 +274,14 @@ def synth_command(
     gravity: float = typer.Option(9.81, "--gravity", help=GRAVITY_HELP),
 ) -> None:
     """Synthetic ensemble (sgsim stochastic model fitted to the seed), saved as a suite."""
-    from .motions.synth import SCALE_CHOICES, synthesize
+    from ..motions.synth import SCALE_CHOICES, synthesize
     if scale_to not in SCALE_CHOICES:
         raise MotionError("invalid --scale-to", key="--scale-to", expected=" | ".join(SCALE_CHOICES),
                           found=repr(scale_to))
-    from .cli_inputs import output_folder
+    from .inputs import output_folder
     output_folder(out_dir, "--out")
     motion = _load(seed, gravity, records_dir)
-    from .cli_inputs import compile_kernels
+    from .inputs import compile_kernels
     compile_kernels("records")                  # (SD_max of the seed and of every member)
     path, match = synthesize(motion, n, out_dir, seed_value=seed_value, scale_to=scale_to)
     console = _console()
@@ -304,7 +304,7 @@ def scale_model_command(
 ) -> None:
     """Time-scale a record for a small-scale model (Eq 6.5), correct it and check the shake table's limits
     (exit 1 when a limit is exceeded)."""
-    from .cli_experiments import scale_model_command as run
+    from .experiments import scale_model_command as run
     code = run(_record_id(record_id), length_ratio, table, out, plot, band, as_json, gravity,
                _load(record_id, gravity, records_dir))
     raise typer.Exit(code)

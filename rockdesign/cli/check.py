@@ -28,7 +28,7 @@ def register(app: typer.Typer, handle_errors) -> None:
         # the PDF at the end (report.pdf_worker)
         pdf_worker = None
         if not no_pdf and not os.environ.get("ROCKDESIGN_NO_PDF_WORKER"):
-            from .report.pdf_worker import PdfWorker
+            from ..report.pdf_worker import PdfWorker
             pdf_worker = PdfWorker.start()
         try:
             _check(project, out, as_json, no_pdf, html, no_margins, records_dir, dask, pdf_worker)
@@ -38,17 +38,17 @@ def register(app: typer.Typer, handle_errors) -> None:
 
 
 def _check(project, out, as_json, no_pdf, html, no_margins, records_dir, dask, pdf_worker) -> None:
-    from .library import check as run_check
-    from .library import write_report
-    from .outdir import OutputFolder
-    from .project import load_project
-    from .report.results import json_text
+    from ..library import check as run_check
+    from ..library import write_report
+    from ..outdir import OutputFolder
+    from ..project import load_project
+    from ..report.results import json_text
     proj = load_project(project)
     target = out if out is not None else Path(f"{Path(project).stem}_check")
     if proj.system.kind == "cylinder":                  # the 3D cylinder (thesis Ch. 5)
-        from .cli_cylinder import check_summary as cylinder_summary
-        from .report.cylinder_report import cylinder_output_folder
-        from .errors import RockdesignError
+        from .cylinder import check_summary as cylinder_summary
+        from ..report.cylinder_report import cylinder_output_folder
+        from ..errors import RockdesignError
         for flag, value in (("--dask", dask), ("--records-dir", records_dir)):
             if value is not None:
                 raise RockdesignError("not used by the check of a cylinder (built-in suites of record pairs, "
@@ -58,7 +58,7 @@ def _check(project, out, as_json, no_pdf, html, no_margins, records_dir, dask, p
             pdf_worker.close()    # (the cylinder's report is written here)
         folder = cylinder_output_folder(target, key="-o/--out")
         with folder.locked():   # before the analyses, as below
-            from .cli_inputs import compile_kernels
+            from .inputs import compile_kernels
             compile_kernels("cylinder-check")
             result = run_check(proj, progress=not as_json or Console(stderr=True).is_terminal)
             _report(write_report, result, folder, no_pdf, html)
@@ -69,19 +69,19 @@ def _check(project, out, as_json, no_pdf, html, no_margins, records_dir, dask, p
         raise typer.Exit(0 if result.verdict == "PASS" else 1)
     folder = OutputFolder(target, key="-o/--out")
     with folder.locked():   # before the analyses: a file, a read-only or busy folder stops here (exit 2)
-        from .dynamics.compilation import missing_kernels, prepare
+        from ..dynamics.compilation import missing_kernels, prepare
         if missing_kernels("check"):       # a first run: an input error in the records stops it before compiling
-            from .checks.check import check_records
+            from ..checks.check import check_records
             check_records(proj, records_dir)
         # the engine finishes compiling in a helper while the check reads its records (run_check waits)
         prepare("check", Console(stderr=True).print, background=True)
-        from .dynamics.compilation import compilation_pending
+        from ..dynamics.compilation import compilation_pending
         if compilation_pending() and not no_pdf:    # this process would wait: load the report's libraries
-            from .report.render import warm_up
+            from ..report.render import warm_up
             warm_up(pdf=pdf_worker is None)
         executor = None
         if dask:
-            from .execution.executor import make_executor
+            from ..execution.executor import make_executor
             executor = make_executor(dask)
             executor.start()
         try:
@@ -95,7 +95,7 @@ def _check(project, out, as_json, no_pdf, html, no_margins, records_dir, dask, p
     if as_json:
         sys.stdout.write(json_text(data))
     else:
-        from .display import check_summary
+        from ..display import check_summary
         check_summary(data, folder.target, Console())
     # failed analyses: the check is incomplete (exit 2), whatever the other records say
     raise typer.Exit(2 if data.get("failed_records") else 0 if data["verdict"] == "PASS" else 1)

@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from .errors import RockdesignError
+from ..errors import RockdesignError
 
 FIGURE_SUFFIXES = (".png", ".svg", ".pdf")
 G_RANGE = (9.7, 9.9)
@@ -86,7 +86,7 @@ def compile_kernels(command: str, say=None) -> float:
     once per installation, ~N s") with ``say`` (default: print on stderr): the step after the input was
     checked and before the analyses (:func:`rockdesign.dynamics.compilation.prepare`); seconds spent (0
     when all are cached)."""
-    from .dynamics.compilation import prepare
+    from ..dynamics.compilation import prepare
     if say is None:
         from rich.console import Console
         say = Console(stderr=True).print

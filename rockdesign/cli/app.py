@@ -15,8 +15,8 @@ import typer
 from rich.console import Console
 from rich.markup import escape
 
-from . import __version__
-from .errors import RockdesignError
+from .. import __version__
+from ..errors import RockdesignError
 
 app = typer.Typer(add_completion=False, no_args_is_help=True,
                   help="Design checks for rocking columns, rocking frames and rocking podium buildings.")
@@ -105,7 +105,7 @@ def init(kind: str = typer.Argument(..., help="podium | column | cylinder"),
          path: Optional[Path] = typer.Argument(None, help="Where to write (default: KIND.toml)"),
          force: bool = typer.Option(False, "--force", metavar=FLAG, help="Overwrite an existing file.")):
     """Write a commented template project file."""
-    from .templates import write_template
+    from ..templates import write_template
     out = write_template(kind, path, force=force)
     console.print(f"wrote {out}")
 
@@ -119,13 +119,13 @@ def quantities(project: Path = typer.Argument(..., help="Project file (TOML)"),
                pushover: Optional[Path] = typer.Option(None, "--pushover", help="Write the pushover curve "
                                                        "F_R/(m g) vs θ: .csv for the numbers, .png/.svg/.pdf for a plot.")):
     """Closed-form design quantities (thesis Ch. 3–4; docs/model.md §3)."""
-    from . import cli_inputs
-    from .api import quantities_json, quantities_table, write_pushover
-    from .project import load_project
+    from . import inputs as cli_inputs
+    from ..api import quantities_json, quantities_table, write_pushover
+    from ..project import load_project
     cli_inputs.output_file(pushover, "--pushover", (".csv",) + cli_inputs.FIGURE_SUFFIXES)
     proj = load_project(project)
     if proj.system.kind == "cylinder":                      # the 3D cylinder (thesis Ch. 5)
-        from .cli_cylinder import quantities_command
+        from .cylinder import quantities_command
         return quantities_command(proj, console, as_json, units, pushover)
     if pushover is not None:
         write_pushover(proj.system, pushover)
@@ -149,16 +149,16 @@ def simulate(project: Path = typer.Argument(..., help="Project file (TOML)"),
              rtol: Optional[float] = typer.Option(None, "--rtol", help="Relative tolerance (default: project)."),
              records_dir: Optional[Path] = typer.Option(None, "--records-dir", help="Folder of PEER AT2 files.")):
     """One nonlinear time-history analysis (docs/model.md §4)."""
-    from . import cli_inputs
-    from .api import run_simulation, simulation_request
-    from .project import load_project
+    from . import inputs as cli_inputs
+    from ..api import run_simulation, simulation_request
+    from ..project import load_project
     cli_inputs.positive_time(t_end, "--t-end")
     cli_inputs.rtol(rtol)
     cli_inputs.output_file(plot, "--plot", cli_inputs.FIGURE_SUFFIXES)
     cli_inputs.output_file(csv, "--csv")
     proj = load_project(project)
     if proj.system.kind == "cylinder":                      # the 3D cylinder (thesis Ch. 5)
-        from .cli_cylinder import simulate_command
+        from .cylinder import simulate_command
         return simulate_command(proj, motion, model, as_json, plot, csv, t_end, rtol, records_dir, console)
     # bad input is reported before a first run compiles the engine
     request = simulation_request(proj, motion, model=model, t_end=t_end, rtol=rtol,
@@ -166,17 +166,17 @@ def simulate(project: Path = typer.Argument(..., help="Project file (TOML)"),
     cli_inputs.compile_kernels("simulate")
     result = run_simulation(request)
     if csv:
-        from .api import write_history_csv
+        from ..api import write_history_csv
         write_history_csv(result.response, csv)
     if plot:
-        from .plots import save, time_history_figure
+        from ..plots import save, time_history_figure
         save(time_history_figure(result.response, proj.system.g, f"{proj.name} — {motion}"), plot)
     if as_json:
         sys.stdout.write(json.dumps(result.as_json(), indent=2) + "\n")
     else:
-        from .display import response_table
+        from ..display import response_table
         response_table(result, console)
-    from .checks.criteria import analysis_failed
+    from ..checks.criteria import analysis_failed
     if analysis_failed(result.response.status):
         err_console.print(f"[bold red]error:[/] the analysis failed: {escape(result.response.status)} — its "
                           "θ_max and verdict are not results (check the model and the motion)", highlight=False,
@@ -186,8 +186,8 @@ def simulate(project: Path = typer.Argument(..., help="Project file (TOML)"),
 
 def _mount_command_modules():
     """Mount the commands that live in their own modules (records, check, spectrum, bench)."""
-    from . import cli_bench, cli_check, cli_experiments, cli_spectrum
-    from .cli_records import app as records_app
+    from . import bench as cli_bench, check as cli_check, experiments as cli_experiments, spectrum as cli_spectrum
+    from .records import app as records_app
     for command in records_app.registered_commands:
         command.callback = handle_errors(command.callback)
     app.add_typer(records_app, name="records", help="Ground-motion tools: list, show, spectrum, synth.")
