@@ -624,7 +624,7 @@ def coarse_sampling(quick: bool = False, methods=ALL_METHODS) -> StabilityCase:
     return StabilityCase("coarse-sampling", "Coarse sampling of the input",
                          f"thesis Table 3.4 B1 under the antisymmetric Ricker 0.38 g, T_p = 0.95 s sampled at "
                          f"dt = {', '.join(f'{d:g}' for d in dts)} s as a record; rtol 1e-10; θ_max of the analytic "
-                         f"pulse {exact.theta_max_over_alpha:.5f}α (Table 3.4: 1.1945).",
+                         f"pulse {exact.theta_max_over_alpha:.5f}α (Table 3.4 prints 1.19).",
                          outcomes, _diag(diag, run=f"record at dt = {dts[-1]:g} s"), behaviour, _plot_coarse, data)
 
 
