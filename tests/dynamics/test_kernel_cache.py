@@ -22,6 +22,7 @@ import pytest
 
 import rockdesign
 from rockdesign import kernel_cache
+from rockdesign.report.context import software_versions
 
 # potential_energy (dynamics/eom.py) inlines unit_centre_kinematics (design/kinematics.py, inline="always").
 # Block (r = 0, γ = 0): W(θ) = cos(α − θ), so the energy is g/R · (cos(α − θ) − cos α) (Eq 3.2).
@@ -109,3 +110,10 @@ def test_digest_covers_modules_whose_constants_kernels_read():
     names = {str(p.relative_to(kernel_cache.PACKAGE)) for p in kernel_cache.digested_sources()}
     assert {"dynamics/engine.py", "design/kinematics.py", "dynamics/layout.py", "motions/defaults.py"} <= names
     assert "cli.py" not in names and "report/results.py" not in names
+
+
+def test_reports_name_the_kernel_sources():
+    """The report's Software table (and results.json, project.kernels_sha256) say which kernels ran."""
+    digest = kernel_cache.sources_digest()
+    assert len(digest) == 64
+    assert ("rockdesign numerical kernels (SHA-256)", digest[:12] + "…") in software_versions()
