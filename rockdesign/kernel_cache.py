@@ -23,8 +23,6 @@ import types
 import warnings
 from pathlib import Path
 
-from numba.core.caching import CompileResultCacheImpl
-
 PACKAGE = Path(os.path.abspath(__file__)).parent   # as numba spells it (abspath, symlinks kept)
 STAMP_NAME = "rockdesign-kernels.sha256"
 """The stamp's file name, inside each cache folder it describes."""
@@ -34,7 +32,8 @@ _KERNEL = re.compile(r"^[ \t]*@(?:numba\.)?njit\b", re.MULTILINE)
 @functools.lru_cache(maxsize=1)
 def kernel_sources() -> tuple[Path, ...]:
     """rockdesign's source files that define numba kernels (an ``@njit`` decorator), in a stable order."""
-    return tuple(sorted(p for p in PACKAGE.rglob("*.py") if _KERNEL.search(p.read_text(encoding="utf-8", errors="ignore"))))
+    return tuple(sorted(p for p in PACKAGE.rglob("*.py")
+                        if _KERNEL.search(p.read_text(encoding="utf-8", errors="ignore"))))
 
 
 def _imported_modules(path: Path) -> set[Path]:
@@ -87,6 +86,9 @@ def cache_folders() -> dict[Path, Path]:
     numba's own cache locators answer (``NUMBA_CACHE_DIR``, the in-tree ``__pycache__``, the user-wide
     cache, in numba's order).  A folder is listed only if it holds that source folder's kernels alone
     (``__pycache__`` beside the sources, or numba's ``<name>_<sha1 of the path>`` subfolder)."""
+    # numba is imported here, not at module top: sources_digest() serves reports and results.json in
+    # processes that need no kernel (the PDF worker), and importing numba costs 0.3-1.0 s (-X importtime)
+    from numba.core.caching import CompileResultCacheImpl
     out = {}
     for source in kernel_sources():
         folder = source.parent

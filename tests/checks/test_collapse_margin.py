@@ -29,6 +29,7 @@ def test_beta_total_rounded_to_0_025(quality, expected):
     assert beta_total(q) == pytest.approx(expected, abs=1e-12)
 
 
+KEYS = ("design_requirements", "test_data", "modeling")
 QUALITY_COMBINATIONS = list(itertools.product("ABCD", repeat=3))
 
 
@@ -53,9 +54,9 @@ def test_ratings_that_round_up_are_among_the_64():
     B/B/D is exactly 0.700 (√0.49), which a floating-point truncation may also turn into 0.675."""
     up = [q for q in QUALITY_COMBINATIONS if _nearest_multiple_of_0_025(q)[0] > _nearest_multiple_of_0_025(q)[1]]
     assert len(up) == 12 and ("A", "A", "B") in up and ("B", "C", "C") in up
-    assert beta_total(dict(zip(("design_requirements", "test_data", "modeling"), "AAB"))) == pytest.approx(0.475, abs=1e-12)
-    assert beta_total(dict(zip(("design_requirements", "test_data", "modeling"), "BCC"))) == pytest.approx(0.675, abs=1e-12)
-    assert beta_total(dict(zip(("design_requirements", "test_data", "modeling"), "BBD"))) == pytest.approx(0.700, abs=1e-12)
+    assert beta_total(dict(zip(KEYS, "AAB"))) == pytest.approx(0.475, abs=1e-12)
+    assert beta_total(dict(zip(KEYS, "BCC"))) == pytest.approx(0.675, abs=1e-12)
+    assert beta_total(dict(zip(KEYS, "BBD"))) == pytest.approx(0.700, abs=1e-12)
 
 
 @pytest.mark.parametrize("beta_tot,acmr10,acmr20", [(0.525, 1.96, 1.56), (0.600, 2.16, 1.66)])
