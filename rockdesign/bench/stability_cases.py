@@ -437,6 +437,3 @@ def _plot_threshold(case: StabilityCase):
         ax.legend(fontsize=6.5)
         fig.tight_layout()
         return fig
-
-
-# ---------------------------------------------------------------------------------------------- E

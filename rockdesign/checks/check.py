@@ -23,6 +23,7 @@ from ..design.quantities import at_critical_curvature, design_quantities
 from ..dynamics.accuracy import engine_accuracy
 from ..dynamics.compilation import compilation_pending, finish_compilation
 from ..dynamics.simulate import simulate
+from ..kernel_cache import sources_digest
 from ..errors import ProjectError
 from ..motions.config import default_excitation, resolve_motions
 from ..motions.measures import plausibility_warnings
@@ -159,6 +160,7 @@ class CheckResult:
         return {
             "project": {"name": p.name, "file": p.path, "sha256": p.sha256, "kind": s.kind,
                         **{k: v for k, v in p.info.items() if k != "name"}, "tool_version": __version__,
+                        "kernels_sha256": sources_digest(),   # which kernel sources produced the numbers
                         "warnings": list(p.warnings)},
             "quantities": {k: q.as_json() for k, q in self.quantities.items()},
             "model": {"chosen": self.selection.chosen.label, "structure": self.selection.chosen.structure,

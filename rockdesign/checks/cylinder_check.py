@@ -33,6 +33,7 @@ from ..cylinder.kernel import ST_COMPLETED, ST_OVERTURNED
 from ..cylinder.engine import STATUS
 from ..cylinder.quantities import cylinder_quantities, restitution_root
 from ..dynamics.simulate import simulate
+from ..kernel_cache import sources_digest
 from ..motions.motion import record_motion
 from ..motions.pairs import suite_pairs
 from ..motions.spectra import sd_max_of_samples
@@ -211,7 +212,7 @@ class CylinderCheckResult:
                     "sd_max_damping": a.sdmax_damping, "sd_max_band": list(a.sdmax_band)}
         quantities = {k: q.as_json() for k, q in cylinder_quantities(cyl).items()}
         return {"project": {"name": p.name, "file": p.path, "system": "cylinder", "contact": cyl.contact,
-                            "kind": "cylinder", "sha256": p.sha256,
+                            "kind": "cylinder", "sha256": p.sha256, "kernels_sha256": sources_digest(),
                             **{k: v for k, v in p.info.items() if k != "name"}, "tool_version": __version__,
                             "warnings": list(p.warnings)},
                 "cylinder": cylinder, "units": CYLINDER_UNITS, "suites": list(e.suites), "settings": settings,
