@@ -19,6 +19,10 @@ import math
 import numpy as np
 from numba import njit, prange
 
+from ..kernel_cache import refresh_stale_caches
+
+refresh_stale_caches()   # numba's cache does not see edits in called modules (see kernel_cache)
+
 from .defaults import DEFAULT_BAND, DEFAULT_DAMPING, DEFAULT_N_PERIODS  # noqa: F401  (re-exported)
 
 
