@@ -33,6 +33,7 @@ from .rest_step import exact_rest_available, fill_rest_outputs, rest_state, rest
 from .events import next_threshold_crossing, root_on_dense
 from .transitions import (change_phase, event_levels, new_summary, crossing_event, energy_bound, enter_overturn, enter_uplift, impact, phase_of,
                           store_event, top_displacement)
+from .demand import track_demand, track_impact_jump
 from .dop853 import ERROR_EXPONENT_853, FSAL_ROW_853, N_STAGES_EXTENDED, dop853_dense, dop853_error_norm, dop853_step
 from .rk import (ERROR_EXPONENT, MAX_FACTOR, MIN_FACTOR, SAFETY, dense_coefficients, dense_value,
                  dp5_step, error_norm, initial_step)
@@ -594,6 +595,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
             t, h, i_out, s_up = _exact_rest_step(t, h, t_end, y, y_new, f0, ftmp, m_scan, hyst, kind, xp, samples,
                                                  sp, rest_coef, t_out, out_y, i_out, summary, ev_t, ev_kind, ev_y,
                                                  diag)
+            track_demand(t, y, rocking, side, phase, 0.0, sp, summary)
             if s_up != 0.0:
                 t_rock_start = t
                 rocking, side, phase = True, s_up, 1
@@ -693,6 +695,8 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
                              phase, kind, xp, samples, sp, diag)
             t = t_new
             h = h_next
+            track_demand(t, y, rocking, side, phase, 0.0 if two_dof else ground_acceleration(t, kind, xp, samples),
+                         sp, summary)
             if energy_stop and t >= t_exc and energy_bound(y, rocking, side, phase + 0, summary[S_THETA_MAX], sp):
                 status = ST_ENERGY_BOUND
                 if rocking:
@@ -712,6 +716,8 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
         t = t_e
         for i in range(4):
             y[i] = y_e[i]
+        ag_e = ground_acceleration(t, kind, xp, samples)
+        track_demand(t, y, rocking, side, phase, ag_e, sp, summary)
         if ev_type == -1:
             status = ST_STOPPED_EXCEEDED
             if theta_c > summary[S_THETA_MAX]:
@@ -729,12 +735,16 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
             need_start = True
             continue
         # impact
+        thd_before = y[1]
         rocking, impacts = impact(y, sqrt_cr, v_rest, impacts, t, t_rock_start, summary, ev_t, ev_kind, ev_y, diag)
         phase = 1
+        track_impact_jump(thd_before, y[1], side, -side, sp, summary)
         if rocking:
             side = -side
         else:
             fresh_start = True
+        # after the impact map: u̇_B jumps with θ̇, u̇_T does not (Eq 4.21) — f_s on the other side
+        track_demand(t, y, rocking, side, phase, ag_e, sp, summary)
         need_start = True
         if energy_stop and t >= t_exc and energy_bound(y, rocking, side, phase + 0, summary[S_THETA_MAX], sp):
             status = ST_ENERGY_BOUND
