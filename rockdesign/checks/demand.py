@@ -99,8 +99,8 @@ def superstructure_demand(system, chosen: ModelChoice, motions, runs, run_kw, up
             "note": (f"{what}, so no elastic demand exists. In the rigid-body model θ̇ jumps at an impact "
                      "(Eq 3.14/3.80), so the cap beam's acceleration is impulsive there: reported are its peak "
                      "absolute acceleration between impacts and its largest velocity jump per impact (an impulse "
-                     "per unit mass), never a step-size-dependent peak (SPEC §13 in words: the elastic 2DOF "
-                     "superstructure has no such jump, Eq 4.21)."),
+                     "per unit mass), never a step-size-dependent peak; an elastic superstructure has no such "
+                     "jump (its velocity is continuous at an impact, Eq 4.21)."),
             "cap_beam": {"acceleration": _stats([caps[i]["acceleration_max"] for i in ok if caps[i]]),
                          "velocity_jump": _stats([caps[i]["velocity_jump_max"] for i in ok if caps[i]])}})
         return [None] * n, caps, summary, None
