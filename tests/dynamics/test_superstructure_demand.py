@@ -152,3 +152,46 @@ def test_podium_fixed_base_and_ratio(podium):
     assert rw.uplift_time is None
     assert rw.superstructure_acceleration_max == pytest.approx(rw.fixed_base_acceleration_max, rel=1e-9)
     assert rw.drift_max == pytest.approx(rw.fixed_base_acceleration_max / sp[P_OMEGA] ** 2, rel=0.05)
+
+
+# --------------------------------------------------------------------------- rigid masses: the cap beam
+
+FRAME = """
+[project]
+name = "frame"
+[podium]
+columns = 8
+cap_beam_mass = "120 t"
+height = "3.2 m"
+width = "0.40 m"
+mass = "1.28 t"
+mass_distribution = 0.3333
+restitution = "theory"
+"""
+
+
+def test_frame_cap_beam_between_impacts_and_velocity_jump():
+    """Linearized free rocking of a frame from θ0 (Eq 3.75 linearized): θ̈ = −p̂²(sα − θ), u_B = 2Rθ, so the
+    cap beam's largest acceleration is 2R p̂² α (at θ = 0, just before an impact; p̂ of Eq 3.76), and the
+    largest velocity jump is 2R(1 − √c_r)|θ̇⁻| at the first impact (θ̇⁺ = √c_r θ̇⁻, Eq 2.15)."""
+    from rockdesign.design.frequencies import frame_frequency_parameter
+    from rockdesign.dynamics.simulate import simulate
+    from rockdesign.library import parse_project
+    p = parse_project(FRAME)
+    s = p.system
+    c = s.column
+    R = math.hypot(c.half_width, c.half_height)
+    alpha = math.atan(c.half_width / c.half_height)
+    ph = frame_frequency_parameter(R, c.mass_distribution, s.gamma, s.g)
+    r = simulate(s, None, model="linear", structure="frame", theta0=0.6 * alpha, t_end=4.0)
+    assert r.superstructure_acceleration_max is None
+    assert r.cap_acceleration_max == pytest.approx(2 * R * ph**2 * alpha, rel=1e-6)
+    impacts = r.events_of("impact")
+    assert impacts
+    lam, gam = c.mass_distribution, s.gamma
+    c_r = (1 - 2 * (1 + 4 * gam) / (1 + lam + 4 * gam) * math.sin(alpha) ** 2) ** 2     # Eq 3.80
+    first = abs(impacts[0].state[1])
+    # linear free rocking conserves |θ̇| at θ = 0 between impacts: the second impact arrives with √c_r θ̇⁻
+    assert abs(impacts[1].state[1]) == pytest.approx(math.sqrt(c_r) * first, rel=1e-6)
+    ratio = math.sqrt(c_r)
+    assert r.cap_velocity_jump_max == pytest.approx(2 * R * (1 - ratio) * first, rel=1e-6)
