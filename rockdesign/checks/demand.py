@@ -32,7 +32,7 @@ maximum) of the peak superstructure acceleration converge there on the example p
 tolerance for the demand."""
 
 
-def _stats(values) -> dict:
+def stats_of(values) -> dict:
     """{median, p84, max} of ``values`` (numpy's linear-interpolation percentile), None entries for none."""
     v = np.asarray([x for x in values if x is not None and math.isfinite(x)], dtype=float)
     if v.size == 0:
@@ -84,7 +84,7 @@ def superstructure_demand(system, chosen: ModelChoice, motions, runs, run_kw, up
     n = len(motions)
     g = system.g
     tan_alpha = uplift_acceleration / g
-    summary = {"n_records": 0, "shear_coefficient": _stats([]), "drift": _stats([]), "force_ratio": _stats([]),
+    summary = {"n_records": 0, "shear_coefficient": stats_of([]), "drift": stats_of([]), "force_ratio": stats_of([]),
                "uplift_base_shear_coefficient": tan_alpha, "note": ""}
     if system.kind != "podium":
         summary["note"] = "a solitary column carries no superstructure"
@@ -101,8 +101,8 @@ def superstructure_demand(system, chosen: ModelChoice, motions, runs, run_kw, up
                      "absolute acceleration between impacts and its largest velocity jump per impact (an impulse "
                      "per unit mass), never a step-size-dependent peak; an elastic superstructure has no such "
                      "jump (its velocity is continuous at an impact, Eq 4.21)."),
-            "cap_beam": {"acceleration": _stats([caps[i]["acceleration_max"] for i in ok if caps[i]]),
-                         "velocity_jump": _stats([caps[i]["velocity_jump_max"] for i in ok if caps[i]])}})
+            "cap_beam": {"acceleration": stats_of([caps[i]["acceleration_max"] for i in ok if caps[i]]),
+                         "velocity_jump": stats_of([caps[i]["velocity_jump_max"] for i in ok if caps[i]])}})
         return [None] * n, caps, summary, None
     notes = []
     two_dof = ModelChoice("podium-2dof", chosen.equations)
@@ -140,10 +140,10 @@ def superstructure_demand(system, chosen: ModelChoice, motions, runs, run_kw, up
                  "superstructure's dynamic response can exceed it.")
     summary.update({
         "n_records": len(ok),
-        "shear_coefficient": _stats([per[i]["shear_coefficient_max"] for i in ok]),
-        "drift": _stats([per[i]["drift_max"] for i in ok]),
-        "force_ratio": _stats([per[i]["force_ratio"] for i in ok]),
-        "fixed_base_shear_coefficient": _stats([per[i]["fixed_base_acceleration_max"] / g for i in ok]),
+        "shear_coefficient": stats_of([per[i]["shear_coefficient_max"] for i in ok]),
+        "drift": stats_of([per[i]["drift_max"] for i in ok]),
+        "force_ratio": stats_of([per[i]["force_ratio"] for i in ok]),
+        "fixed_base_shear_coefficient": stats_of([per[i]["fixed_base_acceleration_max"] / g for i in ok]),
         "note": " ".join(notes)})
     return per, [None] * n, summary, demand_runs
 
