@@ -23,7 +23,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .eom import P_OMEGA, P_R, P_TWO_DOF, P_ZETA, accelerations, normalised_kinematics
+from .eom import P_GAMMA, P_OMEGA, P_R, P_TWO_DOF, P_ZETA, accelerations, normalised_kinematics
 from .transitions import phase_of
 from .layout import S_CAP_ACC_MAX, S_CAP_DV_MAX, S_DRIFT_MAX, S_FS_MAX, S_T_FS_MAX
 
@@ -44,10 +44,11 @@ def superstructure_force(y, rocking, side, phase, sp):
 
 
 @njit(cache=True)
-def track_demand(t, y, rocking, side, phase, ag, sp, summary):
+def track_demand(t, y, thdd, rocking, side, phase, ag, sp, summary):
     """Update the demand maxima of ``summary`` with the state ``y`` at time t [s] under ground acceleration
-    ag [m/s²]: 2DOF podium — peak |f_s| (and its time) and peak |u_T − u_B|; rigid masses while rocking —
-    the cap beam's peak absolute acceleration |ü_B + ü_g| [m/s²] (SPEC §13)."""
+    ag [m/s²]: 2DOF podium — peak |f_s| (and its time) and peak |u_T − u_B|; a frame's rigid cap beam while
+    rocking — its peak absolute acceleration |ü_B + ü_g| [m/s²] with θ̈ = ``thdd`` [rad/s²] (NaN: computed
+    here) (SPEC §13).  A solitary column (γ = 0) carries nothing: no work."""
     if sp[P_TWO_DOF] != 0.0:
         fs, drift = superstructure_force(y, rocking, side, phase, sp)
         if abs(fs) > summary[S_FS_MAX]:
@@ -55,8 +56,9 @@ def track_demand(t, y, rocking, side, phase, ag, sp, summary):
             summary[S_T_FS_MAX] = t
         if abs(drift) > summary[S_DRIFT_MAX]:
             summary[S_DRIFT_MAX] = abs(drift)
-    elif rocking:
-        thdd, _ = accelerations(y[0], y[1], y[2], y[3], side, phase, ag, sp)
+    elif rocking and sp[P_GAMMA] != 0.0:
+        if thdd != thdd:
+            thdd, _ = accelerations(y[0], y[1], y[2], y[3], side, phase, ag, sp)
         _, U1, U2, _, _, _ = normalised_kinematics(y[0], side, phase, sp)
         acc = abs(2.0 * sp[P_R] * (U2 * y[1] * y[1] + U1 * thdd) + ag)
         if acc > summary[S_CAP_ACC_MAX]:
@@ -67,7 +69,7 @@ def track_demand(t, y, rocking, side, phase, ag, sp, summary):
 def track_impact_jump(thetadot_before, thetadot_after, side_before, side_after, sp, summary):
     """Rigid masses: update the largest jump |Δu̇_B| [m/s] of the cap beam's velocity at an impact (θ = 0,
     Eq 3.4 map θ̇⁺ = √c_r θ̇⁻, side flipped; SPEC §13) — an impulse per unit mass."""
-    if sp[P_TWO_DOF] != 0.0:
+    if sp[P_TWO_DOF] != 0.0 or sp[P_GAMMA] == 0.0:
         return
     _, U1m, _, _, _, _ = normalised_kinematics(0.0, side_before, 1, sp)
     _, U1p, _, _, _, _ = normalised_kinematics(0.0, side_after, 1, sp)
