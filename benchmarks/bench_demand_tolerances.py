@@ -64,6 +64,11 @@ def study_project(path: str, rtols) -> dict:
     return {"project": path, "rows": rows}
 
 
+def _e(x: float) -> str:
+    """1e-08 → 1e-8."""
+    return f"{x:.0e}".replace("e-0", "e-")
+
+
 def section(study: dict) -> str:
     """The "Superstructure demand" section of docs/tolerances.md."""
     def trio(s):
@@ -80,11 +85,11 @@ def section(study: dict) -> str:
         name = Path(proj["project"]).stem
         for r in proj["rows"]:
             moved = "—" if r["n_moved_over_2pc"] is None else f"{r['n_moved_over_2pc']} (largest {100 * r['largest_move']:.2g} %)"
-            lines.append(f"| {name} | {r['rtol']:.0e} | {trio(r['shear_coefficient'])} | {trio(r['force_ratio'])} | {moved} |")
+            lines.append(f"| {name} | {_e(r['rtol'])} | {trio(r['shear_coefficient'])} | {trio(r['force_ratio'])} | {moved} |")
     lines += ["",
               "From rtol 1e-8 on, every statistic stays within 0.3 % of its value at 1e-11; single records keep "
               "moving by about 1 % below 1e-8 (rest decisions and the peak's sampling), so a per-record demand is "
-              f"quoted to 2 %. The check reads the demand at rtol ≤ {DEMAND_RTOL:g} "
+              f"quoted to 2 %. The check reads the demand at rtol ≤ {_e(DEMAND_RTOL)} "
               "(`rockdesign.checks.demand.DEMAND_RTOL`): the default rtol already is 1e-8, so the demand costs no "
               "extra analysis; a project with a looser `[analysis] rtol` gets a separate 2DOF run at 1e-8 for the "
               "demand, and the report's note says so.", ""]
