@@ -12,6 +12,7 @@ import math
 from pathlib import Path
 
 from ..errors import RockdesignError
+from ..outdir import refuse_wrong_type
 
 FIGURE_SUFFIXES = (".png", ".svg", ".pdf")
 G_RANGE = (9.7, 9.9)
@@ -59,6 +60,7 @@ def output_file(path: Path | None, key: str, suffixes: tuple[str, ...] | None = 
                               found=f"'{path}'")
     if path.is_dir():
         raise RockdesignError("is a directory", key=key, expected="a file name", found=f"'{path}' (a directory)")
+    refuse_wrong_type(path, key, folder=False)
     parent = path.parent if str(path.parent) else Path(".")
     if not parent.is_dir():
         raise RockdesignError("folder not found", key=key, expected="a file in an existing folder",
@@ -69,6 +71,8 @@ def output_file(path: Path | None, key: str, suffixes: tuple[str, ...] | None = 
 def output_folder(path: Path, key: str) -> Path:
     """A folder we can write into (created if missing): not an existing file, parent not a file."""
     path = Path(path).expanduser()
+    if path.is_symlink():
+        refuse_wrong_type(path, key, folder=True)
     if path.exists() and not path.is_dir():
         raise RockdesignError("is a file, not a folder", key=key, expected="a folder (new or existing)",
                               found=f"'{path}' (an existing file)")

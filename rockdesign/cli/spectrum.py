@@ -87,7 +87,7 @@ def register(app: typer.Typer, handle_errors) -> None:
         from ..execution.executor import make_executor
         from ..spectra.kernel import warm_up
         from ..spectra.output import analyse, write_outputs
-        from ..spectra.spectrum import SpectrumError, compute_spectrum, request_from_project
+        from ..spectra.spectrum import SpectrumError, check_grid, compute_spectrum, request_from_project
 
         t_start = time.perf_counter()
         console = Console(stderr=True, highlight=False)
@@ -122,14 +122,15 @@ def register(app: typer.Typer, handle_errors) -> None:
                                                stop_at_capacity=stop_at_capacity)
             resolve_structure(ref_proj.system, ref_request.structure, ref_request.rigid_ratio)
         out_dir = out if out is not None else Path(f"{Path(project).stem}-spectrum-{pulse_name}")
-        if out_dir.exists() and not out_dir.is_dir():
-            raise RockdesignError("output path is a file", key="-o", expected="a folder", found=str(out_dir))
-        out_dir.mkdir(parents=True, exist_ok=True)
+        check_grid(x_axis, y_axis, 2 if ref_proj is not None else 1,    # memory and time, before any work
+                   distributed=dask is not None and not str(dask).startswith("local"))
+        executor = make_executor(dask, warm_up=warm_up)     # (an unreachable scheduler stops here)
+        from ..outdir import created_folder
+        created_folder(out_dir, "-o/--out")                 # (removed again if the run fails before writing)
         chunks_root = out_dir / "chunks"
         if dask is None or str(dask).startswith("local"):   # (a remote cluster's workers compile there)
             from .inputs import compile_kernels
             compile_kernels("spectrum")
-        executor = make_executor(dask, warm_up=warm_up)
         ny, nx = y_axis.n, x_axis.n
         runs = [("spectrum", proj, request, chunks_root / "project")]
         if ref_proj is not None:

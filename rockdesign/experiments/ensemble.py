@@ -68,6 +68,12 @@ def run_ensemble(project, suite: str, *, scale: float = 1.0, restitution: float 
     if not loaded.records:
         raise ProjectError("the ensemble has no available record", key="--suite", expected="a suite with records",
                            found="; ".join(f"{i}: {r}" for i, r in loaded.missing) or "an empty suite")
+    if loaded.missing:   # the CSV feeds 'validate': a dropped record would change its count silently
+        shown = "; ".join(f"{i}: {r}" for i, r in loaded.missing[:3])
+        more = f" and {len(loaded.missing) - 3} more" if len(loaded.missing) > 3 else ""
+        raise ProjectError(f"{len(loaded.missing)} of {len(loaded.entries)} records of the ensemble are missing",
+                           key="--suite", expected="every record of the suite available (or --records-dir "
+                           "with the PEER AT2 files)", found=shown + more)
     rule = loaded.default_scale
     if rule is not None and rule.method != "factor":
         raise ProjectError("the ensemble's scale rule is not applied by 'ensemble'", file=str(loaded.path),
