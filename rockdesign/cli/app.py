@@ -16,10 +16,11 @@ from rich.console import Console
 from rich.markup import escape
 
 from .. import __version__
+from .inputs import OptionsOnce
 from ..errors import RockdesignError
 from ..outdir import discard_unfinished, forget_created
 
-app = typer.Typer(add_completion=False, no_args_is_help=True,
+app = typer.Typer(cls=OptionsOnce, add_completion=False, no_args_is_help=True,
                   help="Design checks for rocking columns, rocking frames and rocking podium buildings.")
 err_console = Console(stderr=True)
 FLAG = " "

@@ -5,6 +5,12 @@ import json
 import sys
 from pathlib import Path
 
+PLANAR_ONLY = {"pulse": "--pulse", "dask": "--dask", "model": "--model", "structure": "--structure",
+               "overturn": "--overturn", "t_free": "--t-free", "rtol": "--rtol", "tm_ratio": "--tm-ratio",
+               "chunk_rows": "--chunk-rows", "resume": "--resume/--no-resume", "keep_chunks": "--keep-chunks",
+               "energy_stop": "--energy-stop/--no-energy-stop", "stop_at_capacity": "--stop-at-capacity",
+               "polyakov": "--polyakov/--no-polyakov", "equivalent_at": "--equivalent-at", "quiet": "--quiet"}
+"""Options of ``spectrum`` that a cylinder's spectrum does not use (refused when given)."""
 
 
 def cylinder_spectrum_command(project, project_path, record, x, y, relative, out, as_json, figures, console) -> None:

@@ -94,6 +94,9 @@ def scale_model_command(record_id: str, length_ratio: float, table: Optional[str
     """Body of ``records scale-model`` (the motion already loaded): returns the exit code (1 = a limit exceeded)."""
     from ..errors import MotionError
     from ..experiments.scale_model import parse_limits, scale_record, write_at2
+    from .inputs import FIGURE_SUFFIXES, output_file
+    output_file(out, "-o/--out")
+    output_file(plot, "--plot", FIGURE_SUFFIXES)
     limits = parse_limits(table, gravity)
     corners = None
     if band:
@@ -152,6 +155,8 @@ def register(app: typer.Typer, handle_errors) -> None:
         from ..experiments.calibrate import calibrate as run, simulated_history
         from ..experiments.free_vibration import read_tilt_csv
         from ..project import load_project
+        from .inputs import FIGURE_SUFFIXES, output_file
+        output_file(plot, "--plot", FIGURE_SUFFIXES)
         proj = load_project(project)
         history = read_tilt_csv(free_vibration)
         cal = run(proj.system, history, max_half_cycles=half_cycles, min_amplitude=min_amplitude)
@@ -187,6 +192,10 @@ def register(app: typer.Typer, handle_errors) -> None:
                  plot: Optional[Path] = typer.Option(None, "--plot", help="Write the CDF figure (png/svg/pdf).")):
         """Compare test and model statistics of θ_max/α (thesis Ch. 7: Eq 7.1, Tables 7.2, 7.3)."""
         from ..experiments.validate import read_results_csv, validate as run
+        from .inputs import FIGURE_SUFFIXES, output_file, output_folder
+        if out is not None:
+            output_folder(out, "-o/--out")
+        output_file(plot, "--plot", FIGURE_SUFFIXES)
         result = run(read_results_csv(tests, "tests"), read_results_csv(analyses, "analyses"),
                      read_results_csv(measured, "analyses_measured_cr") if measured else None, seed=seed)
         data = result.as_json()
@@ -221,6 +230,8 @@ def register(app: typer.Typer, handle_errors) -> None:
         """Run a project over a ground-motion ensemble and write the analyses.csv that 'validate' reads."""
         from ..experiments.ensemble import run_ensemble, write_analyses_csv
         from ..project import load_project
+        from .inputs import output_file
+        output_file(out, "-o/--out")
         proj = load_project(project)
         err = Console(stderr=True)
         with Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),

@@ -11,6 +11,8 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from typer.core import TyperGroup
+
 from ..errors import RockdesignError
 from ..outdir import refuse_wrong_type
 
@@ -85,6 +87,17 @@ def output_folder(path: Path, key: str) -> Path:
     return path
 
 
+def refuse_given(ctx, options: dict[str, str], used_by: str, expected: str) -> None:
+    """Refuse options the user gave that this run would ignore: ``options`` maps a parameter name of
+    the command to its option (``{"pulse": "--pulse"}``); ``ctx`` is the command's typer context."""
+    for name, flag in options.items():
+        source = ctx.get_parameter_source(name)
+        if source is not None and source.name in ("COMMANDLINE", "ENVIRONMENT"):
+            value = ctx.params.get(name)
+            raise RockdesignError(f"{flag} is not used by {used_by}", key=flag, expected=expected,
+                                  found=f"{flag} {value!r}" if not isinstance(value, bool) else flag)
+
+
 def compile_kernels(command: str, say=None) -> float:
     """Compile the kernels ``command`` needs on its first run, saying so ("compiling numerical kernels,
     once per installation, ~N s") with ``say`` (default: print on stderr): the step after the input was
@@ -95,3 +108,49 @@ def compile_kernels(command: str, say=None) -> float:
         from rich.console import Console
         say = Console(stderr=True).print
     return prepare(command, say)
+
+
+def repeated_option(command, args: list[str]) -> None:
+    """Refuse an option given twice (``--table a=1 --table a=2``: click would keep the last silently);
+    options declared repeatable (``--equivalent-at``) may repeat."""
+    spelled: dict[str, object] = {}
+    takes_value: dict[str, bool] = {}
+    for param in getattr(command, "params", []):
+        if getattr(param, "param_type_name", "") != "option" or getattr(param, "multiple", False) \
+                or getattr(param, "count", False):
+            continue
+        for flag in [*param.opts, *param.secondary_opts]:
+            spelled[flag] = param
+            takes_value[flag] = not param.is_flag
+    seen: dict[object, str] = {}
+    k = 0
+    while k < len(args) and args[k] != "--":
+        token = args[k]
+        flag = token.split("=", 1)[0] if token.startswith("--") else token
+        param = spelled.get(flag)
+        width = 2 if param is not None and takes_value[flag] and "=" not in token else 1
+        if param is not None:
+            shown = " ".join(args[k:k + width])
+            if param in seen:
+                raise RockdesignError("option given twice (only one value would be used)", key=flag,
+                                      expected="/".join([*param.opts, *param.secondary_opts]) + " once",
+                                      found=f"'{seen[param]}' and '{shown}'")
+            seen[param] = shown
+        k += width
+
+
+class OptionsOnce(TyperGroup):
+    """The command groups of the CLI: an option of a command given twice is an input error (exit 2)."""
+
+    def resolve_command(self, ctx, args):
+        name, command, rest = super().resolve_command(ctx, args)
+        if command is not None and not isinstance(command, TyperGroup):
+            try:
+                repeated_option(command, rest)
+            except RockdesignError as exc:
+                from rich.console import Console
+                from rich.markup import escape
+                Console(stderr=True).print(f"[bold red]error:[/] {escape(str(exc))}", highlight=False,
+                                           soft_wrap=True)
+                ctx.exit(2)
+        return name, command, rest

@@ -15,13 +15,14 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
+from .inputs import OptionsOnce
 from ..errors import MotionError
 from ..motions.defaults import DEFAULT_BAND, DEFAULT_DAMPING, DEFAULT_N_PERIODS
 
 # the records, spectra and units modules (numba, pint) are imported by the commands that use them: the
 # CLI mounts this module for every command, `--help` and `init` included
 
-app = typer.Typer(help="Ground-motion records: list, show, spectra, synthetic ensembles.", no_args_is_help=True)
+app = typer.Typer(cls=OptionsOnce, help="Ground-motion records: list, show, spectra, synthetic ensembles.", no_args_is_help=True)
 
 RECORDS_DIR_HELP = "Folder of your PEER *.AT2 files (for rsn:<RSN>:<component> ids)."
 FLAG = " "  # metavar of on/off options (typer prints "<bool>" otherwise)

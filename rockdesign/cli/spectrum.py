@@ -38,6 +38,7 @@ def register(app: typer.Typer, handle_errors) -> None:
     @app.command()
     @handle_errors
     def spectrum(
+        ctx: typer.Context,
         project: Path = typer.Argument(..., help="Project file (TOML)"),
         pulse: Optional[str] = typer.Option(None, "--pulse", "-p", help=HELP_PULSE),
         record: Optional[str] = typer.Option(None, "--record", help="Cylinders: the record pair, e.g. p695-ff/11 "
@@ -92,9 +93,14 @@ def register(app: typer.Typer, handle_errors) -> None:
         t_start = time.perf_counter()
         console = Console(stderr=True, highlight=False)
         proj = load_project(project)
+        from .inputs import refuse_given
         if proj.system.kind == "cylinder":                  # the 3D cylinder (thesis Ch. 5)
-            from .cylinder_spectrum import cylinder_spectrum_command
+            from .cylinder_spectrum import PLANAR_ONLY, cylinder_spectrum_command
+            refuse_given(ctx, PLANAR_ONLY, "the spectrum of a cylinder (a record pair on R × pga axes)",
+                         "--record, --x R:…, --y pga/up:…, --relative, -o, --figures, --json")
             return cylinder_spectrum_command(proj, project, record, x, y, relative, out, as_json, figures, console)
+        refuse_given(ctx, {"record": "--record"}, "the spectrum of a planar system (pulses)",
+                     "--pulse (a cylinder project takes --record)")
         if pulse is None:
             raise RockdesignError("missing pulse", key="--pulse", expected="--pulse ricker-anti (or another pulse)",
                                   found="none")
