@@ -4,6 +4,8 @@ Every case ends with exit 2 and one ``error:`` line naming the option, key or fi
 traceback, never exit 0 having ignored or dropped something the user gave."""
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 from typer.testing import CliRunner
 
@@ -99,3 +101,123 @@ def test_a_pair_of_files_with_different_time_steps_names_both(tmp_path, monkeypa
     y.write_text(AT2_HEAD + "NPTS=    4, DT=   .0200 SEC\n  0.1 0.2 0.1 0.0\n")
     r = invoke("simulate", CYLINDER, "--motion", f"files:{x},{y}")
     assert_one_line_error(r, "key '--motion'", "different time steps", "0.01 s in 'X.AT2'", "0.02 s in 'Y.AT2'")
+
+
+# ------------------------------------------------------------------ output paths that exist as the wrong type
+@pytest.mark.parametrize("args,key", [
+    (["check", PIER, "--no-pdf", "-o", "{link}"], "-o/--out"),
+    (["simulate", PIER, "--motion", "sine:ap=0.3g,Tp=1s", "--plot", "{link}.png"], "--plot"),
+    (["simulate", PIER, "--motion", "sine:ap=0.3g,Tp=1s", "--csv", "{link}.csv"], "--csv"),
+    (["records", "synth", "--seed", "p695-ff/11a", "-n", "2", "-o", "{link}"], "--out"),
+    (["spectrum", PIER, "--pulse", "sine", "--x", "omega_p/p:1:2:2", "--y", "ap/up:1:2:2", "-o", "{link}"],
+     "-o/--out"),
+])
+def test_dangling_symlink_outputs_are_refused_before_the_work(tmp_path, args, key, monkeypatch):
+    """check -o <dangling symlink> used to fail with a traceback after the whole check ran."""
+    refuse_compiling(monkeypatch)
+    link = str(tmp_path / "link")
+    args = [a.format(link=link) for a in args]
+    target = next(a for a in args if a.startswith(link))
+    (tmp_path / Path(target).name).symlink_to(tmp_path / "nowhere" / Path(target).name)
+    r = invoke(*args)
+    assert_one_line_error(r, f"key '{key}'", "dangling symbolic link", Path(target).name)
+    assert not (tmp_path / "nowhere").exists()
+
+
+# ------------------------------------------------------------------ options given twice or not used
+@pytest.mark.parametrize("args,key,found", [
+    (["simulate", PIER, "--motion", "sine:ap=0.3g,Tp=1s", "--t-end", "3", "--t-end=4"], "--t-end",
+     "'--t-end 3' and '--t-end=4'"),
+    (["simulate", PIER, "--motion", "sine:ap=0.3g,Tp=1s", "--motion", "sine:ap=0.5g,Tp=1s"], "--motion",
+     "'--motion sine:ap=0.3g,Tp=1s' and '--motion sine:ap=0.5g,Tp=1s'"),
+    (["spectrum", PIER, "--pulse", "sine", "--resume", "--no-resume"], "--no-resume", "'--resume' and '--no-resume'"),
+    (["check", PIER, "-o", "a", "--out", "b"], "--out", "'-o a' and '--out b'"),
+])
+def test_an_option_given_twice_is_refused(args, key, found, monkeypatch):
+    refuse_compiling(monkeypatch)
+    assert_one_line_error(invoke(*args), f"key '{key}'", "given twice", found)
+
+
+def test_repeatable_options_may_repeat(tmp_path, monkeypatch):
+    """--equivalent-at is declared repeatable: giving it twice is not an error (the run stops later, at the
+    bad --x on purpose, before any analysis)."""
+    refuse_compiling(monkeypatch)
+    r = invoke("spectrum", PIER, "--pulse", "sine", "--equivalent-at", "1", "--equivalent-at", "2",
+               "--x", "omega_p/p:2:1:3", "-o", tmp_path / "s")
+    assert_one_line_error(r, "key '--x'")
+
+
+@pytest.mark.parametrize("extra,key", [
+    (["--pulse", "ricker-anti"], "--pulse"), (["--dask", "local:2"], "--dask"), (["--rtol", "1e-8"], "--rtol"),
+    (["--no-polyakov"], "--polyakov/--no-polyakov"), (["--equivalent-at", "2"], "--equivalent-at"),
+    (["--t-free", "5"], "--t-free"), (["--model", "linear"], "--model"),
+])
+def test_a_cylinder_spectrum_refuses_the_planar_options(tmp_path, extra, key, monkeypatch):
+    """--pulse (and every planar-only option) on a cylinder spectrum used to be accepted and ignored."""
+    refuse_compiling(monkeypatch)
+    r = invoke("spectrum", CYLINDER, "--record", "p695-ff/11", *extra, "-o", tmp_path / "s")
+    assert_one_line_error(r, f"key '{key}'", "not used by the spectrum of a cylinder")
+    assert not (tmp_path / "s").exists()
+
+
+def test_a_planar_spectrum_refuses_record(tmp_path, monkeypatch):
+    refuse_compiling(monkeypatch)
+    r = invoke("spectrum", PIER, "--pulse", "sine", "--record", "p695-ff/11", "-o", tmp_path / "s")
+    assert_one_line_error(r, "key '--record'", "planar")
+
+
+# ------------------------------------------------------------------ spectrum grids and output folders
+def test_a_grid_too_large_for_memory_is_refused_with_the_estimate(tmp_path, monkeypatch):
+    """1e5 × 1e5 used to end in MemoryError (exit 3) or days of work."""
+    refuse_compiling(monkeypatch)
+    r = invoke("spectrum", PIER, "--pulse", "sine", "--x", "omega_p/p:0.5:12:100000", "--y", "ap/up:0:12:100000",
+               "-o", tmp_path / "s")
+    flat = assert_one_line_error(r, "key '--x/--y'", "does not fit in memory", "10,000,000,000 analyses", "TB")
+    assert "days" in flat
+    assert not (tmp_path / "s").exists()
+
+
+def test_grid_estimates():
+    """Memory = points × BYTES_PER_POINT; time = points × CPU_PER_ANALYSIS / cores; both limits refuse."""
+    import os
+    from rockdesign.spectra.axes import parse_axis
+    from rockdesign.spectra.spectrum import (BYTES_PER_POINT, CPU_PER_ANALYSIS, MAX_HOURS, SpectrumError,
+                                             check_grid)
+    x, y = parse_axis("omega_p/p:0.5:12:801", "x"), parse_axis("ap/up:0:12:401", "y")
+    memory, seconds = check_grid(x, y, available=1e12)
+    assert memory == 801 * 401 * BYTES_PER_POINT
+    assert seconds == pytest.approx(801 * 401 * CPU_PER_ANALYSIS / (os.cpu_count() or 1))
+    with pytest.raises(SpectrumError, match="memory"):
+        check_grid(x, y, 2, available=memory)
+    big = parse_axis("omega_p/p:0.5:12:100000", "x")
+    n_y = int(MAX_HOURS * 3600 * (os.cpu_count() or 1) / CPU_PER_ANALYSIS / 100000) + 1
+    tall = parse_axis(f"ap/up:0:12:{n_y}", "y")
+    with pytest.raises(SpectrumError, match="too long"):
+        check_grid(big, tall, available=1e18)
+    check_grid(big, tall, distributed=True, available=1e18)      # a cluster: only memory is checked here
+
+
+def test_unreachable_dask_scheduler_is_refused_at_once_without_a_folder(tmp_path, monkeypatch):
+    import socket
+    refuse_compiling(monkeypatch)
+    with socket.socket() as s:       # a port nobody listens on
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    r = invoke("spectrum", PIER, "--pulse", "sine", "--x", "omega_p/p:1:2:2", "--y", "ap/up:1:2:2",
+               "--dask", f"tcp://127.0.0.1:{port}", "-o", tmp_path / "s")
+    assert_one_line_error(r, "key '--dask'", "cannot reach", str(port))
+    assert not (tmp_path / "s").exists()
+
+
+def test_a_failed_spectrum_leaves_no_empty_folder(tmp_path, monkeypatch):
+    import rockdesign.spectra.spectrum as spectrum
+    from rockdesign.errors import RockdesignError
+
+    def fail(*args, **kwargs):
+        raise RockdesignError("the cluster went away", key="--dask")
+    monkeypatch.setattr(spectrum, "compute_spectrum", fail)
+    monkeypatch.setattr("rockdesign.cli.inputs.compile_kernels", lambda *a, **k: 0.0)
+    out = tmp_path / "deep" / "s"
+    r = invoke("spectrum", PIER, "--pulse", "sine", "--x", "omega_p/p:1:2:2", "--y", "ap/up:1:2:2", "-o", out)
+    assert_one_line_error(r, "the cluster went away")
+    assert not (tmp_path / "deep").exists()
