@@ -5,13 +5,14 @@ import contextlib
 
 from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+from .console import make_console
 
 
 @contextlib.contextmanager
 def progress_bars(console: Console | None = None, *, disable: bool = False):
     """Yield ``progress(stage, done, total)``: one bar per stage; every bar shown complete at the end."""
     bar = Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
-                   console=console or Console(stderr=True), transient=False, disable=disable)
+                   console=console or make_console(stderr=True), transient=False, disable=disable)
     tasks: dict[str, int] = {}
 
     def progress(stage: str, done: int, total: int) -> None:

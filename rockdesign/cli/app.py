@@ -12,20 +12,20 @@ from pathlib import Path
 from typing import Optional
 
 import typer
-from rich.console import Console
 from rich.markup import escape
 
 from .. import __version__
-from .inputs import OptionsOnce
+from ..console import make_console
 from ..errors import RockdesignError
 from ..outdir import discard_unfinished, forget_created
+from .inputs import OptionsOnce
 
 app = typer.Typer(cls=OptionsOnce, add_completion=False, no_args_is_help=True,
                   help="Design checks for rocking columns, rocking frames and rocking podium buildings.")
-err_console = Console(stderr=True)
+err_console = make_console(stderr=True)
 FLAG = " "
 """metavar of on/off options (typer would print "<bool>" after them in --help)."""
-console = Console()
+console = make_console()
 
 
 INTERRUPTED = 130

@@ -14,10 +14,11 @@ import typer
 from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
+from ..console import make_console
 
 
 def _console() -> Console:
-    console = Console(highlight=False, markup=False, soft_wrap=True)
+    console = make_console(highlight=False, markup=False, soft_wrap=True)
     if not console.is_terminal:
         console.width = 160
     return console
@@ -233,7 +234,7 @@ def register(app: typer.Typer, handle_errors) -> None:
         from .inputs import output_file
         output_file(out, "-o/--out")
         proj = load_project(project)
-        err = Console(stderr=True)
+        err = make_console(stderr=True)
         with Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
                       console=err, disable=as_json and not err.is_terminal) as bar:
             from .inputs import compile_kernels

@@ -13,6 +13,7 @@ from pathlib import Path
 
 from typer.core import TyperGroup
 
+from ..console import make_console
 from ..errors import RockdesignError
 from ..outdir import refuse_wrong_type
 
@@ -105,8 +106,7 @@ def compile_kernels(command: str, say=None) -> float:
     when all are cached)."""
     from ..dynamics.compilation import prepare
     if say is None:
-        from rich.console import Console
-        say = Console(stderr=True).print
+        say = make_console(stderr=True).print
     return prepare(command, say)
 
 
@@ -148,9 +148,8 @@ class OptionsOnce(TyperGroup):
             try:
                 repeated_option(command, rest)
             except RockdesignError as exc:
-                from rich.console import Console
                 from rich.markup import escape
-                Console(stderr=True).print(f"[bold red]error:[/] {escape(str(exc))}", highlight=False,
+                make_console(stderr=True).print(f"[bold red]error:[/] {escape(str(exc))}", highlight=False,
                                            soft_wrap=True)
                 ctx.exit(2)
         return name, command, rest

@@ -14,6 +14,7 @@ from typing import List, Optional
 import typer
 from rich.console import Console
 from rich.markup import escape
+from ..console import make_console
 
 HELP_PULSE = "ricker-anti | ricker-sym | sine | cycloidal-a | cycloidal-b | cycloidal-c"
 
@@ -91,7 +92,7 @@ def register(app: typer.Typer, handle_errors) -> None:
         from ..spectra.spectrum import SpectrumError, check_grid, compute_spectrum, request_from_project
 
         t_start = time.perf_counter()
-        console = Console(stderr=True, highlight=False)
+        console = make_console(stderr=True, highlight=False)
         proj = load_project(project)
         from .inputs import refuse_given
         if proj.system.kind == "cylinder":                  # the 3D cylinder (thesis Ch. 5)
@@ -183,7 +184,7 @@ def register(app: typer.Typer, handle_errors) -> None:
         if as_json:
             sys.stdout.write(json.dumps(summary, indent=1, ensure_ascii=False) + "\n")
             return
-        _print_summary(Console(highlight=False), summary, out_dir)
+        _print_summary(make_console(highlight=False), summary, out_dir)
 
 
 def _print_summary(console: Console, summary: dict, out_dir: Path) -> None:

@@ -221,3 +221,35 @@ def test_a_failed_spectrum_leaves_no_empty_folder(tmp_path, monkeypatch):
     r = invoke("spectrum", PIER, "--pulse", "sine", "--x", "omega_p/p:1:2:2", "--y", "ap/up:1:2:2", "-o", out)
     assert_one_line_error(r, "the cluster went away")
     assert not (tmp_path / "deep").exists()
+
+
+# ------------------------------------------------------------------ user text printed verbatim
+NAME = "pier :-1: :smile: [red]x[/red]"
+
+
+@pytest.mark.parametrize("command", [["quantities"], ["simulate", "--motion", "sine:ap=0.3g,Tp=1s", "--t-end", "2"]])
+def test_user_text_is_printed_verbatim(tmp_path, command):
+    """rich turned ':-1:' into an emoji (and would read '[red]' as markup) in tables and messages."""
+    text = Path(PIER).read_text(encoding="utf-8")
+    project = tmp_path / "p.toml"
+    project.write_text(text.replace('name = "', f'name = "{NAME} ', 1), encoding="utf-8")
+    r = invoke(command[0], project, *command[1:])
+    assert r.exit_code == 0, r.output
+    assert NAME in " ".join(r.stdout.split()) or NAME in r.stdout, r.stdout
+
+
+def test_messages_quote_user_text_verbatim(monkeypatch):
+    refuse_compiling(monkeypatch)
+    r = invoke("spectrum", PIER, "--pulse", "sine", "--x", "omega_p/p:-1:8:5")
+    assert_one_line_error(r, "'omega_p/p:-1:8:5'")
+    r = invoke("simulate", PIER, "--motion", "sine:ap=0.3g,Tp=:smile:")
+    assert_one_line_error(r, "':smile:'")
+
+
+def test_every_console_comes_from_one_place():
+    """No module creates a rich Console but rockdesign.console (emoji replacement off everywhere)."""
+    import re
+    root = Path(__file__).resolve().parents[2] / "rockdesign"
+    makers = [str(p.relative_to(root)) for p in root.rglob("*.py")
+              if re.search(r"(?<![\w.])Console\(", p.read_text(encoding="utf-8"))]
+    assert makers == ["console.py"], makers
