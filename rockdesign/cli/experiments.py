@@ -78,6 +78,10 @@ def validation_tables(data: dict, console: Console) -> None:
                   f"p_o = {data['p_overturn_analyses']:.3f}; Kolmogorov distance {data['kolmogorov_distance']:.3f}"
                   + (f" (measured c_r: {data['kolmogorov_distance_measured_cr']:.3f})"
                      if "kolmogorov_distance_measured_cr" in data else ""))
+    console.print(f"model runs paired with the tests by {data['model_pairing']}"
+                  + {"id": "", "row": " (no ids in both files: row k with row k)",
+                     "all": " (no ids in both files and different numbers of runs: the whole model sample)"}
+                  [data["model_pairing"]])
     console.print(f"DKW band half-width on the test CDF: {data['dkw_epsilon']['90%']:.3f} (90 %), "
                   f"{data['dkw_epsilon']['95%']:.3f} (95 %)")
     for key, title, stat in (("proportions", "test of equal proportions of overturning (Sec 7.2.1)", "p_D1 − p_other"),
