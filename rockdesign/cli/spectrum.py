@@ -89,7 +89,8 @@ def register(app: typer.Typer, handle_errors) -> None:
         from ..execution.executor import make_executor
         from ..spectra.kernel import warm_up
         from ..spectra.output import analyse, write_outputs
-        from ..spectra.spectrum import SpectrumError, check_grid, compute_spectrum, request_from_project
+        from ..spectra.spectrum import (SpectrumError, check_grid, check_ordinates, compute_spectrum,
+                                        request_from_project)
 
         t_start = time.perf_counter()
         console = make_console(stderr=True, highlight=False)
@@ -129,6 +130,7 @@ def register(app: typer.Typer, handle_errors) -> None:
                                                stop_at_capacity=stop_at_capacity)
             resolve_structure(ref_proj.system, ref_request.structure, ref_request.rigid_ratio)
         out_dir = out if out is not None else Path(f"{Path(project).stem}-spectrum-{pulse_name}")
+        check_ordinates(equivalent_at, y_axis, ref_proj is not None)
         check_grid(x_axis, y_axis, 2 if ref_proj is not None else 1,    # memory and time, before any work
                    distributed=dask is not None and not str(dask).startswith("local"))
         executor = make_executor(dask, warm_up=warm_up)     # (an unreachable scheduler stops here)

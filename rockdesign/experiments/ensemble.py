@@ -9,6 +9,7 @@ The model is the project's full model (``[analysis] model``; exact equations unl
 from __future__ import annotations
 
 import csv
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -62,8 +63,8 @@ def run_ensemble(project, suite: str, *, scale: float = 1.0, restitution: float 
             raise ProjectError("invalid coefficient of restitution", key="--restitution", expected="0 < c_r <= 1",
                                found=repr(restitution))
         system = system.with_restitution(restitution)
-    if not scale > 0.0:
-        raise ProjectError("invalid scale factor", key="--scale", expected="a factor > 0", found=repr(scale))
+    if not (math.isfinite(scale) and scale > 0.0):
+        raise ProjectError("invalid scale factor", key="--scale", expected="a finite factor > 0", found=repr(scale))
     loaded = load_suite(suite, gravity=system.g, records_dir=records_dir, key="--suite")
     if not loaded.records:
         raise ProjectError("the ensemble has no available record", key="--suite", expected="a suite with records",

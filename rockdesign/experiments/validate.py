@@ -230,6 +230,8 @@ def relative_errors(model: dict, tests: dict) -> dict:
 
 def split_tests(tests: MixedSample, seed: int) -> tuple[np.ndarray, np.ndarray]:
     """Seeded random split of the test indices into D1 (⌊n/2⌋) and D2 (the rest) (Sec 7.2)."""
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+        raise ExperimentError("invalid random seed", key="--seed", expected="an integer ≥ 0", found=repr(seed))
     order = np.random.default_rng(seed).permutation(tests.n)
     half = tests.n // 2
     return np.sort(order[:half]), np.sort(order[half:])

@@ -79,6 +79,21 @@ def check_grid(x: Axis, y: Axis, n_spectra: int = 1, *, distributed: bool = Fals
     return memory, seconds
 
 
+def check_ordinates(ordinates, y: Axis, relative: bool) -> None:
+    """Refuse ``--equivalent-at`` ordinates that would be ignored or meaningless: without ``--relative``
+    (Eq 3.65 compares two systems), non-finite, or outside the y axis [lo, hi]."""
+    if not ordinates:
+        return
+    shown = ", ".join(f"{v:g}" for v in ordinates)
+    if not relative:
+        raise SpectrumError("--equivalent-at is used by a relative spectrum only (Eq 3.65 compares two systems)",
+                            key="--equivalent-at", expected="--relative OTHER.toml with it", found=shown)
+    for value in ordinates:
+        if not (math.isfinite(value) and y.lo <= value <= y.hi):
+            raise SpectrumError("ordinate outside the y axis", key="--equivalent-at",
+                                expected=f"a value of {y.name} within {y.lo:g}…{y.hi:g}", found=f"{value:g}")
+
+
 def available_memory() -> float | None:
     """Memory [B] available to this process: Linux's MemAvailable (free + reclaimable cache), else the
     free physical memory (sysconf); None where unknown."""

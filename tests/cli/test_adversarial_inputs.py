@@ -253,3 +253,17 @@ def test_every_console_comes_from_one_place():
     makers = [str(p.relative_to(root)) for p in root.rglob("*.py")
               if re.search(r"(?<![\w.])Console\(", p.read_text(encoding="utf-8"))]
     assert makers == ["console.py"], makers
+
+
+@pytest.mark.parametrize("extra,fragments", [
+    (["--equivalent-at", "1"], ["key '--equivalent-at'", "relative spectrum only"]),
+    (["--equivalent-at", "nan", "--relative", PIER], ["key '--equivalent-at'", "outside the y axis", "nan"]),
+    (["--equivalent-at", "5", "--relative", PIER], ["key '--equivalent-at'", "within 1…2", "found 5"]),
+])
+def test_equivalent_size_ordinates_are_used_or_refused(tmp_path, extra, fragments, monkeypatch):
+    """--equivalent-at without --relative was accepted and ignored (exit 0), a NaN ordinate too."""
+    refuse_compiling(monkeypatch)
+    r = invoke("spectrum", PIER, "--pulse", "sine", "--x", "omega_p/p:1:2:2", "--y", "ap/up:1:2:2", *extra,
+               "-o", tmp_path / "s")
+    assert_one_line_error(r, *fragments)
+    assert not (tmp_path / "s").exists()

@@ -189,3 +189,17 @@ def test_synth_negative_seed_value(tmp_path):
     one_line_error(invoke("records", "synth", "--seed", "p695-ff/11a", "-n", "2", "-o", out, "--seed-value", "-1"),
                    "key '--seed-value'", "-1")
     assert not out.exists()
+
+
+@pytest.mark.parametrize("value", ["inf", "nan", "0", "-1"])
+def test_ensemble_scale_must_be_finite_and_positive(tmp_path, value, monkeypatch):
+    no_compiling(monkeypatch)
+    project = write(tmp_path, "c.toml", COLUMN)
+    suite = write(tmp_path, "s.toml", 'name = "s"\n[[records]]\nid = "p695-ff/3a"\n')
+    one_line_error(invoke("ensemble", project, "--suite", suite, "-o", tmp_path / "a.csv", "--scale", value),
+                   "key '--scale'", value)
+
+
+def test_validate_negative_seed(tmp_path):
+    one_line_error(invoke("validate", "--tests", write(tmp_path, "t.csv", TESTS), "--analyses",
+                          write(tmp_path, "m.csv", MODEL), "--seed", "-1"), "key '--seed'", "-1")
