@@ -111,6 +111,11 @@ def test_a_pair_of_files_with_different_time_steps_names_both(tmp_path, monkeypa
     (["records", "synth", "--seed", "p695-ff/11a", "-n", "2", "-o", "{link}"], "--out"),
     (["spectrum", PIER, "--pulse", "sine", "--x", "omega_p/p:1:2:2", "--y", "ap/up:1:2:2", "-o", "{link}"],
      "-o/--out"),
+    (["spectrum", CYLINDER, "--record", "p695-ff/11", "--x", "R:0.8:1:2", "--y", "pga/up:1:2:2", "-o", "{link}"],
+     "-o/--out"),
+    (["records", "scale-model", "p695-ff/11a", "--length-ratio", "0.1", "-o", "{link}.AT2"], "-o/--out"),
+    (["init", "column", "{link}.toml"], "path"),
+    (["init", "column", "{link}/x.toml"], "path"),
 ])
 def test_dangling_symlink_outputs_are_refused_before_the_work(tmp_path, args, key, monkeypatch):
     """check -o <dangling symlink> used to fail with a traceback after the whole check ran."""
@@ -118,9 +123,10 @@ def test_dangling_symlink_outputs_are_refused_before_the_work(tmp_path, args, ke
     link = str(tmp_path / "link")
     args = [a.format(link=link) for a in args]
     target = next(a for a in args if a.startswith(link))
-    (tmp_path / Path(target).name).symlink_to(tmp_path / "nowhere" / Path(target).name)
+    name = Path(target).name if not target.endswith("/x.toml") else "link"
+    (tmp_path / name).symlink_to(tmp_path / "nowhere" / name)
     r = invoke(*args)
-    assert_one_line_error(r, f"key '{key}'", "dangling symbolic link", Path(target).name)
+    assert_one_line_error(r, f"key '{key}'", "dangling symbolic link", name)
     assert not (tmp_path / "nowhere").exists()
 
 
@@ -267,3 +273,17 @@ def test_equivalent_size_ordinates_are_used_or_refused(tmp_path, extra, fragment
                "-o", tmp_path / "s")
     assert_one_line_error(r, *fragments)
     assert not (tmp_path / "s").exists()
+
+
+@pytest.mark.parametrize("args", [
+    ["spectrum", CYLINDER, "--record", "p695-ff/11", "--x", "R:0.8:1:2", "--y", "pga/up:1:2:2", "-o", "{file}"],
+    ["init", "column", "{file}/x.toml"],
+])
+def test_output_folder_that_is_a_file_before_any_work(tmp_path, args, monkeypatch):
+    """The cylinder spectrum compiled and analysed before finding that -o is a file."""
+    refuse_compiling(monkeypatch)
+    target = tmp_path / "taken"
+    target.write_text("x")
+    r = invoke(*[a.format(file=target) for a in args])
+    assert_one_line_error(r, "is a file", "taken")
+    assert target.read_text() == "x"
