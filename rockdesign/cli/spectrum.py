@@ -14,6 +14,7 @@ from typing import List, Optional
 import typer
 from rich.console import Console
 from rich.markup import escape
+
 from ..console import make_console
 
 HELP_PULSE = "ricker-anti | ricker-sym | sine | cycloidal-a | cycloidal-b | cycloidal-c"
