@@ -203,3 +203,17 @@ def test_ensemble_scale_must_be_finite_and_positive(tmp_path, value, monkeypatch
 def test_validate_negative_seed(tmp_path):
     one_line_error(invoke("validate", "--tests", write(tmp_path, "t.csv", TESTS), "--analyses",
                           write(tmp_path, "m.csv", MODEL), "--seed", "-1"), "key '--seed'", "-1")
+
+
+def test_a_failed_synth_leaves_no_folder(tmp_path, monkeypatch):
+    """records synth created its folder first and left it empty when the fit failed."""
+    import rockdesign.motions.synth as synth
+    from rockdesign.errors import MotionError
+
+    def fail(*args, **kwargs):
+        raise MotionError("the stochastic model does not fit this record", key="--seed")
+    monkeypatch.setattr(synth, "fit_model", fail)
+    monkeypatch.setattr("rockdesign.cli.inputs.compile_kernels", lambda *a, **k: 0.0)
+    out = tmp_path / "deep" / "ens"
+    one_line_error(invoke("records", "synth", "--seed", "p695-ff/11a", "-n", "2", "-o", out), "does not fit")
+    assert not (tmp_path / "deep").exists()
