@@ -4,6 +4,7 @@ from __future__ import annotations
 import contextlib
 
 from rich.console import Console
+from rich.markup import escape
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
 from .console import make_console
@@ -22,7 +23,7 @@ def progress_bars(console: Console | None = None, *, disable: bool = False):
             # that ends early, e.g. the margins', would otherwise count on until the last stage ends)
             for t in tasks.values():
                 bar.update(t, completed=bar.tasks[t].total)
-            tasks[stage] = bar.add_task(stage, total=total)
+            tasks[stage] = bar.add_task(escape(stage), total=total)   # user text (names, ids) verbatim
         bar.update(tasks[stage], completed=min(done, total), total=total)
 
     with bar:
