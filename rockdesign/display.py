@@ -60,7 +60,7 @@ def quantities_table(quantities: dict, console: Console, units: str | None, grav
                      warnings=()) -> None:
     """Print design quantities as a table: symbol, name, value, unit, equation."""
     targets = parse_display_units(units, gravity)
-    table = Table(title=title, title_justify="left")
+    table = Table(title=escape(title), title_justify="left")
     for col in ("symbol", "quantity", "value", "unit", "equation"):
         table.add_column(col, justify="right" if col == "value" else "left")
     for q in quantities.values():
@@ -75,7 +75,7 @@ def quantities_table(quantities: dict, console: Console, units: str | None, grav
 def response_table(result, console: Console) -> None:
     """Print the summary of one time-history analysis."""
     r = result.response
-    table = Table(title=f"{result.project.name} — {result.motion_text}", title_justify="left")
+    table = Table(title=escape(f"{result.project.name} — {result.motion_text}"), title_justify="left")
     table.add_column("quantity")
     table.add_column("value", justify="right")
     table.add_column("unit")
@@ -137,7 +137,7 @@ def check_summary(data: dict, out_dir, console: Console) -> None:
     """Print the checks, what the run found (failed analyses, missing records), the verdict and its
     reason, and where the report went."""
     s = data["summary"]
-    table = Table(title=f"{data['project']['name']} — design check", title_justify="left")
+    table = Table(title=escape(f"{data['project']['name']} — design check"), title_justify="left")
     for col in ("check", "utilisation", "result"):
         table.add_column(col, justify="right" if col == "utilisation" else "left")
     for c in data["checks"]:

@@ -7,7 +7,8 @@ from pathlib import Path
 from typing import Optional
 
 import typer
-from rich.console import Console
+
+from ..console import make_console
 
 
 def register(app: typer.Typer, handle_errors) -> None:
@@ -60,12 +61,12 @@ def _check(project, out, as_json, no_pdf, html, no_margins, records_dir, dask, p
         with folder.locked():   # before the analyses, as below
             from .inputs import compile_kernels
             compile_kernels("cylinder-check")
-            result = run_check(proj, progress=not as_json or Console(stderr=True).is_terminal)
+            result = run_check(proj, progress=not as_json or make_console(stderr=True).is_terminal)
             _report(write_report, result, folder, no_pdf, html)
         if as_json:
             sys.stdout.write(json_text(result.as_json()))
         else:
-            cylinder_summary(result.as_json(), folder.target, Console())
+            cylinder_summary(result.as_json(), folder.target, make_console())
         raise typer.Exit(0 if result.verdict == "PASS" else 1)
     folder = OutputFolder(target, key="-o/--out")
     with folder.locked():   # before the analyses: a file, a read-only or busy folder stops here (exit 2)
@@ -74,7 +75,7 @@ def _check(project, out, as_json, no_pdf, html, no_margins, records_dir, dask, p
             from ..checks.check import check_records
             check_records(proj, records_dir)
         # the engine finishes compiling in a helper while the check reads its records (run_check waits)
-        prepare("check", Console(stderr=True).print, background=True)
+        prepare("check", make_console(stderr=True).print, background=True)
         from ..dynamics.compilation import compilation_pending
         if compilation_pending() and not no_pdf:    # this process would wait: load the report's libraries
             from ..report.render import warm_up
@@ -86,7 +87,7 @@ def _check(project, out, as_json, no_pdf, html, no_margins, records_dir, dask, p
             executor.start()
         try:
             result = run_check(proj, records_dir=records_dir, margins=not no_margins,
-                               progress=not as_json or Console(stderr=True).is_terminal, executor=executor)
+                               progress=not as_json or make_console(stderr=True).is_terminal, executor=executor)
         finally:
             if executor is not None:
                 executor.close()
@@ -96,7 +97,7 @@ def _check(project, out, as_json, no_pdf, html, no_margins, records_dir, dask, p
         sys.stdout.write(json_text(data))
     else:
         from ..display import check_summary
-        check_summary(data, folder.target, Console())
+        check_summary(data, folder.target, make_console())
     # failed analyses: the check is incomplete (exit 2), whatever the other records say
     raise typer.Exit(2 if data.get("failed_records") else 0 if data["verdict"] == "PASS" else 1)
 
@@ -106,5 +107,5 @@ def _report(write_report, result, folder, no_pdf: bool, html: bool, pdf_worker=N
     figures and the PDF take seconds after the analyses' progress bars have ended."""
     what = ("results and calculation report (figures, PDF)" if not no_pdf
             else "results and HTML report" if html else "results")
-    with Console(stderr=True).status(f"writing the {what}"):
+    with make_console(stderr=True).status(f"writing the {what}"):
         write_report(result, folder, pdf=not no_pdf, html=html or not no_pdf, pdf_worker=pdf_worker)

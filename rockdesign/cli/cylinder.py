@@ -40,7 +40,7 @@ def check_summary(data: dict, out_dir, console) -> None:
     """Print the checks of a cylinder check (results.json ``data``), the verdict and the output folder."""
     from rich.markup import escape
     from rich.table import Table
-    table = Table(title=f"{data['project']['name']} — cylinder check", title_justify="left")
+    table = Table(title=escape(f"{data['project']['name']} — cylinder check"), title_justify="left")
     for col in ("check", "utilisation", "result", "detail"):
         table.add_column(col)
     for c in data["checks"]:
@@ -62,11 +62,12 @@ def quantities_table(project, console, units: str | None = None) -> None:
 
 def response_table(result, console) -> None:
     """Print the summary of one cylinder analysis."""
+    from rich.markup import escape
     from rich.table import Table
 
     from ..display import format_value
     r = result.response
-    table = Table(title=f"{result.project.name} — {result.motion_text}", title_justify="left")
+    table = Table(title=escape(f"{result.project.name} — {result.motion_text}"), title_justify="left")
     for col in ("quantity", "value", "unit"):
         table.add_column(col, justify="right" if col == "value" else "left")
     j = r.as_json()

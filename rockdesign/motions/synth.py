@@ -167,13 +167,16 @@ def synthesize(seed: GroundMotion, n: int, out_dir, *, seed_value: int = 1, scal
     :func:`rockdesign.motions.suites.load_suite`), ``model.json`` (sgsim parameters) and
     ``match.json`` (:class:`EnsembleMatch`). Returns (manifest path, match).
     """
+    if isinstance(seed_value, bool) or not isinstance(seed_value, int) or seed_value < 0:
+        raise MotionError("invalid random seed", key="--seed-value", expected="an integer ≥ 0",
+                          found=repr(seed_value))
     out = Path(out_dir).expanduser()
-    out.mkdir(parents=True, exist_ok=True)
     seed_id = str(seed.meta.get("id", seed.name))
     name = name or f"synth-{seed_id.replace('/', '-').replace(':', '-')}-s{seed_value}"
     model = fit_model(seed, modulating=modulating)
     motions = simulate_ensemble(seed, n, seed_value=seed_value, name=name, model=model)
     scaled, match = scale_ensemble(motions, seed, scale_to=scale_to, damping=damping, band=band)
+    out.mkdir(parents=True, exist_ok=True)   # (after the work: a failed run leaves no empty folder)
     path = save_suite(out / "ensemble.toml", scaled, name=name,
                       description=f"{n} synthetic records (sgsim) from seed {seed_id}, seed value {seed_value}, "
                                   f"scaled by {match.factor:.4g} ({scale_to})",

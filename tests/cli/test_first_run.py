@@ -33,7 +33,7 @@ def prepared(monkeypatch):
 @pytest.mark.parametrize("command,args", [
     ("records", ["records", "spectrum", "p695-ff/11a", "--n-periods", "20"]),
     ("records", ["records", "synth", "--seed", "p695-ff/11a", "-n", "2", "-o", "{tmp}/synth"]),
-    ("ensemble", ["ensemble", PIER, "--suite", "thesis-table-4.1", "-o", "{tmp}/analyses.csv"]),
+    ("ensemble", ["ensemble", PIER, "--suite", "{tmp}/suite.toml", "-o", "{tmp}/analyses.csv"]),
     ("spectrum", ["spectrum", PIER, "--pulse", "ricker-anti", "--x", "omega_p/p:1:4:2", "--y", "ap/up:0:4:2",
                   "-o", "{tmp}/spectrum"]),
     ("cylinder", ["simulate", CYLINDER, "--motion", "record:p695-ff/11", "--t-end", "2"]),
@@ -42,6 +42,9 @@ def prepared(monkeypatch):
                            "-o", "{tmp}/cylinder-spectrum"]),
 ])
 def test_each_command_announces_its_own_kernels(command, args, prepared, tmp_path):
+    # (an ensemble with a record that is not available is refused before compiling: two built-in records)
+    (tmp_path / "suite.toml").write_text('name = "two"\n[[records]]\nid = "p695-ff/3a"\n[[records]]\n'
+                                         'id = "p695-ff/4a"\n')
     result = CliRunner().invoke(app, [a.format(tmp=tmp_path) for a in args])
     assert result.exit_code == 0, result.output
     assert prepared == [command]
