@@ -319,19 +319,19 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     valid = [o for o in outcomes if not analysis_failed(o.run.status)]
     stats = _statistics(valid, a, margins)
     stats["n_failed"] = n - len(valid)
-    rule = acceptance_rule(a)
+    acc_rule = acceptance_rule(a)
     stats["n_ground_motions"] = len({o.ground_motion for o in outcomes})
     stats["n_earthquakes"] = len({e for e in (earthquake_id(o.meta) for o in outcomes) if e}) or None
-    stats["min_records_for_bound"] = minimum_records(rule.binomial_limit)
+    stats["min_records_for_bound"] = minimum_records(acc_rule.binomial_limit)
     ens_json = ens and ensemble_summary([o.id for o in outcomes], ens, size=a.ensemble_size, seed=a.seed,
                                         rtol=a.rtol, atol=a.atol, nominal_overturned=stats["n_overturned"])
     stats["p_overturn_ensemble"] = ens_json["p_overturn"] if ens_json else None
     fragility = check_fragility(valid, a, empirical=(stats["n_overturned"], len(valid)), stripe_ratio=SCAN_RATIO)
-    margin_fema = collapse_margin(fragility, dict(a.quality), rule.target)
+    margin_fema = collapse_margin(fragility, dict(a.quality), acc_rule.target)
     extra = {"ensemble": ens, "collapse_margin": margin_fema}
-    items, skipped = evaluate_criteria(CheckContext(outcomes, a, q, sensitivity, margins, extra, rule))
-    decision = decide(items, skipped, rule)
-    acceptance = acceptance_summary(rule, items, decision, outcomes, margin_fema)
+    items, skipped = evaluate_criteria(CheckContext(outcomes, a, q, sensitivity, margins, extra, acc_rule))
+    decision = decide(items, skipped, acc_rule)
+    acceptance = acceptance_summary(acc_rule, items, decision, outcomes, margin_fema)
     checks = [i.as_json() for i in items]
     checks.sort(key=lambda c: (not c["governs_verdict"], -c["utilisation"]))
     verdict = decision.verdict

@@ -283,7 +283,10 @@ NOT_COVERED = {
     "collapse_margin": "collapse margin not evaluated (no incremental analysis: --no-margins)",
     "incremental_margin": "intensities below the design level not analysed (--no-margins)",
     "restitution_robustness": "c_r sensitivity not analysed",
+    "ensemble_robustness": "perturbation ensembles not analysed",
 }
+QUALIFIERS = {"restitution_robustness", "ensemble_robustness"}
+"""Skipped criteria that qualify the verdict (named as not covered) but leave it decided."""
 
 
 def decide(items: list[CheckItem], skipped=(), rule: AcceptanceRule | None = None) -> Verdict:
@@ -301,7 +304,9 @@ def decide(items: list[CheckItem], skipped=(), rule: AcceptanceRule | None = Non
     undecided = [i for i in governing if not i.evaluated]
     robustness = [i for i in items if i.role == ROBUSTNESS]
     not_covered = tuple(NOT_COVERED.get(k, f"{k} not evaluated") for k in skipped)
-    missing = list(not_covered) + [i.verdict_reason for i in undecided]
+    missing = [NOT_COVERED.get(k, f"{k} not evaluated") for k in skipped if k not in QUALIFIERS] \
+        + [i.verdict_reason for i in undecided]
+    qualifiers = [NOT_COVERED[k] for k in skipped if k in QUALIFIERS]
     label = f" ({rule.label})" if rule is not None else ""
     design_level = {"unacceptable_responses", "overturning_probability"}
     if failing:
@@ -330,6 +335,8 @@ def decide(items: list[CheckItem], skipped=(), rule: AcceptanceRule | None = Non
         text = "; ".join(i.verdict_reason for i in governing)
         reason = (f"PASS{label}, not robust: " + "; ".join(fragile) + "; " + text) if fragile \
             else f"PASS{label}: " + text
+    if qualifiers:
+        reason += " (not covered: " + "; ".join(qualifiers) + ")"
     deciding = [i for i in governing if i.evaluated]
     key = max(deciding, key=lambda i: i.utilisation).key if deciding else None
     return Verdict(word, reason, robust, not_covered, key, rule.label if rule is not None else "")
