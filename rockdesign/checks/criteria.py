@@ -296,7 +296,7 @@ def decide(items: list[CheckItem], skipped=(), rule: AcceptanceRule | None = Non
     governing criterion was skipped or could not be decided (the reason says what is missing);
     otherwise PASS.  The reason names the rule: "PASS (ASCE 7-22 §16.4, risk category II): 0 of 22
     ground motions unacceptable (1 allowed); ACMR 2.41 ≥ 1.96 (P(collapse) 4.7 % ≤ 10 %)".  A PASS
-    whose design-level rule fails under a robustness perturbation reads "PASS, not robust: …"; a FAIL
+    whose design-level rule fails under a robustness perturbation adds "; not robust: fails with c_r − 2 %"; a FAIL
     that only the design-level rule decides and that some perturbation would pass is flagged too.
     """
     governing = [i for i in items if i.governs_verdict]
@@ -332,9 +332,10 @@ def decide(items: list[CheckItem], skipped=(), rule: AcceptanceRule | None = Non
         word = PASS
         fragile = [i.verdict_reason for i in robustness if not i.passed]
         robust = not fragile
-        text = "; ".join(i.verdict_reason for i in governing)
-        reason = (f"PASS{label}, not robust: " + "; ".join(fragile) + "; " + text) if fragile \
-            else f"PASS{label}: " + text
+        quoted = [i for i in governing if i.key != AnalysesCompleted.key] or governing
+        reason = f"PASS{label}: " + "; ".join(i.verdict_reason for i in quoted)
+        if fragile:
+            reason += "; not robust: " + "; ".join(fragile)
     if qualifiers:
         reason += " (not covered: " + "; ".join(qualifiers) + ")"
     deciding = [i for i in governing if i.evaluated]
