@@ -190,6 +190,9 @@ class PolyakovRule2(Criterion):
     name = "Polyakov rule 2: median SD_max < u_B(θc)"
     source = "thesis Sec 4.2.5 and Fig 4.9 (rule of thumb; class b records are its false negatives)"
 
+    def applies(self, ctx):
+        return all(getattr(o, "polyakov_ratio", None) is not None for o in ctx.valid)
+
     def evaluate(self, ctx):
         valid = ctx.valid
         ratios = sorted(o.polyakov_ratio for o in valid)

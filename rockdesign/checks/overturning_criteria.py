@@ -28,6 +28,10 @@ from .criteria import (GOVERNS, INFORMATIVE, ROBUSTNESS, AnalysesCompleted, Crit
                        PolyakovRule1, PolyakovRule2, analysis_failed)
 
 
+REASON_LISTING = 4
+"""Ground motions the verdict sentence names (the check's detail lists all of them)."""
+
+
 def _criterion_text(a) -> str:
     return "θ_max ≥ θc" if a.overturn == "static" else "|θ| = π/2"
 
@@ -36,13 +40,16 @@ def _overturned_ids(outcomes) -> set[str]:
     return {o.id for o in outcomes if o.run.overturned}
 
 
-def _listing(ctx, gms) -> str:
-    """"p695-ff/11 (p695-ff/11a), …": ground motions with their overturning components."""
+def _listing(ctx, gms, limit: int | None = None) -> str:
+    """"p695-ff/11 (p695-ff/11a), …": ground motions with their overturning components (the first
+    ``limit`` of them, then "and N more")."""
     parts = []
+    more = len(gms) - limit if limit is not None and len(gms) > limit else 0
+    gms = gms[:limit] if more else gms
     for g in gms:
         comps = [o.id for o in ctx.valid if o.run.overturned and (getattr(o, "ground_motion", None) or o.id) == g]
         parts.append(g if comps == [g] else f"{g} ({', '.join(comps)})")
-    return ", ".join(parts)
+    return ", ".join(parts) + (f" and {more} more" if more else "")
 
 
 class UnacceptableResponses(Criterion):
@@ -65,7 +72,7 @@ class UnacceptableResponses(Criterion):
                   + (f": {_listing(ctx, bad)}" if bad else "") + f"; {rule.allowed} allowed")
         reason = f"{k} of {n} ground motions unacceptable ({rule.allowed} allowed)"
         if k and not holds:
-            reason += f": {_listing(ctx, bad)}"
+            reason += f": {_listing(ctx, bad, REASON_LISTING)}"
         return self.item(util, holds, detail, reason, name=name)
 
 
@@ -155,7 +162,7 @@ class BinomialBound(Criterion):
                   f"{pct(limit)}" if need else f"{k} of {n} ground motions overturn; no suite can show a zero limit")
         reason = f"{k} of {n} ground motions overturn at the design level (P ≤ {upper:.3g} at 95 % confidence)"
         if not passed:
-            reason += f" > {pct(limit)}" + (f": {_listing(ctx, bad)}" if bad else "")
+            reason += f" > {pct(limit)}" + (f": {_listing(ctx, bad, REASON_LISTING)}" if bad else "")
         return self.item(upper / limit if limit > 0 else math.inf, passed, detail, reason, name=name)
 
 
