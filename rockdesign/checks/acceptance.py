@@ -118,8 +118,10 @@ def acceptance_rule(analysis) -> AcceptanceRule:
 
 
 def require_suite_size(rule: AcceptanceRule, n_ground_motions: int, n_records: int, suites, *, file=None,
-                       key: str = "excitation") -> None:
+                       key: str = "excitation", missing=()) -> None:
     """Refuse, before any analysis, a suite with fewer ground motions than the rule needs.
+
+    ``missing``: ids of the suite's records that were not found (named in the message).
 
     Raises:
         ProjectError: naming the suite(s), the ground motions and records it has and the number needed.
@@ -135,7 +137,9 @@ def require_suite_size(rule: AcceptanceRule, n_ground_motions: int, n_records: i
     raise ProjectError(
         f"the suite is too small for the acceptance rule ({rule.label}): {why}", file=file, key=key,
         expected=(f"at least {need} independent ground motions" if need else "a positive probability limit"),
-        found=f"{names}: {n_ground_motions} ground motion(s) from {n_records} record(s)",
+        found=f"{names}: {n_ground_motions} ground motion(s) from {n_records} record(s)"
+        + (f"; {len(missing)} record(s) not found: {', '.join(missing[:5])}{' …' if len(missing) > 5 else ''}"
+           if missing else ""),
         hint="add suites (e.g. suites = [\"p695-farfield\", \"p695-nearfield-pulse\"]), group your own records "
              "with the suite file's ground_motion key, or choose [analysis] acceptance"
              if rule.method == "binomial" else "add records from further stations (each station's pair is one "
@@ -203,16 +207,16 @@ def first_overturn_scale(outcome) -> float | None:
     chaotic response: the nominal analysis is one more observation); None when neither overturned."""
     m = getattr(outcome, "margin", None)
     s = None if m is None else m.overturn_scale
-    if outcome.run.overturned and (s is None or s > 1.0):
+    run = getattr(outcome, "run", None)
+    if run is not None and run.overturned and (s is None or s > 1.0):
         return 1.0
     return s
 
 
-def acceptance_summary(rule: AcceptanceRule, items, verdict, outcomes, margin: dict | None) -> dict:
+def acceptance_summary(rule: AcceptanceRule, items, verdict, valid, margin: dict | None) -> dict:
     """The ``acceptance`` section of results.json (CONTRACT §6.1): the rule, the numbers that decided,
-    whether every governing criterion was evaluated, and the per-ground-motion table."""
-    from .criteria import analysis_failed
-    valid = [o for o in outcomes if not analysis_failed(o.run.status)]
+    whether every governing criterion was evaluated, and the per-ground-motion table (``valid``: the
+    outcomes whose analysis completed)."""
     over = {o.id for o in valid if o.run.overturned}
     bad = unacceptable_ground_motions(valid, over)
     n = len(ground_motions_in_order(valid))

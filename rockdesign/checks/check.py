@@ -227,7 +227,7 @@ def _records(project: Project, q, records_dir):
     # the acceptance rule's suite size, before any analysis (ground motions, not components)
     gms = {ground_motion_id(r.id, r.meta) for r in resolved.records}
     require_suite_size(acceptance_rule(project.analysis), len(gms), len(resolved.records), resolved.suites,
-                       file=project.path, key="excitation")
+                       file=project.path, key="excitation", missing=[i for i, _, _ in resolved.missing])
     return spec, resolved
 
 
@@ -331,7 +331,7 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     extra = {"ensemble": ens, "collapse_margin": margin_fema}
     items, skipped = evaluate_criteria(CheckContext(outcomes, a, q, sensitivity, margins, extra, acc_rule))
     decision = decide(items, skipped, acc_rule)
-    acceptance = acceptance_summary(acc_rule, items, decision, outcomes, margin_fema)
+    acceptance = acceptance_summary(acc_rule, items, decision, valid, margin_fema)
     checks = [i.as_json() for i in items]
     checks.sort(key=lambda c: (not c["governs_verdict"], -c["utilisation"]))
     verdict = decision.verdict

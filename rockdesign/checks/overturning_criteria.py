@@ -14,8 +14,9 @@ earthquake) is unacceptable when any of its analysed components overturns (``[an
   in every perturbed run of the suite: c_r ± 2 % and the perturbation ensembles are further draws of
   the same suite (rocking is chaotic: the nominal run is one draw).
 
-Each rule's governing criteria are the classes with ``role = GOVERNS`` in :data:`CRITERIA` (asce7) and
-:data:`BINOMIAL_CRITERIA` (binomial); the others are reported beside them as information.
+Each rule's governing criteria are the classes with ``role = GOVERNS`` in
+:data:`rockdesign.checks.criteria.CRITERIA` (asce7) and ``BINOMIAL_CRITERIA`` (binomial); the others
+are reported beside them as information.
 """
 from __future__ import annotations
 
@@ -24,8 +25,7 @@ import math
 from .acceptance import (count_rule, ground_motions_in_order, minimum_records, pct, probability_bound,
                          unacceptable_ground_motions)
 from .collapse_margin import acceptable_acmr, collapse_probability
-from .criteria import (GOVERNS, INFORMATIVE, ROBUSTNESS, AnalysesCompleted, Criterion, LargestRotation,
-                       PolyakovRule1, PolyakovRule2, analysis_failed)
+from .criterion_base import GOVERNS, INFORMATIVE, ROBUSTNESS, Criterion, analysis_failed
 
 
 REASON_LISTING = 4
@@ -312,14 +312,3 @@ class UnacceptableResponsesInformative(UnacceptableResponses):
 
     role = INFORMATIVE
 
-
-CRITERIA: list[type[Criterion]] = [AnalysesCompleted, UnacceptableResponses, CollapseMarginAtTarget,
-                                   RestitutionRobustness, EnsembleRobustness, BinomialBound, IncrementalMargin,
-                                   PolyakovRule2, PolyakovRule1, LargestRotation]
-"""The criteria of ``acceptance = "asce7"`` (the default) in evaluation order."""
-
-BINOMIAL_CRITERIA: list[type[Criterion]] = [AnalysesCompleted, GoverningBinomialBound, GoverningIncrementalMargin,
-                                            RestitutionRobustness, EnsembleRobustness,
-                                            UnacceptableResponsesInformative, CollapseMarginInformative,
-                                            PolyakovRule2, PolyakovRule1, LargestRotation]
-"""The criteria of ``acceptance = "binomial"``."""
