@@ -14,6 +14,7 @@ from importlib import metadata
 from pathlib import Path
 
 from .. import __version__
+from ..kernel_cache import sources_digest
 
 SOFTWARE = ("rockdesign", "numpy", "scipy", "numba", "matplotlib", "weasyprint", "jinja2", "pint", "pypdf")
 """Packages whose versions the report lists (besides Python)."""
@@ -42,11 +43,13 @@ def _lambda_source(project) -> str:
 
 
 def software_versions() -> list[tuple[str, str]]:
-    """(name, version) of Python and the packages of :data:`SOFTWARE` that are installed."""
+    """(name, version) of Python and the packages of :data:`SOFTWARE` that are installed, and, after
+    rockdesign, the SHA-256 of its numerical kernels' sources (:func:`rockdesign.kernel_cache.sources_digest`,
+    in full in results.json as ``project.kernels_sha256``)."""
     out = [("python", platform.python_version())]
     for name in SOFTWARE:
         if name == "rockdesign":
-            out.append((name, __version__))
+            out += [(name, __version__), ("rockdesign numerical kernels (SHA-256)", sources_digest()[:12] + "…")]
             continue
         try:
             out.append((name, metadata.version(name)))
