@@ -155,3 +155,20 @@ def test_undersized_suite_is_refused_before_any_analysis(tmp_path):
     flat = " ".join(result.output.split())
     assert "2 ground motion(s) from 2 record(s)" in flat and "at least 11 independent ground motions" in flat
     assert "Traceback" not in result.output and not (out / "results.json").exists()
+
+
+@pytest.mark.slow
+def test_the_column_template_passes_on_its_own_default_suite(tmp_path):
+    """`rockdesign init column` (a structure that nothing overturns at its design level) PASSes on the 22-ground-
+    motion far-field suite it ships with: exit 0, the ASCE 7 rule with both governing numbers."""
+    path = tmp_path / "column.toml"
+    assert runner.invoke(app, ["init", "column", str(path)]).exit_code == 0
+    out = tmp_path / "o"
+    result = runner.invoke(app, ["check", str(path), "-o", str(out), "--no-pdf"])
+    assert result.exit_code == 0, result.output
+    data = json.loads((out / "results.json").read_text())
+    acc = data["acceptance"]
+    assert data["verdict"] == "PASS" and acc["n_ground_motions"] == 22 and acc["n_unacceptable"] == 0
+    assert acc["acmr"] >= acc["acmr_required"] and acc["evaluated"] is True
+    assert data["verdict_reason"].startswith("PASS (ASCE 7-22 §16.4, risk category II): 0 of 22 ground motions "
+                                             "unacceptable (1 allowed); ACMR ")
