@@ -40,7 +40,8 @@ METHOD_LABELS = {"asce7": "ASCE 7-22 §16.4 with a FEMA P695 collapse margin",
 
 
 def minimum_records(limit: float, confidence: float = ONE_SIDED_CONFIDENCE) -> int | None:
-    """Smallest number n of independent trials whose one-sided bound with none failing, 1 − (1−c)^(1/n), is ≤ limit.
+    """Smallest number n of independent trials whose one-sided bound with none failing, 1 − (1−c)^(1/n),
+    is ≤ limit.
 
     n = ⌈ln(1 − c)/ln(1 − limit)⌉ (Clopper & Pearson 1934 with k = 0); None when no n suffices
     (limit ≤ 0).  limit = 10 %, c = 95 %: 29.
@@ -86,7 +87,8 @@ class AcceptanceRule:
     def label(self) -> str:
         """How the verdict names the method ("ASCE 7-22 §16.4, risk category II")."""
         if self.method == "binomial":
-            return f"binomial bound over ground motions, P ≤ {pct(self.binomial_limit)}, risk category {self.risk_category}"
+            return (f"binomial bound over ground motions, P ≤ {pct(self.binomial_limit)}, "
+                    f"risk category {self.risk_category}")
         return f"ASCE 7-22 §16.4, risk category {self.risk_category}"
 
     @property

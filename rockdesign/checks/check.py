@@ -113,7 +113,8 @@ SPECTRUM_PERIODS = 160
 class CheckResult:
     """A design check: everything the report and results.json need (SI units throughout).
 
-    ``verdict`` "PASS" | "FAIL" | "NOT DECIDED" (criteria.decide); ``records`` one :class:`RecordOutcome` per record; ``checks`` the
+    ``verdict`` "PASS" | "FAIL" | "NOT DECIDED" (criteria.decide); ``records`` one
+    :class:`RecordOutcome` per record; ``checks`` the
     criteria with utilisation [-] and result; ``statistics`` the suite summary (P(overturn) with its
     bound, classes, margins); ``quantities`` the design quantities (value + unit); ``as_json()`` is
     results.json (= ``rockdesign check --json``).

@@ -112,7 +112,8 @@ def test_collapse_margin_at_the_category_target_against_scipy(acmr, category):
     p = norm.cdf(-math.log(acmr) / 0.525)
     assert item.passed == (acmr >= need) == bool(p <= target + 1e-12)
     assert item.utilisation == pytest.approx(need / acmr)
-    assert f"P(collapse) {100 * p:.2g} %" in item.verdict_reason if p < 0.1 else f"{100 * p:.3g} %" in item.verdict_reason
+    text = f"P(collapse) {100 * p:.2g} %" if p < 0.1 else f"P(collapse) {100 * p:.3g} %"
+    assert text in item.verdict_reason
     assert v.verdict == ("PASS" if acmr >= need else "FAIL")
 
 
