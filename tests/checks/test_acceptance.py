@@ -142,6 +142,10 @@ def test_no_margins_is_not_decided_exit_4(tmp_path):
     assert result.exit_code == 4, result.output
     data = json.loads((out / "results.json").read_text())
     assert data["verdict"] == "NOT DECIDED" and data["acceptance"]["evaluated"] is False
+    assert set(data["acceptance"]) >= {"method", "risk_category", "target_p_collapse", "n_ground_motions",   # §6.1
+                                       "n_unacceptable", "allowed_unacceptable", "acmr", "acmr_required",
+                                       "p_collapse_design", "evaluated", "passed", "reason"}
+    assert data["summary"]["n_ground_motions"] == 2 and data["acceptance"]["passed"] is False
     assert "intensities below the design level not analysed" in data["verdict_reason"]
     assert "NOT DECIDED" in result.output
 
