@@ -64,16 +64,22 @@ def response_table(result, console) -> None:
     """Print the summary of one cylinder analysis."""
     from rich.table import Table
 
+    from ..cylinder.engine import SPIN_TILT_MIN
     from ..display import format_value
     r = result.response
     table = Table(title=f"{result.project.name} — {result.motion_text}", title_justify="left")
     for col in ("quantity", "value", "unit"):
         table.add_column(col, justify="right" if col == "value" else "left")
+    table.caption = (f"φ̇ near θ = 0 is the contact point whirling round the rim (quasi-impact, unbounded as θ → 0), "
+                     f"not a rotation of the body: it is reported where θ ≥ {SPIN_TILT_MIN:g}α")
+    table.caption_justify = "left"
     j = r.as_json()
     rows = [("model", j["model"], ""), ("θ_max", format_value(r.theta_max), "rad"),
             ("θ_max/α", format_value(r.theta_max / r.alpha), "-"),
             ("first uplift", "none" if r.uplift_time is None else format_value(r.uplift_time), "s"),
-            ("quasi-impacts", str(r.quasi_impacts), ""), ("max |φ̇|", format_value(j["phidot_max"]), "rad/s"),
+            ("quasi-impacts", str(r.quasi_impacts), ""),
+            (f"max |φ̇| where θ ≥ {SPIN_TILT_MIN:g}α", "—" if r.spin_max() is None else format_value(r.spin_max()),
+             "rad/s"),
             ("φ at the end", format_value(j["phi_end"]), "rad"),
             (f"overturned (θ ≥ θ_ot = {r.theta_overturn:.4g} rad)", "YES" if r.overturned else "no", ""),
             ("analysed until", format_value(float(r.t[-1])), "s")]
