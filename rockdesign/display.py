@@ -72,6 +72,21 @@ def quantities_table(quantities: dict, console: Console, units: str | None, grav
         console.print(f"[yellow]warning:[/] {escape(w)}", highlight=False)
 
 
+def model_label(model: str, system) -> str:
+    """The analysed model as a reader names it: ``block/exact`` of a column on curved feet is
+    "block/exact (column on curved extensions, exact equations)"."""
+    structure, _, equations = model.partition("/")
+    if structure == "block":
+        ext = getattr(system.column, "extension", "none")
+        what = {"curved": "column on curved extensions", "flat": "column on flat extensions"}.get(ext, "flat-based column")
+    else:
+        what = {"frame": "frame of columns under a cap beam", "rigid-superstructure": "frame with a rigid superstructure",
+                "podium-2dof": "podium with an elastic superstructure (2DOF)"}.get(structure, structure)
+    eq = {"exact": "exact equations", "linear": "linearized equations",
+          "linear-exact": "linearized equations, closed-form solution"}.get(equations, equations)
+    return f"{model} ({what}, {eq})" if equations else f"{model} ({what})"
+
+
 def response_table(result, console: Console) -> None:
     """Print the summary of one time-history analysis."""
     r = result.response
@@ -80,7 +95,7 @@ def response_table(result, console: Console) -> None:
     table.add_column("value", justify="right")
     table.add_column("unit")
     rows = [
-        ("model", r.model, ""),
+        ("model", model_label(r.model, result.project.system), ""),
         ("θ_max", format_value(r.theta_max), "rad"),
         ("θ_max/α", format_value(r.theta_max_over_alpha), "-"),
         ("θ_max/θc", format_value(r.theta_max_over_theta_c), "-"),
@@ -106,6 +121,11 @@ def response_table(result, console: Console) -> None:
         if "t_m" in params:
             extra.append(("wavelet centre t_m", format_value(params["t_m"]), "s"))
         rows[1:1] = extra
+    record = getattr(result, "motion_record", None)
+    if record:
+        g = result.project.system.g
+        rows[1:1] = [("record PGA as applied", f"{format_value(record['pga'])} ({record['pga'] / g:.4g} g)", "m/s^2"),
+                     ("scale (× the record as read)", format_value(record["scale"]), "-")]
     for row in rows:
         table.add_row(*row)
     console.print(table)

@@ -15,7 +15,7 @@ def time_history_figure(response, g: float, title: str = ""):
         fig, axes = plt.subplots(3, 1, figsize=(7.0, 6.2), sharex=True)
         t = response.t
         axes[0].plot(t, response.ground_acceleration / g, lw=0.8, color="0.3")
-        axes[0].set_ylabel(r"$\ddot{u}_g$ [g]")
+        axes[0].set_ylabel("ü$_g$ [g]")
         a = response.alpha
         axes[1].plot(t, response.theta / a, lw=1.0, color="C0", label="θ/α")
         for s in (1, -1):

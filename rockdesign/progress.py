@@ -36,7 +36,8 @@ class _PlainStages:
 
     def _end(self) -> None:
         if self.stage is not None:
-            self._say(f"{self.stage}: {self.total}/{self.total} done in {time.perf_counter() - self.t0:.0f} s")
+            count = f"{self.total}/{self.total} " if self.total > 1 else ""
+            self._say(f"{self.stage}: {count}done in {time.perf_counter() - self.t0:.0f} s")
         self.stage = None
 
     def __call__(self, stage: str, done: int, total: int) -> None:
@@ -44,7 +45,7 @@ class _PlainStages:
         if stage != self.stage:
             self._end()
             self.stage, self.t0, self.last = stage, now, now
-            self._say(f"{stage}: {total} to do")
+            self._say(f"{stage}: {total} to do" if total > 1 else f"{stage} …")
         self.done, self.total = min(done, total), total
         if now - self.last >= self.interval and self.done < total:
             self.last = now

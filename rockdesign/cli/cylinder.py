@@ -30,6 +30,8 @@ def simulate_command(project, motion, model, as_json, plot, csv, t_end, rtol, re
         from ..cylinder.figures import cylinder_history_figure
         save(cylinder_history_figure(result.response, project.system.g, f"{project.name} — {motion}",
                                      result.pair), plot)
+        from rich.console import Console
+        Console(stderr=True).print(f"wrote {plot}", highlight=False, soft_wrap=True)
     if as_json:
         sys.stdout.write(json.dumps(result.as_json(), indent=2) + "\n")
         return
@@ -74,7 +76,14 @@ def response_table(result, console) -> None:
                      f"not a rotation of the body: it is reported where θ ≥ {SPIN_TILT_MIN:g}α")
     table.caption_justify = "left"
     j = r.as_json()
-    rows = [("model", j["model"], ""), ("θ_max", format_value(r.theta_max), "rad"),
+    rows = [("model", j["model"], "")]
+    pair = getattr(result, "pair", None)
+    if pair is not None and pair.is_record:
+        pga = pair.resultant_pga
+        g = result.project.system.g
+        rows += [("resultant PGA as applied", f"{format_value(pga)} ({pga / g:.4g} g)", "m/s^2"),
+                 ("scale (× the records as read)", format_value(pair.scale), "-")]
+    rows += [("θ_max", format_value(r.theta_max), "rad"),
             ("θ_max/α", format_value(r.theta_max / r.alpha), "-"),
             ("first uplift", "none" if r.uplift_time is None else format_value(r.uplift_time), "s"),
             ("quasi-impacts", str(r.quasi_impacts), ""),

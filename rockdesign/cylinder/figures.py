@@ -28,9 +28,9 @@ def cylinder_history_figure(response, g: float, title: str = "", pair=None):
         t = r.t
         tg, gx, gy = (t, r.ground_x, r.ground_y) if pair is None else pair.sampled()
         keep = tg <= t[-1]
-        axes[0].plot(tg[keep], gx[keep] / g, lw=0.7, color="0.2", label=r"$\ddot{u}_{gx}$")
-        axes[0].plot(tg[keep], gy[keep] / g, lw=0.7, color="C1", alpha=0.8, label=r"$\ddot{u}_{gy}$")
-        axes[0].set_ylabel(r"$\ddot{u}_g$ [g]")
+        axes[0].plot(tg[keep], gx[keep] / g, lw=0.7, color="0.2", label="ü$_{gx}$")
+        axes[0].plot(tg[keep], gy[keep] / g, lw=0.7, color="C1", alpha=0.8, label="ü$_{gy}$")
+        axes[0].set_ylabel("ü$_g$ [g]")
         axes[0].legend(loc="upper right", fontsize=7, ncol=2)
         axes[1].plot(t, r.theta / r.alpha, lw=0.9, color="C0")
         axes[1].axhline(1.0, color="0.5", lw=0.7, ls=":", label="θ = α")
@@ -44,11 +44,11 @@ def cylinder_history_figure(response, g: float, title: str = "", pair=None):
         spin = r.spin()
         axes[2].plot(t, spin, lw=0.8, color="C2")
         axes[2].axhline(0.0, color="0.5", lw=0.5)
-        axes[2].set_ylabel("φ̇ [rad/s]")
+        axes[2].set_ylabel(r"$\dot{\varphi}$ [rad/s]")
         if not np.any(np.isfinite(spin)):
             axes[2].set_ylim(-1.0, 1.0)
         axes[2].text(0.01, 0.95, f"spin where θ ≥ {SPIN_TILT_MIN:g}α (below it the contact point whirls round the "
-                     "rim)", transform=axes[2].transAxes, fontsize=7, ha="left", va="top")
+                     "rim)", bbox=dict(fc="white", ec="none", alpha=0.8), transform=axes[2].transAxes, fontsize=7, ha="left", va="top")
         force = np.minimum(r.contact_force, CONTACT_FORCE_TOP)
         axes[3].plot(t, force, lw=0.8, color="C4")
         axes[3].axhline(0.0, color="C3", lw=0.7, ls="--")

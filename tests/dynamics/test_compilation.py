@@ -59,15 +59,17 @@ def test_the_real_calls_use_the_warm_up_machine_code():
         assert _signatures(command) == before, command
 
 
-def test_announcement_when_the_cache_is_empty(monkeypatch):
+def test_announcement_when_the_cache_is_empty(monkeypatch, tmp_path):
     said, warmed = [], []
+    monkeypatch.setattr(compilation, "MEASURED", tmp_path / "compile-seconds.json")
+    monkeypatch.setattr(compilation, "_load_factor", lambda: 1.0)
     monkeypatch.delenv("ROCKDESIGN_NO_WARMUP", raising=False)
     monkeypatch.setattr(compilation, "is_cached", lambda d: False)
     monkeypatch.setattr(compilation, "_start_helper", lambda command: None)    # one core
     monkeypatch.setattr(compilation, "_warm", lambda command, parts=compilation.PARTS: warmed.append(command))
+    low, high = compilation.estimate("check")
     compilation.prepare("check", say=said.append)
     assert warmed == ["check"]
-    low, high = compilation.estimate("check")
     assert said[0] == compilation.MESSAGE.format(command="check", low=low, high=high)
     assert "first use after installing or upgrading" in said[0] and "once per installation" not in said[0]
     assert said[1].startswith("compiled 5 kernels in")
