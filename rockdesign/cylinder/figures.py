@@ -8,8 +8,9 @@ from ..plots import STYLE, plt
 
 
 CONTACT_FORCE_TOP = 4.0
-"""Top of the N/(mg) axis: quasi-impacts of the damped model make short spikes (the impact force of the
-contact spring, set by ω_n); they are clipped there and their peak is written on the panel."""
+"""Top of the N/(mg) axis: quasi-impacts make short spikes (the impact force of the contact spring, set by
+ω_n, in the damped model; the body's accelerations as the contact point whirls, with a rigid contact); they
+are clipped there and their peak is written on the panel."""
 
 
 def cylinder_history_figure(response, g: float, title: str = "", pair=None):
