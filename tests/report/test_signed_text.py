@@ -125,3 +125,12 @@ def test_informative_checks_are_not_failures(podium_html, cylinder_html):
                 assert "FAILED" not in row and "fail" not in classes.split(), row[:200]
     assert "not met (informative)" in podium_html
     assert "(pairs overturning 3D/planar)" in cylinder_html
+
+
+def test_as_given_replaces_only_whole_inputs():
+    """An SI rendering of an input becomes the input's own text; other numbers are left alone."""
+    from rockdesign.report.context import as_given
+    given = {"2.9·10^5 kg": "290 t", "290000 kg": "290 t", "0.5 m": "500 mm"}
+    assert as_given("2.9·10^5 kg/(36·1518.8 kg)", given) == "290 t/(36·1518.8 kg)"
+    assert as_given("10.5 m and 0.5 m", given) == "10.5 m and 500 mm"
+    assert as_given("0.5 mm", given) == "0.5 mm"
