@@ -94,7 +94,7 @@ def build_cylinder_context(result, *, figures: dict, date: str | None = None) ->
     from ..cylinder.engine import SPIN_TILT_MIN
     from ..cylinder.quantities import cylinder_quantities
     from .methods import CYLINDER_METHODS
-    from .context import report_date, software_versions
+    from .context import given_value, report_date, software_versions
     from .formatting import fmt
     project, data = result.project, result.as_json()
     scaling = data["summary"]["scaling"]
@@ -119,6 +119,7 @@ def build_cylinder_context(result, *, figures: dict, date: str | None = None) ->
                       for rid in governing_ids(data) if f"history:{rid}" in figures],
         "figures": figures, "date": date or report_date(), "tool_version": __version__,
         "software": software_versions(), "digits": DIGITS,
+        "given": {key: given_value(project, "cylinder", key) for key in ("height", "diameter", "mass", "density")},
         "check_rows": check_rows(data["checks"]), "methods": CYLINDER_METHODS, "spin_tilt_min": SPIN_TILT_MIN,
     }
 
