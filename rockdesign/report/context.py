@@ -144,10 +144,10 @@ def _processing_note(meta: dict) -> str:
     return "; ".join(parts)
 
 
-def _formula(name: str, formula: str) -> str:
-    """The formula as the report prints it: R̂ of a podium is evaluated with γ̂ = γ(1+η), so it is written
-    with γ̂ (the substituted numbers are γ̂'s)."""
-    if name == "R_hat" and formula:
+def _formula(name: str, formula: str, quantities: dict) -> str:
+    """The formula as the report prints it: R̂ of a podium with a superstructure is evaluated with
+    γ̂ = γ(1+η), so it is written with γ̂ (the substituted numbers are γ̂'s)."""
+    if name == "R_hat" and formula and "eta" in quantities:
         return formula.replace("γ", "γ̂")
     return formula
 
@@ -207,6 +207,8 @@ def _verdict_link(data: dict, checks: list[dict]) -> str:
         counts += f": that is the check “{design['name']}”, which {'passes' if design['passed'] else 'fails'}"
     if data["verdict"] == "PASS":
         return f"{counts}. Every check that decides the verdict passes, so the verdict is PASS."
+    if not failing:
+        return f"{counts}. The verdict is FAIL: {data.get('verdict_reason') or 'see the checks below'}."
     names = "; ".join(f"“{c['name']}”" for c in failing)
     return (f"{counts}. The verdict is FAIL because {'this check fails' if len(failing) == 1 else 'these checks fail'}: "
             f"{names} — every check marked “decides verdict: yes” below must pass.")
@@ -257,7 +259,7 @@ def build_context(result, *, figures: dict | None = None, verification: dict | N
         q = result.quantities[name]
         substituted = q.substituted if name != "lambda" else _lambda_source(project)
         q_rows.append({"name": name, "symbol": q.symbol, "description": q.description,
-                       "formula": _formula(name, q.formula),
+                       "formula": _formula(name, q.formula, data["quantities"]),
                        "substituted": pretty_exponents(as_given(substituted, given)), "value": qj["value"],
                        "unit": qj["unit"], "equation": qj["equation"],
                        "note": _quantity_note(name, q.note, data, project)})
