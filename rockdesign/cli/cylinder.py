@@ -43,12 +43,12 @@ def check_summary(data: dict, out_dir, console) -> None:
     from rich.markup import escape
     from rich.table import Table
     table = Table(title=f"{data['project']['name']} — cylinder check", title_justify="left")
-    for col in ("check", "utilisation", "result", "detail"):
+    from ..report.cylinder_report import check_rows
+    for col in ("check", "utilisation or ratio", "result", "detail"):
         table.add_column(col)
-    for c in data["checks"]:
-        table.add_row(escape(c["name"]), f"{c['utilisation']:.3f}",
-                      ("PASS" if c["passed"] else "FAIL") + ("" if c["governs_verdict"] else " (info)"),
-                      escape(c["detail"]))
+    for c in check_rows(data["checks"]):          # the report's wording: informative checks are not failures
+        result = ("PASS" if c["passed"] else "FAIL") if c["governs_verdict"] else c["result_text"]
+        table.add_row(escape(c["name"]), escape(c["value_text"]), result, escape(c["detail"]))
     console.print(table)
     colour = "green" if data["verdict"] == "PASS" else "red"
     console.print(f"verdict: [bold {colour}]{data['verdict']}[/]   output: {escape(str(out_dir))}", highlight=False)
