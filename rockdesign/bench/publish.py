@@ -12,6 +12,7 @@ import shutil
 from pathlib import Path
 
 from .stability import stability_markdown
+from .timing import host_description
 
 BEGIN = "<!-- bench:begin -->"
 END = "<!-- bench:end -->"
@@ -41,7 +42,7 @@ def latest_numbers_markdown(study: dict, figure_prefix: str = "figures/") -> str
     """The "latest numbers" block: machine, per-problem highlights table, speed benchmarks, charts."""
     m = study["machine"]
     mode = "quick" if study.get("quick") else "full"
-    lines = [f"Latest run ({mode}): **{m['date']}** on `{m['uname']}` — {m['cpu']}, {m['nproc']} cores, load "
+    lines = [f"Latest run ({mode}): **{m['date']}** on {host_description(m)} — {m['cpu']}, {m['nproc']} cores, load "
              f"average {m['load_average']} at the start; Python {m['python']}, numpy {m['numpy']}, scipy "
              f"{m['scipy']}, numba {m['numba']}. Tolerances {', '.join(f'{t:.0e}' for t in study['tolerances'])} "
              f"(atol = {study['atol_over_rtol']:g}·rtol); times are medians of up to "

@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import Callable
 
 from .stability_outcome import ALL_METHODS, VERDICTS, Outcome, StabilityCase  # noqa: F401 (re-exported)
+from .timing import host_description
 
 
 def case_functions() -> dict[str, Callable]:
@@ -73,7 +74,7 @@ def stability_markdown(cases, figures: dict | None = None, figure_prefix: str = 
     methods = list(dict.fromkeys(o["method"] for c in cases for o in c["outcomes"]))
     lines = ["# Solver stability study", ""]
     if machine:
-        lines += [f"Measured {machine.get('date', '')} on `{machine.get('uname', '')}` "
+        lines += [f"Measured {machine.get('date', '')} on {host_description(machine)} "
                   f"({machine.get('cpu', '')}, {machine.get('nproc', '')} cores); scipy "
                   f"{machine.get('scipy', '')}, numba {machine.get('numba', '')}.", ""]
     lines += ["Each row provokes one condition under which numerical methods for rocking fail or degrade, "

@@ -624,7 +624,7 @@ def coarse_sampling(quick: bool = False, methods=ALL_METHODS) -> StabilityCase:
     return StabilityCase("coarse-sampling", "Coarse sampling of the input",
                          f"thesis Table 3.4 B1 under the antisymmetric Ricker 0.38 g, T_p = 0.95 s sampled at "
                          f"dt = {', '.join(f'{d:g}' for d in dts)} s as a record; rtol 1e-10; θ_max of the analytic "
-                         f"pulse {exact.theta_max_over_alpha:.5f}α (Table 3.4: 1.1945).",
+                         f"pulse {exact.theta_max_over_alpha:.5f}α (Table 3.4 prints 1.19).",
                          outcomes, _diag(diag, run=f"record at dt = {dts[-1]:g} s"), behaviour, _plot_coarse, data)
 
 
@@ -676,7 +676,7 @@ def event_location_crash(quick: bool = False, methods=ALL_METHODS) -> StabilityC
     return StabilityCase("event-location-crash", "Event location crashes (inconsistent dense output)",
                          f"{p.system_name} under {p.description}, rtol {_fmt_tols(tols)}. scipy's LSODA dense output "
                          "does not reproduce the step's start value, so brentq's bracket check raises "
-                         "(scipy issue #14480).", outcomes,
+                         "(reported upstream: https://github.com/scipy/scipy/issues/14480).", outcomes,
                          _diag(diag, run=f"rtol {tols[-1]:g}") if diag is not None else {}, behaviour,
                          _plot_crash, data)
 

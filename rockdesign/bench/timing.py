@@ -71,3 +71,12 @@ def machine_info() -> dict:
             "cpu": cpu, "nproc": os.cpu_count(), "load_average": [round(x, 2) for x in load],
             "python": platform.python_version(), "numpy": np.__version__, "scipy": scipy.__version__,
             "numba": numba.__version__}
+
+
+def host_description(machine: dict) -> str:
+    """Operating system, kernel release and architecture from :func:`machine_info`'s ``uname``
+    ("Linux 6.18.44 x86_64"): the kernel's build string ("#1 SMP …") and the host name say nothing to a reader."""
+    parts = str(machine.get("uname", "")).split()
+    if len(parts) < 3:
+        return " ".join(parts)
+    return f"{parts[0]} {parts[2].split('-')[0]} {parts[-1]}"

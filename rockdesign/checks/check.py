@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .. import __version__
+from ..kernel_cache import sources_digest
 from ..design.quantities import design_quantities
 from ..errors import ProjectError
 from ..motions.config import default_excitation, parse_excitation, resolve_motions
@@ -155,6 +156,7 @@ class CheckResult:
         return {
             "project": {"name": p.name, "file": p.path, "sha256": p.sha256, "kind": s.kind,
                         **{k: v for k, v in p.info.items() if k != "name"}, "tool_version": __version__,
+                        "kernels_sha256": sources_digest(),   # which kernel sources produced the numbers
                         "warnings": list(p.warnings)},
             "quantities": {k: q.as_json() for k, q in self.quantities.items()},
             "model": {"chosen": self.selection.chosen.label, "structure": self.selection.chosen.structure,

@@ -24,6 +24,7 @@ import statistics as pystats
 import numpy as np
 
 from ..errors import ProjectError
+from ..kernel_cache import sources_digest
 from ..units import QuantityParseError, parse_quantity
 from .statistics import overturning_probability
 
@@ -185,7 +186,8 @@ def run_cylinder_check(project, progress=None) -> dict:
     settings = {"rtol": a.rtol, "atol": a.atol, "rest_velocity": a.rest_velocity, "free_vibration": a.free_vibration,
                 "overturn_probability_limit": limit, "sd_max_damping": a.sdmax_damping,
                 "sd_max_band": list(a.sdmax_band)}
-    return {"project": {"name": project.name, "file": project.path, "system": "cylinder", "contact": cyl.contact},
+    return {"project": {"name": project.name, "file": project.path, "system": "cylinder", "contact": cyl.contact,
+                        "kernels_sha256": sources_digest()},
             "cylinder": cylinder, "units": CYLINDER_UNITS, "suites": suites, "settings": settings,
             "quantities": quantities_json(project)["quantities"],
             "model": {"chosen": "cylinder-" + ("damped" if cyl.damped else "undamped"),

@@ -87,7 +87,8 @@ def _internal_error(exc: BaseException):
 
 def _version_callback(value: bool):
     if value:
-        console.print(f"rockdesign {__version__}")
+        from importlib.metadata import version  # here, not at the top: ≈ 20 ms of every CLI start-up
+        console.print(f"rockdesign {version('rockdesign')}")  # the installed package's metadata
         raise typer.Exit()
 
 

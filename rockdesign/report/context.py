@@ -15,6 +15,7 @@ from importlib import metadata
 from pathlib import Path
 
 from .. import __version__
+from ..kernel_cache import sources_digest
 from .formatting import fmt
 from .methods import PLANAR_METHODS
 
@@ -98,11 +99,13 @@ def _lambda_source(project) -> str:
 
 
 def software_versions() -> list[tuple[str, str]]:
-    """(name, version) of Python and the packages of :data:`SOFTWARE` that are installed."""
+    """(name, version) of Python and the packages of :data:`SOFTWARE` that are installed, and, after
+    rockdesign, the SHA-256 of its numerical kernels' sources (:func:`rockdesign.kernel_cache.sources_digest`,
+    in full in results.json as ``project.kernels_sha256``)."""
     out = [("python", platform.python_version())]
     for name in SOFTWARE:
         if name == "rockdesign":
-            out.append((name, __version__))
+            out += [(name, __version__), ("rockdesign numerical kernels (SHA-256)", sources_digest()[:12] + "…")]
             continue
         try:
             out.append((name, metadata.version(name)))

@@ -3,8 +3,10 @@ ratings, acceptable ACMRs against the check values of SPEC §11 (β_TOT 0.525 �
 ACMR20% 1.56; 0.600 → 2.16, 1.66), and the [analysis] quality keys."""
 from __future__ import annotations
 
+import itertools
 import math
 
+import numpy as np
 import pytest
 from scipy.stats import norm
 
@@ -25,6 +27,36 @@ B = {"design_requirements": "B", "test_data": "B", "modeling": "B"}
 def test_beta_total_rounded_to_0_025(quality, expected):
     q = dict(zip(("design_requirements", "test_data", "modeling"), quality))
     assert beta_total(q) == pytest.approx(expected, abs=1e-12)
+
+
+KEYS = ("design_requirements", "test_data", "modeling")
+QUALITY_COMBINATIONS = list(itertools.product("ABCD", repeat=3))
+
+
+def _nearest_multiple_of_0_025(quality):
+    """Independent rounding: β_TOT by numpy, then the closest point of an explicit grid of 0.025 multiples."""
+    raw = np.sqrt(0.40 ** 2 + sum({"A": 0.10, "B": 0.20, "C": 0.35, "D": 0.50}[r] ** 2 for r in quality))
+    grid = 0.025 * np.arange(0, 81)
+    return grid[np.argmin(np.abs(grid - raw))], raw
+
+
+@pytest.mark.parametrize("quality", QUALITY_COMBINATIONS, ids="".join)
+def test_beta_total_rounds_to_nearest_0_025_for_every_rating(quality):
+    """All 64 ratings (P695 Eq 7-5, Table 7-2): rounding to the nearest 0.025, not truncating."""
+    expected, raw = _nearest_multiple_of_0_025(quality)
+    q = dict(zip(("design_requirements", "test_data", "modeling"), quality))
+    assert beta_total(q) == pytest.approx(expected, abs=1e-12)
+    assert abs(beta_total(q) - raw) <= 0.0125 + 1e-12
+
+
+def test_ratings_that_round_up_are_among_the_64():
+    """The 64 cases tell rounding from truncation: 12 of them round up (A/A/B → 0.475, B/C/C → 0.675);
+    B/B/D is exactly 0.700 (√0.49), which a floating-point truncation may also turn into 0.675."""
+    up = [q for q in QUALITY_COMBINATIONS if _nearest_multiple_of_0_025(q)[0] > _nearest_multiple_of_0_025(q)[1]]
+    assert len(up) == 12 and ("A", "A", "B") in up and ("B", "C", "C") in up
+    assert beta_total(dict(zip(KEYS, "AAB"))) == pytest.approx(0.475, abs=1e-12)
+    assert beta_total(dict(zip(KEYS, "BCC"))) == pytest.approx(0.675, abs=1e-12)
+    assert beta_total(dict(zip(KEYS, "BBD"))) == pytest.approx(0.700, abs=1e-12)
 
 
 @pytest.mark.parametrize("beta_tot,acmr10,acmr20", [(0.525, 1.96, 1.56), (0.600, 2.16, 1.66)])

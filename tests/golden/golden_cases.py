@@ -28,7 +28,9 @@ SIMULATIONS = {
     "cylinder_record": ("cylinder", "record:p695-ff/1,resultant_pga=0.3g", None),
 }
 
-VOLATILE = {("project", "tool_version")}   # the only keys allowed to differ (timings are not in the files)
+VOLATILE = {("project", "tool_version"), ("project", "kernels_sha256")}
+"""The only keys allowed to differ (timings are not in the files): the version, and the digest of the kernel
+sources, which changes with any edit of a kernel (rockdesign.kernel_cache)."""
 
 
 def _cli(*args: str, cwd: Path) -> subprocess.CompletedProcess:

@@ -105,6 +105,7 @@ def test_podium_pdf_title_block(podium_out):
     assert data["project"]["name"].split("(")[0].strip() in text
     assert data["project"]["sha256"] in text.replace(" ", "")
     assert data["project"]["tool_version"] in text
+    assert data["project"]["kernels_sha256"][:12] in text.replace(" ", "")   # the Software table
     assert data["project"]["engineer"] in text
     assert re.search(r"\b\d{4}-\d{2}-\d{2}\b", text), "no date"
     assert "podium_flat.toml" in text
