@@ -204,10 +204,10 @@ def _verdict_link(data: dict, checks: list[dict]) -> str:
     failing = [c for c in deciding if not c["passed"]]
     design = next((c for c in checks if c["criterion"] == "overturning_probability"), None)
     s = data["summary"]
-    counts = (f"{s['n_overturned']} of {s['n_records']} records overturn at the design level "
-              f"(P(overturn) = {fmt(s['p_overturn'])})")
+    counts = (f"The box's {s['n_overturned']} of {s['n_records']} records (P(overturn) = {fmt(s['p_overturn'])}) "
+              "count overturning at the design level")
     if design is not None:
-        counts += f": that is the check “{design['name']}”, which {'passes' if design['passed'] else 'fails'}"
+        counts += f", the check “{design['name']}”, which {'passes' if design['passed'] else 'fails'}"
     if data["verdict"] == "PASS":
         return f"{counts}. Every check that decides the verdict passes, so the verdict is PASS."
     if not failing:
