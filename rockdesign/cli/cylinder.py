@@ -47,7 +47,7 @@ def check_summary(data: dict, out_dir, console) -> None:
     for col in ("check", "utilisation or ratio", "result", "detail"):
         table.add_column(col)
     for c in check_rows(data["checks"]):          # the report's wording: informative checks are not failures
-        result = ("PASS" if c["passed"] else "FAIL") if c["governs_verdict"] else c["result_text"]
+        result = ("PASS" if c["passed"] else "FAIL") if c["governs_verdict"] else f"{c['result_text']} (info)"
         table.add_row(escape(c["name"]), escape(c["value_text"]), result, escape(c["detail"]))
     console.print(table)
     colour = "green" if data["verdict"] == "PASS" else "red"
