@@ -216,7 +216,7 @@ def test_curved_column_renders(curved_out):
     assert (curved_out.out / "report.pdf").exists()
     assert curved_out.pages >= 8
     text = curved_out.flat_text
-    assert "generalisation is ours" in text
+    assert "generalisation is rockdesign's (Appendix M3)" in text
     assert "u" in text and "(θc)" in text
 
 
