@@ -72,6 +72,7 @@ class SimulationResult:
     response: Response
     motion_parameters: dict | None = None     # resolved pulse parameters (SI): a_p [m/s²], T_p [s], t_m/t_0 [s]
     motion_warnings: tuple[str, ...] = ()
+    motion_record: dict | None = None         # a record as applied: pga [m/s²] (after scale), scale on the raw record
 
     @property
     def warnings(self) -> list[str]:
@@ -147,8 +148,9 @@ def run_simulation(request: SimulationRequest) -> SimulationResult:
     m = spec.motion
     params = ({k: float(m.meta[k]) for k in ("a_p", "T_p", "t_m", "t_0") if k in m.meta}
               if not m.is_record and "a_p" in m.meta else None)
+    record = {"pga": float(m.pga), "scale": float(m.meta.get("scale", 1.0))} if m.is_record else None
     return SimulationResult(project, request.motion_text, response, params,
-                            tuple(plausibility_warnings(m, project.system.g)))
+                            tuple(plausibility_warnings(m, project.system.g)), record)
 
 
 def simulate_project(project: Project, motion: str, *, model: str = "auto", t_end: float | None = None,

@@ -72,6 +72,21 @@ def quantities_table(quantities: dict, console: Console, units: str | None, grav
         console.print(f"[yellow]warning:[/] {escape(w)}", highlight=False)
 
 
+def model_label(model: str, system) -> str:
+    """The analysed model as a reader names it: ``block/exact`` of a column on curved feet is
+    "block/exact (column on curved extensions, exact equations)"."""
+    structure, _, equations = model.partition("/")
+    if structure == "block":
+        ext = getattr(system.column, "extension", "none")
+        what = {"curved": "column on curved extensions", "flat": "column on flat extensions"}.get(ext, "flat-based column")
+    else:
+        what = {"frame": "frame of columns under a cap beam", "rigid-superstructure": "frame with a rigid superstructure",
+                "podium-2dof": "podium with an elastic superstructure (2DOF)"}.get(structure, structure)
+    eq = {"exact": "exact equations", "linear": "linearized equations",
+          "linear-exact": "linearized equations, closed-form solution"}.get(equations, equations)
+    return f"{model} ({what}, {eq})" if equations else f"{model} ({what})"
+
+
 def response_table(result, console: Console) -> None:
     """Print the summary of one time-history analysis."""
     r = result.response
@@ -80,7 +95,7 @@ def response_table(result, console: Console) -> None:
     table.add_column("value", justify="right")
     table.add_column("unit")
     rows = [
-        ("model", r.model, ""),
+        ("model", model_label(r.model, result.project.system), ""),
         ("θ_max", format_value(r.theta_max), "rad"),
         ("θ_max/α", format_value(r.theta_max_over_alpha), "-"),
         ("θ_max/θc", format_value(r.theta_max_over_theta_c), "-"),
@@ -108,6 +123,11 @@ def response_table(result, console: Console) -> None:
         if "t_m" in params:
             extra.append(("wavelet centre t_m", format_value(params["t_m"]), "s"))
         rows[1:1] = extra
+    record = getattr(result, "motion_record", None)
+    if record:
+        g = result.project.system.g
+        rows[1:1] = [("record PGA as applied", f"{format_value(record['pga'])} ({record['pga'] / g:.4g} g)", "m/s^2"),
+                     ("scale (× the record as read)", format_value(record["scale"]), "-")]
     for row in rows:
         table.add_row(*row)
     console.print(table)
@@ -141,9 +161,13 @@ def check_summary(data: dict, out_dir, console: Console) -> None:
     for col in ("check", "utilisation", "result"):
         table.add_column(col, justify="right" if col == "utilisation" else "left")
     for c in data["checks"]:
-        res = ("not evaluated" if not c.get("evaluated", True) else "PASS" if c["passed"] else "FAIL") + {
-            "governs": "", "robustness": " (robustness)"}.get(
-            c.get("role", "governs" if c["governs_verdict"] else ""), " (info)")
+        role = c.get("role", "governs" if c["governs_verdict"] else "")
+        if not c.get("evaluated", True):
+            res = "not evaluated"
+        elif role in ("governs", "robustness"):
+            res = ("PASS" if c["passed"] else "FAIL") + (" (robustness)" if role == "robustness" else "")
+        else:       # informs, does not decide: not a failure of the design
+            res = ("met" if c["passed"] else "not met") + " (info)"
         table.add_row(escape(c["name"]), format_value(c["utilisation"]), res)
     console.print(table)
     exc = data["excitation"]

@@ -234,10 +234,16 @@ class CylinderCheckResult:
         return self.data
 
 
+MAX_HISTORIES = 8
+"""At most this many time histories in the report (every overturning pair up to it)."""
+
+
 def governing_ids(data: dict, n: int = GOVERNING_PAIRS) -> list[str]:
-    """Ids of the ``n`` pairs with the largest 3D θ_max/α (overturned pairs first; stable order)."""
+    """Ids of the pairs whose histories the report shows: every overturning pair (up to MAX_HISTORIES),
+    at least ``n`` pairs, by decreasing 3D θ_max/α (overturned pairs first; stable order)."""
     rows = sorted(data["records"], key=lambda r: (not r["overturned"], -r["theta_max_over_alpha"]))
-    return [r["id"] for r in rows[:n]]
+    count = min(max(n, sum(r["overturned"] for r in rows)), MAX_HISTORIES)
+    return [r["id"] for r in rows[:count]]
 
 
 def cylinder_check(project, progress=None) -> CylinderCheckResult:
@@ -297,14 +303,14 @@ def comparison_figure(data: dict, cap: float = 2.0):
         ot = np.array([r["overturned"] for r in data["records"]])
         top = max(cap, float(np.max(y)) * 1.05)
         ax.plot([0, cap], [0, cap], color="0.6", lw=0.8)
-        ax.axvline(1.0, color="0.3", lw=0.7, ls=":", label="planar overturning (θ_max = α)")
+        ax.axvline(1.0, color="0.3", lw=0.7, ls=":", label=r"planar overturning ($\theta_{max}$ = α)")
         if tilt:
-            ax.axhline(tilt, color="C3", lw=0.7, ls="--", label="θ_ot (3D overturning)")
+            ax.axhline(tilt, color="C3", lw=0.7, ls="--", label=r"$\theta_{ot}$ (3D overturning)")
         ax.scatter(x[~ot], y[~ot], s=14, color="C0", label="3D survives")
-        ax.scatter(x[ot], y[ot], s=18, color="C3", marker="x", label="3D overturns (θ_ot)")
+        ax.scatter(x[ot], y[ot], s=18, color="C3", marker="x", label=r"3D overturns ($\theta_{ot}$)")
         ax.set_xlim(0, cap * 1.03)
         ax.set_ylim(0, top * 1.03)
-        ax.set_xlabel(f"planar Housner θ_max/α (worse component; drawn at {cap:g} beyond)")
-        ax.set_ylabel("3D cylinder θ_max/α")
+        ax.set_xlabel(f"planar Housner $\\theta_{{max}}$/α (worse component; drawn at {cap:g} beyond)")
+        ax.set_ylabel(r"3D cylinder $\theta_{max}$/α")
         ax.legend(fontsize=7, loc="upper left")
         return fig

@@ -186,6 +186,7 @@ def simulate(project: Path = typer.Argument(..., help="Project file (TOML)"),
     if plot:
         from ..plots import save, time_history_figure
         save(time_history_figure(result.response, proj.system.g, f"{proj.name} — {motion}"), plot)
+        err_console.print(f"wrote {plot}", highlight=False, soft_wrap=True)
     if as_json:
         sys.stdout.write(json.dumps(result.as_json(), indent=2) + "\n")
     else:

@@ -109,9 +109,10 @@ def _exit_code(verdict: str) -> int:
 
 
 def _report(write_report, result, folder, no_pdf: bool, html: bool, pdf_worker=None) -> None:
-    """Write the output folder (results.json/csv and the report), with a spinner on a terminal: the
-    figures and the PDF take seconds after the analyses' progress bars have ended."""
+    """Write the output folder (results.json/csv and the report), with a spinner on a terminal (plain lines
+    elsewhere): the figures and the PDF take seconds after the analyses' progress bars have ended."""
     what = ("results and calculation report (figures, PDF)" if not no_pdf
             else "results and HTML report" if html else "results")
-    with make_console(stderr=True).status(f"writing the {what}"):
+    from ..progress import working
+    with working(f"writing the {what}"):
         write_report(result, folder, pdf=not no_pdf, html=html or not no_pdf, pdf_worker=pdf_worker)

@@ -100,8 +100,8 @@ def refuse_given(ctx, options: dict[str, str], used_by: str, expected: str) -> N
 
 
 def compile_kernels(command: str, say=None) -> float:
-    """Compile the kernels ``command`` needs on its first run, saying so ("compiling numerical kernels,
-    once per installation, ~N s") with ``say`` (default: print on stderr): the step after the input was
+    """Compile the kernels ``command`` needs on its first run, saying so ("compiling the numerical kernels
+    of `check` (…): expect N–M s at the current machine load") with ``say`` (default: print on stderr): the step after the input was
     checked and before the analyses (:func:`rockdesign.dynamics.compilation.prepare`); seconds spent (0
     when all are cached)."""
     from ..dynamics.compilation import prepare

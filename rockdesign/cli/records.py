@@ -285,7 +285,9 @@ def synth_command(
     motion = _load(seed, gravity, records_dir)
     from .inputs import compile_kernels
     compile_kernels("records")                  # (SD_max of the seed and of every member)
-    path, match = synthesize(motion, n, out_dir, seed_value=seed_value, scale_to=scale_to)
+    from ..progress import progress_bars
+    with progress_bars() as progress:
+        path, match = synthesize(motion, n, out_dir, seed_value=seed_value, scale_to=scale_to, progress=progress)
     console = _console()
     console.print(f"wrote {n} records to {path} (+ {path.with_suffix('.npz').name}, model.json, match.json)")
     console.print(match.describe())

@@ -1,5 +1,6 @@
 """Every command that runs numerical kernels compiles them on its first run *after* checking its input,
-and says so ("compiling numerical kernels, once per installation, ~N s"; issue: a first run that
+and says so ("compiling the numerical kernels of `check` (first use after installing or upgrading; …):
+expect N–M s at the current machine load"; issue: a first run that
 compiles says so).  Before, ``ensemble``, the cylinder's ``simulate``/``check``/``spectrum`` and
 ``records spectrum`` compiled for 30–70 s behind a bar that did not move, or in silence."""
 from __future__ import annotations
@@ -23,7 +24,7 @@ def prepared(monkeypatch):
     def prepare(command, say=None, *, background=False):
         asked.append(command)
         if say is not None:
-            say(compilation.MESSAGE.format(seconds=compilation.ESTIMATE_SECONDS[command]))
+            say(compilation.announcement(command))
         return 0.0
 
     monkeypatch.setattr(compilation, "prepare", prepare)
@@ -48,7 +49,7 @@ def test_each_command_announces_its_own_kernels(command, args, prepared, tmp_pat
     result = CliRunner().invoke(app, [a.format(tmp=tmp_path) for a in args])
     assert result.exit_code == 0, result.output
     assert prepared == [command]
-    assert "compiling numerical kernels, once per installation" in result.stderr
+    assert f"compiling the numerical kernels of `{command}`" in " ".join(result.stderr.split())
     assert command in compilation.KERNELS
 
 
