@@ -30,8 +30,8 @@ def simulate_command(project, motion, model, as_json, plot, csv, t_end, rtol, re
         from ..cylinder.figures import cylinder_history_figure
         save(cylinder_history_figure(result.response, project.system.g, f"{project.name} — {motion}",
                                      result.pair), plot)
-        from rich.console import Console
-        Console(stderr=True).print(f"wrote {plot}", highlight=False, soft_wrap=True)
+        from ..console import make_console
+        make_console(stderr=True).print(f"wrote {plot}", highlight=False, soft_wrap=True)
     if as_json:
         sys.stdout.write(json.dumps(result.as_json(), indent=2) + "\n")
         return

@@ -201,20 +201,26 @@ def _model_rows(model: dict) -> dict:
 def _verdict_link(data: dict, checks: list[dict]) -> str:
     """One sentence linking the design-level counts of the verdict box with the verdict."""
     deciding = [c for c in checks if c.get("governs_verdict")]
-    failing = [c for c in deciding if not c["passed"]]
-    design = next((c for c in checks if c["criterion"] == "overturning_probability"), None)
+    not_evaluated = [c for c in deciding if c.get("evaluated") is False]
+    failing = [c for c in deciding if not c["passed"] and c.get("evaluated") is not False]
     s = data["summary"]
+    ac = data.get("acceptance") or {}
     counts = (f"The box's {s['n_overturned']} of {s['n_records']} records (P(overturn) = {fmt(s['p_overturn'])}) "
               "count overturning at the design level")
-    if design is not None:
-        counts += f", the check “{design['name']}”, which {'passes' if design['passed'] else 'fails'}"
+    if ac.get("n_ground_motions"):
+        counts += (f"; they belong to {ac['n_unacceptable']} of {ac['n_ground_motions']} ground motions, the count "
+                   f"the acceptance rule uses ({ac['allowed_unacceptable']} allowed)")
     if data["verdict"] == "PASS":
         return f"{counts}. Every check that decides the verdict passes, so the verdict is PASS."
-    if not failing:
-        return f"{counts}. The verdict is FAIL: {data.get('verdict_reason') or 'see the checks below'}."
-    names = "; ".join(f"“{c['name']}”" for c in failing)
-    return (f"{counts}. The verdict is FAIL because {'this check fails' if len(failing) == 1 else 'these checks fail'}: "
-            f"{names} — every check marked “decides verdict: yes” below must pass.")
+    if failing:
+        names = "; ".join(f"“{c['name']}”" for c in failing)
+        return (f"{counts}. The verdict is FAIL because {'this check fails' if len(failing) == 1 else 'these checks fail'}: "
+                f"{names} — every check marked “decides verdict: yes” below must pass.")
+    if not_evaluated or data["verdict"] != "FAIL":
+        names = "; ".join(f"“{c['name']}”" for c in not_evaluated) or "a governing criterion"
+        return (f"{counts}. {names} {'was' if len(not_evaluated) <= 1 else 'were'} not evaluated, so the verdict is "
+                f"{data['verdict']}: a criterion that was not evaluated cannot pass.")
+    return f"{counts}. The verdict is FAIL: {data.get('verdict_reason') or 'see the checks below'}."
 
 
 def _quality_note(project, data: dict) -> str:
