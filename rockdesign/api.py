@@ -162,9 +162,15 @@ def simulate_project(project: Project, motion: str, *, model: str = "auto", t_en
 
 
 def write_history_csv(response: Response, path) -> None:
-    """Time history as CSV: t [s], ag [m/s²], theta [rad], thetadot [rad/s], u_B, u_T, u_T−u_B [m]."""
+    """Time history as CSV: t [s], ag [m/s²], theta [rad], thetadot [rad/s], u_B, u_T, u_T−u_B [m]; a 2DOF
+    podium adds ``a_T_abs`` (the superstructure's absolute acceleration −f_s [m/s²], SPEC §13) and ``drift``
+    (u_T − u_B [m]) — the column names of CONTRACT §6.2."""
     import numpy as np
-    data = np.column_stack([response.t, response.ground_acceleration, response.theta, response.thetadot,
-                            response.u_B, response.u_T, response.u_rel])
+    columns = [response.t, response.ground_acceleration, response.theta, response.thetadot, response.u_B,
+               response.u_T, response.u_rel]
     header = "t_s,ground_acceleration_m_s2,theta_rad,thetadot_rad_s,u_B_m,u_T_m,u_T_minus_u_B_m"
+    if response.a_T_abs is not None:
+        columns += [response.a_T_abs, response.u_rel]
+        header += ",a_T_abs,drift"
+    data = np.column_stack(columns)
     np.savetxt(path, data, delimiter=",", header=header, comments="", fmt="%.10g")

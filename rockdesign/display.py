@@ -98,6 +98,8 @@ def response_table(result, console: Console) -> None:
     ]
     if r.drift_max:
         rows.insert(5, ("max |u_T − u_B| (sampled)", format_value(r.drift_max), "m"))
+    at = next(i for i, row in enumerate(rows) if row[0] == "u_B,max / capacity") + 1
+    rows[at:at] = demand_rows(r, result.project.system.g)
     params = getattr(result, "motion_parameters", None)
     if params:
         g = result.project.system.g
@@ -111,6 +113,24 @@ def response_table(result, console: Console) -> None:
     console.print(table)
     for w in getattr(result, "warnings", result.project.warnings):
         console.print(f"[yellow]warning:[/] {escape(w)}", highlight=False)
+
+
+def demand_rows(r, g: float) -> list[tuple[str, str, str]]:
+    """Rows of the superstructure demand of a simulate response (2DOF podium: peak absolute acceleration of
+    the superstructure, the fixed-base reference and their ratio; rigid masses: the cap beam), SPEC §13."""
+    rows = []
+    until = " (until overturning)" if r.overturned else ""
+    if r.superstructure_acceleration_max is not None:
+        a = r.superstructure_acceleration_max
+        rows.append(("superstructure max |a_T| (abs.)" + until, f"{format_value(a)} ({a / g:.4g} g)", "m/s^2"))
+        if r.fixed_base_acceleration_max:
+            f = r.fixed_base_acceleration_max
+            rows.append(("same on a fixed base", f"{format_value(f)} ({f / g:.4g} g)", "m/s^2"))
+            rows.append(("force ratio rocking / fixed base", format_value(a / f), "-"))
+    elif r.cap_acceleration_max is not None:
+        rows.append(("cap beam max |a| between impacts" + until, format_value(r.cap_acceleration_max), "m/s^2"))
+        rows.append(("cap beam max velocity jump (impact)", format_value(r.cap_velocity_jump_max), "m/s"))
+    return rows
 
 
 def check_summary(data: dict, out_dir, console: Console) -> None:

@@ -35,6 +35,7 @@ from .runner import RunSummary, run_jobs
 from .selection import ModelSelection, select_model
 from .statistics import empirical_cdf, overturning_probability
 from .governing import history_records
+from .demand import governing_demand_history, superstructure_demand
 
 
 
@@ -63,6 +64,8 @@ class RecordOutcome:
     margin: Margin | None
     sensitivity_flip: bool = False
     ensemble: dict = field(default_factory=lambda: record_fields(None, 0))
+    superstructure: dict | None = None     # CONTRACT §6.2 (checks/demand.py)
+    cap_beam: dict | None = None           # frames and rigid superstructures: the cap beam's demand
 
     def as_json(self) -> dict:
         r = self.run
@@ -98,6 +101,8 @@ class RecordOutcome:
             "status": r.status,
             "analysis_failed": analysis_failed(r.status),
             **self.ensemble,
+            "superstructure": self.superstructure,
+            **({} if self.cap_beam is None else {"cap_beam": self.cap_beam}),
         }
 
 
@@ -149,6 +154,7 @@ class CheckResult:
     collapse_margin: dict | None = None    # checks/collapse_margin.py
     ensemble: dict | None = None           # checks/ensemble.py
     governing_check: str | None = None     # criterion key of the governing check (criteria.decide)
+    demand_history: tuple | None = None    # (record id, 2DOF Response) of the largest superstructure demand
 
     def as_json(self) -> dict:
         p = self.project
@@ -301,17 +307,21 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
         ens = run_ensembles(system, chosen, motions, runs, size=a.ensemble_size, seed=a.seed,
                             progress=stage(f"perturbation ensembles ({a.ensemble_size} runs per record)",
                                            a.ensemble_size * n), **run_kw)
+    demand, caps, demand_summary, demand_runs = superstructure_demand(
+        system, chosen, motions, runs, run_kw, q["uplift_acceleration"].value,
+        stage=stage)
     outcomes = []
     for i, (rec, (sd, t_sd), run) in enumerate(zip(resolved.records, sds, runs)):
         ratio = rule.utilisation(sd)
         outcomes.append(RecordOutcome(rec.id, rec.suite, rec.meta, rec.scale, rec.motion, rec.motion.pga, sd, t_sd,
                                       ratio, rule.predicted_scale(sd), run,
                                       classify(ratio, run.u_B_max_over_capacity, run.overturned), margin_list[i],
-                                      flips[i], record_fields(ens, i)))
+                                      flips[i], record_fields(ens, i), demand[i], caps[i]))
     valid = [o for o in outcomes if not analysis_failed(o.run.status)]
     stats = _statistics(valid, a, margins)
     stats["n_failed"] = n - len(valid)
     stats["min_records_for_bound"] = minimum_records(a.overturn_probability_limit)
+    stats["superstructure"] = demand_summary
     ens_json = ens and ensemble_summary([o.id for o in outcomes], ens, size=a.ensemble_size, seed=a.seed,
                                         rtol=a.rtol, atol=a.atol, nominal_overturned=stats["n_overturned"])
     stats["p_overturn_ensemble"] = ens_json["p_overturn"] if ens_json else None
@@ -329,6 +339,7 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
         histories[o.id] = simulate(system, o.motion, model=chosen.equations, structure=chosen.structure, rtol=a.rtol,
                                    atol=a.atol, t_end=o.motion.duration + a.free_vibration, overturn=a.overturn,
                                    rest_velocity=a.rest_velocity)
+    demand_history = governing_demand_history(system, outcomes, chosen, a)
     settings = {"rtol": a.rtol, "atol": a.atol, "overturn_criterion": a.overturn, "g": system.g,
                 "rest_velocity": a.rest_velocity, "free_vibration": a.free_vibration,
                 "linearization_tolerance": a.linearization_tolerance, "margin_precision": a.margin_precision,
@@ -353,7 +364,7 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     return CheckResult(project, q, rule, selection, outcomes, resolved.missing, resolved.scale_description,
                        resolved.default_used or spec.default_used, resolved.suites, stats, checks, verdict, histories,
                        sensitivity, settings, decision.reason, decision.robust, intensity, fragility, margin_fema,
-                       ens_json, decision.governing)
+                       ens_json, decision.governing, demand_history)
 
 
 def _finish_compilation(stage) -> None:

@@ -123,6 +123,45 @@ def peak_displacement(accel, dt, omega, zeta, include_tail):
     return peak
 
 
+@njit(cache=True)
+def peak_absolute_acceleration(accel, dt, omega, zeta, include_tail):
+    """max |ü + ü_g| = max |ω²u + 2ζωu̇| [m/s²] of the oscillator (at rest at t = 0) over the samples and, if
+    ``include_tail``, the free decay after the record — its absolute acceleration, not the pseudo-acceleration
+    ω²|u| (the fixed-base reference of SPEC §13; exact Nigam–Jennings recurrence of :func:`nigam_jennings_step`).
+
+    In free vibration a = ω²u + 2ζωu̇ obeys the oscillator's own equation, so the tail's peak is
+    :func:`free_vibration_peak` of (a, ȧ) with ȧ = ω²u̇ + 2ζωü, ü = −ω²u − 2ζωu̇ (ground at rest).
+    """
+    k = nigam_jennings_coefficients(omega, zeta, dt)
+    w2 = omega * omega
+    c = 2.0 * zeta * omega
+    u = 0.0
+    v = 0.0
+    peak = 0.0
+    for i in range(accel.shape[0] - 1):
+        u_next = k[0] * u + k[1] * v + k[4] * accel[i] + k[5] * accel[i + 1]
+        v = k[2] * u + k[3] * v + k[6] * accel[i] + k[7] * accel[i + 1]
+        u = u_next
+        a = abs(w2 * u + c * v)
+        if a > peak:
+            peak = a
+    if include_tail:
+        a0 = w2 * u + c * v
+        tail = free_vibration_peak(a0, w2 * v + c * (-w2 * u - c * v), omega, zeta)
+        if tail > peak:
+            peak = tail
+    return peak
+
+
+def fixed_base_acceleration(accel_si, dt: float, period: float, damping: float, *, include_tail: bool = True) -> float:
+    """Peak absolute acceleration [m/s²] of a fixed-base oscillator of ``period`` [s] and ``damping`` ratio
+    under the sampled ground acceleration ``accel_si`` [m/s²] at spacing ``dt`` [s] (SPEC §13's fixed-base
+    reference: ü + 2ζωu̇ + ω²u = −ü_g, exact for ü_g linear between samples, peak of |ω²u + 2ζωu̇|)."""
+    accel, periods = _check_inputs(accel_si, dt, period, damping)
+    return float(peak_absolute_acceleration(accel, float(dt), 2.0 * math.pi / float(periods[0]), float(damping),
+                                            include_tail))
+
+
 @njit(cache=True, parallel=True)
 def spectral_displacements(accel, dt, periods, zeta, include_tail):
     """SD(T) [m] for each period T [s] (exact piecewise-linear recurrence, SPEC §5), periods in parallel."""

@@ -84,6 +84,11 @@ def render_figures(result) -> dict[str, str]:
     if getattr(result, "fragility", None) and result.fragility.get("capacities"):
         from .fragility_figures import fragility_figure
         out["fragility"] = figures.svg(fragility_figure(result), "fragility")
+    from .demand_figures import demand_figure, demand_history_figure
+    for name, make in (("demand", demand_figure), ("demand_history", demand_history_figure)):
+        fig = make(result)
+        if fig is not None:
+            out[name] = figures.svg(fig, name)
     for k, rid in enumerate(result.histories):
         out[f"history:{rid}"] = figures.svg(figures.history_figure(result, rid), f"history{k}")
     return out
