@@ -141,7 +141,8 @@ def check_summary(data: dict, out_dir, console: Console) -> None:
     for col in ("check", "utilisation", "result"):
         table.add_column(col, justify="right" if col == "utilisation" else "left")
     for c in data["checks"]:
-        res = ("PASS" if c["passed"] else "FAIL") + {"governs": "", "robustness": " (robustness)"}.get(
+        res = ("not evaluated" if not c.get("evaluated", True) else "PASS" if c["passed"] else "FAIL") + {
+            "governs": "", "robustness": " (robustness)"}.get(
             c.get("role", "governs" if c["governs_verdict"] else ""), " (info)")
         table.add_row(escape(c["name"]), format_value(c["utilisation"]), res)
     console.print(table)
@@ -162,11 +163,12 @@ def check_summary(data: dict, out_dir, console: Console) -> None:
     console.print(f"model: {escape(data['model']['chosen'])} — records analysed: {s['n_records']}"
                   + (f" (+{s.get('n_failed')} failed)" if s.get("n_failed") else "")
                   + (f", missing: {len(exc.get('missing', []))}" if exc.get("missing") else "")
+                  + (f" from {s['n_ground_motions']} ground motions" if s.get("n_ground_motions") else "")
                   + f", overturned: {s['n_overturned']} ({s['overturn_criterion']} criterion), false negatives "
                   f"(class b): {s['n_false_negative']}, {prob}", highlight=False)
     if exc.get("intensity_analysed"):
         console.print(f"intensity analysed: {escape(exc['intensity_analysed'])}", highlight=False)
     colour = "green" if data["verdict"] == "PASS" and data.get("verdict_robust", True) else (
-        "yellow" if data["verdict"] == "PASS" else "red")
+        "yellow" if data["verdict"] in ("PASS", "NOT DECIDED") else "red")
     console.print(f"verdict: [bold {colour}]{escape(data.get('verdict_reason') or data['verdict'])}[/]", highlight=False)
     console.print(f"output: {escape(str(out_dir))}", highlight=False)

@@ -25,9 +25,11 @@ from ..errors import ProjectError
 from ..motions.config import default_excitation, parse_excitation, resolve_motions
 from ..motions.spectra import motion_spectrum, period_grid, sd_max
 from ..project import Project
-from .criteria import CheckContext, analysis_failed, decide, evaluate_criteria, minimum_records
-from .collapse_margin import collapse_margin, collapse_margin_criterion
-from .ensemble import ensemble_summary, record_fields, run_ensembles, verdict_basis
+from ..motions.grouping import earthquake_id, ground_motion_id
+from .acceptance import acceptance_rule, acceptance_summary, minimum_records, require_suite_size
+from .criteria import CheckContext, analysis_failed, decide, evaluate_criteria
+from .collapse_margin import collapse_margin
+from .ensemble import ensemble_summary, record_fields, run_ensembles
 from .fragility import check_fragility
 from .margins import SCAN_AFTER_FIRST, SCAN_RATIO, Margin, overturning_margins
 from .polyakov import CLASS_MEANING, CLASSES, PolyakovRule, classify
@@ -66,12 +68,14 @@ class RecordOutcome:
     ensemble: dict = field(default_factory=lambda: record_fields(None, 0))
     superstructure: dict | None = None     # CONTRACT §6.2 (checks/demand.py)
     cap_beam: dict | None = None           # frames and rigid superstructures: the cap beam's demand
+    ground_motion: str = ""     # the ground motion (station and event) the record belongs to (motions.grouping)
 
     def as_json(self) -> dict:
         r = self.run
         m = self.margin
         return {
             "id": self.id,
+            "ground_motion": self.ground_motion or self.id,
             "suite": self.suite,
             "event": self.meta.get("event"),
             "station": self.meta.get("station"),
@@ -155,6 +159,7 @@ class CheckResult:
     ensemble: dict | None = None           # checks/ensemble.py
     governing_check: str | None = None     # criterion key of the governing check (criteria.decide)
     demand_history: tuple | None = None    # (record id, 2DOF Response) of the largest superstructure demand
+    acceptance: dict | None = None         # checks/acceptance.py: the rule, its numbers and the per-ground-motion table
 
     def as_json(self) -> dict:
         p = self.project
@@ -190,6 +195,7 @@ class CheckResult:
             "checks": self.checks,
             "settings": self.settings,
             "fragility": self.fragility, "collapse_margin": self.collapse_margin, "ensemble": self.ensemble,
+            "acceptance": self.acceptance,
         }
 
 
@@ -226,6 +232,10 @@ def _records(project: Project, q, records_dir):
         raise ProjectError("no record of the excitation could be found", file=project.path, key="excitation",
                            expected="at least one available record",
                            found="; ".join(f"{i}: {r}" for i, r, _ in resolved.missing) or "an empty suite")
+    # the acceptance rule's suite size, before any analysis (ground motions, not components)
+    gms = {ground_motion_id(r.id, r.meta) for r in resolved.records}
+    require_suite_size(acceptance_rule(project.analysis), len(gms), len(resolved.records), resolved.suites,
+                       file=project.path, key="excitation")
     return spec, resolved
 
 
@@ -316,20 +326,25 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
         outcomes.append(RecordOutcome(rec.id, rec.suite, rec.meta, rec.scale, rec.motion, rec.motion.pga, sd, t_sd,
                                       ratio, rule.predicted_scale(sd), run,
                                       classify(ratio, run.u_B_max_over_capacity, run.overturned), margin_list[i],
-                                      flips[i], record_fields(ens, i), demand[i], caps[i]))
+                                      flips[i], record_fields(ens, i), demand[i], caps[i],
+                                      ground_motion_id(rec.id, rec.meta)))
     valid = [o for o in outcomes if not analysis_failed(o.run.status)]
     stats = _statistics(valid, a, margins)
     stats["n_failed"] = n - len(valid)
-    stats["min_records_for_bound"] = minimum_records(a.overturn_probability_limit)
+    acc_rule = acceptance_rule(a)
+    stats["n_ground_motions"] = len({o.ground_motion for o in outcomes})
+    stats["n_earthquakes"] = len({e for e in (earthquake_id(o.meta) for o in outcomes) if e}) or None
+    stats["min_records_for_bound"] = minimum_records(acc_rule.binomial_limit)
     stats["superstructure"] = demand_summary
     ens_json = ens and ensemble_summary([o.id for o in outcomes], ens, size=a.ensemble_size, seed=a.seed,
                                         rtol=a.rtol, atol=a.atol, nominal_overturned=stats["n_overturned"])
     stats["p_overturn_ensemble"] = ens_json["p_overturn"] if ens_json else None
     fragility = check_fragility(valid, a, empirical=(stats["n_overturned"], len(valid)), stripe_ratio=SCAN_RATIO)
-    margin_fema = collapse_margin(fragility, dict(a.quality))
-    extra = {"ensemble": ens, "collapse_margin": margin_fema, "verdict_basis": verdict_basis(stats)}
-    items, skipped = evaluate_criteria(CheckContext(outcomes, a, q, sensitivity, margins, extra))
-    decision = decide(items, skipped)
+    margin_fema = collapse_margin(fragility, dict(a.quality), acc_rule.target)
+    extra = {"ensemble": ens, "collapse_margin": margin_fema}
+    items, skipped = evaluate_criteria(CheckContext(outcomes, a, q, sensitivity, margins, extra, acc_rule))
+    decision = decide(items, skipped, acc_rule)
+    acceptance = acceptance_summary(acc_rule, items, decision, outcomes, margin_fema)
     checks = [i.as_json() for i in items]
     checks.sort(key=lambda c: (not c["governs_verdict"], -c["utilisation"]))
     verdict = decision.verdict
@@ -364,7 +379,7 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     return CheckResult(project, q, rule, selection, outcomes, resolved.missing, resolved.scale_description,
                        resolved.default_used or spec.default_used, resolved.suites, stats, checks, verdict, histories,
                        sensitivity, settings, decision.reason, decision.robust, intensity, fragility, margin_fema,
-                       ens_json, decision.governing, demand_history)
+                       ens_json, decision.governing, demand_history, acceptance)
 
 
 def _finish_compilation(stage) -> None:

@@ -23,7 +23,8 @@ def register(app: typer.Typer, handle_errors) -> None:
               dask: Optional[str] = typer.Option(None, "--dask", help="Run the analyses on dask.distributed: "
                                                  "'local:N' (a local cluster of N workers) or a scheduler address.")):
         """Polyakov design check over record suites, with a PDF calculation report (exit 0 = PASS,
-        1 = FAIL, 2 = input error or failed analyses, 130 = interrupted)."""
+        1 = FAIL, 2 = input error or failed analyses, 4 = not decided: a governing criterion was not
+        evaluated, e.g. --no-margins; 130 = interrupted)."""
         # a second process loads WeasyPrint on the core this one leaves idle while it starts, and writes
         # the PDF at the end (report.pdf_worker)
         pdf_worker = None
@@ -66,7 +67,7 @@ def _check(project, out, as_json, no_pdf, html, no_margins, records_dir, dask, p
             sys.stdout.write(json_text(result.as_json()))
         else:
             cylinder_summary(result.as_json(), folder.target, Console())
-        raise typer.Exit(0 if result.verdict == "PASS" else 1)
+        raise typer.Exit(_exit_code(result.verdict))
     folder = OutputFolder(target, key="-o/--out")
     with folder.locked():   # before the analyses: a file, a read-only or busy folder stops here (exit 2)
         from ..dynamics.compilation import missing_kernels, prepare
@@ -98,7 +99,12 @@ def _check(project, out, as_json, no_pdf, html, no_margins, records_dir, dask, p
         from ..display import check_summary
         check_summary(data, folder.target, Console())
     # failed analyses: the check is incomplete (exit 2), whatever the other records say
-    raise typer.Exit(2 if data.get("failed_records") else 0 if data["verdict"] == "PASS" else 1)
+    raise typer.Exit(2 if data.get("failed_records") else _exit_code(data["verdict"]))
+
+
+def _exit_code(verdict: str) -> int:
+    """0 PASS, 1 FAIL, 4 not decided (a governing criterion was not evaluated; CONTRACT §6.1)."""
+    return {"PASS": 0, "FAIL": 1}.get(verdict, 4)
 
 
 def _report(write_report, result, folder, no_pdf: bool, html: bool, pdf_worker=None) -> None:
