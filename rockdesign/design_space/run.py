@@ -122,6 +122,9 @@ def design_command(project, vary, out, *, as_json: bool, no_pdf: bool, records_d
             with console.status("full check of the recommended design"):
                 full = recommended_check(result, records_dir=records_dir)
             data["recommended"]["check"] = {"verdict": full.verdict, "reason": full.verdict_reason}
+            if full.verdict != "PASS":      # the grid's cell and the full check must agree: say so loudly
+                console.print(f"[bold red]warning:[/] the full check of the recommended design gives "
+                              f"{full.verdict}: {full.verdict_reason}", highlight=False)
             write_design_json(data, target / "design.json")
         with console.status("writing the design report (charts, PDF)"):
             write_design_report(result, data, target, recommended_check=full)

@@ -130,7 +130,8 @@ def field_figure(data: dict, key: str, title: str, cmap: str = "viridis", levels
             for i in range(nx):
                 for j in range(ny):
                     if np.isfinite(z[i, j]):
-                        ax.text(i, j, f"{z[i, j]:.3g}", ha="center", va="center", fontsize=6, color="w")
+                        ax.text(i, j, f"{z[i, j]:.3g}", ha="center", va="center", fontsize=6, color="k",
+                                bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.7})
             if np.isfinite(z).sum() >= 4 and min(nx, ny) >= 2:
                 try:
                     cs = ax.contour(np.arange(nx), np.arange(ny), np.ma.masked_invalid(z.T), levels=levels or 5,
