@@ -164,8 +164,9 @@ def run_grid(variant_list: list[Variant], variables, *, records_dir=None, execut
                 try:
                     result = run_check(proj, records_dir=records_dir, executor=executor, progress=stage_progress,
                                        records=records_cache[key], verdict_only=True)
-                except ProjectError as exc:     # the variant's own model or geometry is impossible
-                    cell = {**_base_cell(variant, variables), **EMPTY, "verdict": "INVALID", "reason": str(exc),
+                except RockdesignError as exc:  # the variant's own model or geometry is impossible
+                    cell = {**_base_cell(variant, variables), **EMPTY, "reason": str(exc),
+                            "verdict": "INVALID" if isinstance(exc, ProjectError) else "ERROR",
                             "decided_at_design_level": False, "n_failed_analyses": 0,
                             "analyses": AnalysisCount.total - before, "analyses_saved": 0}
                 else:

@@ -113,3 +113,25 @@ def test_recommendation_prefers_low_shear_then_less_material():
     assert rec["index"] == [2]              # 0.2001 ≈ 0.2002 to 3 digits: the smaller column wins
     assert "ACMR 2.1 ≥ 1.96" in rec["reason"]
     assert recommended([cells[3]]) is None
+
+
+@pytest.mark.slow
+def test_grid_on_dask_equals_local_and_resumes_after_an_interruption(small, grid, dask_cluster, tmp_path):
+    """``--dask ADDRESS``: the same cells as the local grid; an interrupted run (one variant stored)
+    re-runs only the other."""
+    from typer.testing import CliRunner
+
+    from rockdesign.cli import app
+    folder, path = small
+    out = tmp_path / "d"
+    first = design(path, VARY[:1], store=out / "variants")          # both variants stored ...
+    stored = sorted((out / "variants").glob("*.json"))
+    stored[0].unlink()                                             # ... one lost: the run was interrupted
+    res = CliRunner().invoke(app, ["design", str(path), "--vary", VARY[0], "-o", str(out), "--no-pdf", "--json",
+                                   "--dask", dask_cluster.scheduler_address])
+    assert res.exit_code == 0, res.output
+    data = json.loads(res.stdout)
+    assert data["variants_resumed"] == 1
+    keep = ("verdict", "n_unacceptable", "acmr", "median_theta_max_over_theta_c")
+    assert [{k: c[k] for k in keep} for c in data["cells"]] == [{k: c[k] for k in keep} for c in grid.grid.cells]
+    assert [c["verdict"] for c in first.grid.cells] == [c["verdict"] for c in grid.grid.cells]
