@@ -105,9 +105,10 @@ def _rect(x, y, color):
     return Rectangle((x, y), 1.0, 1.0, facecolor=color, edgecolor="white", lw=1.5, alpha=0.75)
 
 
-def field_figure(data: dict, key: str, title: str, cmap: str = "viridis", levels=None):
+def field_figure(data: dict, key: str, title: str, cmap: str = "viridis", levels=None, reference=None):
     """One quantity of the cells over the grid: a coloured map with the value in each cell and contour
-    lines where enough cells have it (2 variables), or a line over the values (1 variable)."""
+    lines where enough cells have it (2 variables), or a line over the values (1 variable) with the
+    ``reference`` lines [(value, label)] (e.g. the required ACMR)."""
     vars_ = data["variables"]
     z = _grid(data, key)
     if not np.isfinite(z).any():
@@ -117,10 +118,14 @@ def field_figure(data: dict, key: str, title: str, cmap: str = "viridis", levels
             fig, ax = plt.subplots(figsize=(6.6, 2.6))
             x = np.array(vars_[0]["values"])
             ax.plot(x, z, "o-", color="C0")
-            for lv in levels or ():
-                ax.axhline(lv, color="C3", lw=0.8, ls="--")
+            for lv, text in (reference or ()):
+                ax.axhline(lv, color="C3", lw=0.8, ls="--", label=text)
+            if reference:
+                ax.legend(fontsize=7)
+            pad = 0.05 * (x.max() - x.min() or 1.0)
+            ax.set_xlim(x.min() - pad, x.max() + pad)
             ax.set_xlabel(_axis_label(vars_[0]))
-            ax.set_ylabel(title)
+            ax.set_ylabel(title, fontsize=7)
         else:
             nx, ny = z.shape
             fig, ax = plt.subplots(figsize=(6.6, 1.6 + 0.42 * ny))
@@ -178,7 +183,9 @@ def design_figures(data: dict) -> dict:
     """All figures of a design chart (matplotlib Figures; None where a figure has no data)."""
     return {
         "verdict": verdict_figure(data),
-        "acmr": field_figure(data, "acmr", "ACMR [-] (FEMA P695, Eq 7-4 adapted)", "viridis"),
+        "acmr": field_figure(data, "acmr", "ACMR [-] (FEMA P695, Eq 7-4 adapted)", "viridis",
+                             reference=[(v, f"required {v:.3g}") for v in sorted(
+                                 {c["acmr_required"] for c in data["cells"] if c.get("acmr_required")})]),
         "shear": field_figure(data, "superstructure_shear_p84", "superstructure shear coefficient, 84th pct [-]",
                               "magma_r"),
         "rotation": field_figure(data, "median_theta_max_over_theta_c", "median θ_max/θc [-]", "cividis_r"),
