@@ -135,3 +135,21 @@ def test_grid_on_dask_equals_local_and_resumes_after_an_interruption(small, grid
     keep = ("verdict", "n_unacceptable", "acmr", "median_theta_max_over_theta_c")
     assert [{k: c[k] for k in keep} for c in data["cells"]] == [{k: c[k] for k in keep} for c in grid.grid.cells]
     assert [c["verdict"] for c in first.grid.cells] == [c["verdict"] for c in grid.grid.cells]
+
+
+def test_design_report_and_files(grid, tmp_path):
+    from rockdesign.report.design_report import write_design_report
+    from rockdesign.report.design_results import write_design_csv, write_design_json
+    data = grid.as_json()
+    assert set(data) >= {"project", "variables", "cells", "recommended", "analyses_run", "analyses_saved"}
+    assert all(set(c) >= {"values", "verdict", "reason", "acmr", "p_collapse_design", "n_unacceptable",
+                          "superstructure_shear_p84", "median_theta_max_over_theta_c", "analyses"}
+               for c in data["cells"])
+    write_design_json(data, tmp_path / "design.json")
+    rows = write_design_csv(data, tmp_path / "design.csv").read_text(encoding="utf-8").splitlines()
+    assert len(rows) == 1 + len(data["cells"]) and rows[0].startswith("podium.width [m],verdict,")
+    written = write_design_report(grid, data, tmp_path, pdf=False)
+    html = written["html"].read_text(encoding="utf-8")
+    assert "Recommended design" in html and "podium.width = 0.65 m" in html
+    assert {"verdict", "acmr", "rotation", "thesis_plane"} <= set(written)   # rigid superstructure: no shear chart
+    assert "FAIL" in html and "unacc." in html
