@@ -13,7 +13,7 @@ def register(app: typer.Typer, handle_errors) -> None:
     @app.command()
     @handle_errors
     def design(project: Path = typer.Argument(..., help="Project file (TOML)"),
-               vary: List[str] = typer.Option(..., "--vary", help="TABLE.KEY=FROM:TO:N in the key's units, e.g. "
+               vary: List[str] = typer.Option(..., "--vary", metavar="TABLE.KEY=FROM:TO:N", help="In the key's units, e.g. "
                                               "podium.width=0.36m:0.60m:7 (once or twice)."),
                out: Optional[Path] = typer.Option(None, "-o", "--out", help="Output folder (default: <project>_design)"),
                as_json: bool = typer.Option(False, "--json", metavar=" ", help="Print design.json to stdout."),
