@@ -72,8 +72,9 @@ def recommended_check(result: DesignResult, *, records_dir: str | None = None):
     from ..project import parse_project
     from .variants import variant_document, variant_toml
     idx = tuple(result.recommended["index"])
-    doc, _ = variant_document(tomllib.loads(result.project.source_text) if result.project.source_text else result.project.raw,
-                              result.grid.variables, idx)
+    base = result.project
+    raw = tomllib.loads(base.source_text) if base.source_text else base.raw
+    doc, _ = variant_document(raw, result.grid.variables, idx)
     proj = parse_project(doc, file=f"{result.project.path} [recommended]", text=variant_toml(doc))
     return run_check(proj, records_dir=records_dir)
 
