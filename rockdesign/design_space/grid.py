@@ -230,4 +230,4 @@ def check_exit_code(cells: list[dict]) -> int:
     return 0 if any(c["verdict"] == "PASS" for c in cells) else 1
 
 
-__all__ = ["GridRun", "run_grid", "recommended", "check_exit_code", "RockdesignError"]
+__all__ = ["GridRun", "run_grid", "recommended", "check_exit_code"]
