@@ -241,19 +241,24 @@ def _records(project: Project, q, records_dir):
 
 
 def run_check(project: Project, *, records_dir: str | None = None, margins: bool = True, progress=None,
-              executor=None) -> CheckResult:
+              executor=None, records=None, verdict_only: bool = False) -> CheckResult:
     """Run the design check of a project (see module docstring).
 
     ``progress(stage, done, total)`` is called as work proceeds (the CLI draws rich progress bars).
     ``executor``: run the analyses on the chunked executor of :mod:`rockdesign.execution.executor`
     (e.g. a dask.distributed cluster); default in-process on all cores.  Results are identical.
+    Hooks of the design grid (:mod:`rockdesign.design_space.grid`): ``records`` — the (excitation,
+    resolved records) pair of :func:`suite_records`, read and scaled once for many variants;
+    ``verdict_only`` — compute only what the verdict word and the design table need: no c_r
+    sensitivity, ensembles, report histories or engine-accuracy appendix, and, when the design-level
+    suite already decides FAIL (:func:`decided_at_design_level`), no margin scans or demand either.
     """
     system = project.system
     a = project.analysis
     q = design_quantities(system, a.rigid_superstructure_ratio)
     capacity = q["u_capacity"].value
     rule = PolyakovRule(capacity, a.sdmax_damping, tuple(a.sdmax_band))
-    spec, resolved = _records(project, q, records_dir)
+    spec, resolved = _records(project, q, records_dir) if records is None else records
     motions = [r.motion for r in resolved.records]
     n = len(motions)
     from ..motions.measures import plausibility_warnings
@@ -282,7 +287,9 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     # incremental analyses need verdicts to 1 %, not histories to 1e-10: a looser tolerance there
     scan_kw = dict(run_kw, rtol=max(a.rtol, a.scan_rtol))
     margin_list: list[Margin | None] = [None] * n
-    if margins:
+    decided_fail = verdict_only and decided_at_design_level(acceptance_rule(a), resolved.records, runs)
+    margins_run = margins and not decided_fail
+    if margins_run:
         up = q["uplift_acceleration"].value
         uplift_factors = [up / m.pga if m.pga > 0 else a.margin_max_scale for m in motions]
         total = 0
@@ -298,7 +305,7 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     tick = stage(f"restitution sensitivity (c_r ± {100 * a.restitution_variation:g} %)", 2 * n)
     flips = [False] * n
     sens = {}
-    for j, factor in enumerate((1.0 - a.restitution_variation, 1.0 + a.restitution_variation)):
+    for j, factor in enumerate(() if verdict_only else (1.0 - a.restitution_variation, 1.0 + a.restitution_variation)):
         res = run_jobs(system, chosen, motions, [1.0] * n, restitution_factor=factor, energy_stop=True,
                        progress=(lambda d, j=j: tick(j * n + d)) if tick else None, **run_kw)
         # (same tolerance as the nominal suite run: a verdict flip must come from c_r, not from rtol)
@@ -314,13 +321,13 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
                    "verdict_flips": sum(flips), "note": "c_r ≤ 1 (capped)"}
 
     ens = None
-    if a.ensemble_size:
+    if a.ensemble_size and not verdict_only:
         ens = run_ensembles(system, chosen, motions, runs, size=a.ensemble_size, seed=a.seed,
                             progress=stage(f"perturbation ensembles ({a.ensemble_size} runs per record)",
                                            a.ensemble_size * n), **run_kw)
     demand, caps, demand_summary, demand_runs = superstructure_demand(
         system, chosen, motions, runs, run_kw, q["uplift_acceleration"].value,
-        stage=stage)
+        stage=stage) if not decided_fail else ([None] * n, [None] * n, None, None)
     outcomes = []
     for i, (rec, (sd, t_sd), run) in enumerate(zip(resolved.records, sds, runs)):
         ratio = rule.utilisation(sd)
@@ -330,7 +337,7 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
                                       flips[i], record_fields(ens, i), demand[i], caps[i],
                                       ground_motion_id(rec.id, rec.meta)))
     valid = [o for o in outcomes if not analysis_failed(o.run.status)]
-    stats = _statistics(valid, a, margins)
+    stats = _statistics(valid, a, margins_run)
     stats["n_failed"] = n - len(valid)
     acc_rule = acceptance_rule(a)
     stats["n_ground_motions"] = len({o.ground_motion for o in outcomes})
@@ -343,7 +350,7 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     fragility = check_fragility(valid, a, empirical=(stats["n_overturned"], len(valid)), stripe_ratio=SCAN_RATIO)
     margin_fema = collapse_margin(fragility, dict(a.quality), acc_rule.target)
     extra = {"ensemble": ens, "collapse_margin": margin_fema}
-    items, skipped = evaluate_criteria(CheckContext(outcomes, a, q, sensitivity, margins, extra, acc_rule))
+    items, skipped = evaluate_criteria(CheckContext(outcomes, a, q, sensitivity, margins_run, extra, acc_rule))
     decision = decide(items, skipped, acc_rule)
     acceptance = acceptance_summary(acc_rule, items, decision, valid, margin_fema)
     checks = [i.as_json() for i in items]
@@ -351,11 +358,12 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     verdict = decision.verdict
     histories = {}
     from ..dynamics.simulate import simulate
-    for o in (valid[i] for i in history_records([o.run.theta_max_over_theta_c for o in valid])):
+    for o in (valid[i] for i in ([] if verdict_only else
+                                 history_records([o.run.theta_max_over_theta_c for o in valid]))):
         histories[o.id] = simulate(system, o.motion, model=chosen.equations, structure=chosen.structure, rtol=a.rtol,
                                    atol=a.atol, t_end=o.motion.duration + a.free_vibration, overturn=a.overturn,
                                    rest_velocity=a.rest_velocity)
-    demand_history = governing_demand_history(system, outcomes, chosen, a)
+    demand_history = None if verdict_only else governing_demand_history(system, outcomes, chosen, a)
     settings = {"rtol": a.rtol, "atol": a.atol, "overturn_criterion": a.overturn, "g": system.g,
                 "rest_velocity": a.rest_velocity, "free_vibration": a.free_vibration,
                 "linearization_tolerance": a.linearization_tolerance, "margin_precision": a.margin_precision,
@@ -365,6 +373,8 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
                 "overturn_probability_limit": a.overturn_probability_limit,
                 "rigid_superstructure_ratio": a.rigid_superstructure_ratio,
                 "scale_basis": "overturn_scale and polyakov_scale multiply the design-level (scaled) record"}
+    if verdict_only:
+        settings["decided_at_design_level"] = decided_fail
     from ..design.quantities import at_critical_curvature
     if at_critical_curvature(system) and "R_hat" in q:
         settings["equivalent_block"] = (
@@ -373,14 +383,36 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
             "impacts differ (c_r) — the curved column itself is analysed (docs/model.md §3)")
     # the engine's error against a closed form at the tolerance used (report appendix)
     from ..dynamics.accuracy import engine_accuracy
-    acc = engine_accuracy(a.rtol, a.atol)
-    settings["engine_accuracy"] = {k: v for k, v in acc.items() if k != "seconds"}
+    if not verdict_only:
+        acc = engine_accuracy(a.rtol, a.atol)
+        settings["engine_accuracy"] = {k: v for k, v in acc.items() if k != "seconds"}
     intensity = {"design_pga": spec.design_pga, "intensity_analysed": resolved.scale_description,
                  "record_warnings": record_warnings}
     return CheckResult(project, q, rule, selection, outcomes, resolved.missing, resolved.scale_description,
                        resolved.default_used or spec.default_used, resolved.suites, stats, checks, verdict, histories,
                        sensitivity, settings, decision.reason, decision.robust, intensity, fragility, margin_fema,
                        ens_json, decision.governing, demand_history, acceptance)
+
+
+def suite_records(project: Project, records_dir: str | None = None):
+    """(excitation spec, resolved records) of a project as :func:`run_check` analyses them (its
+    ``records`` hook): the records read and scaled once, e.g. for every variant of a design grid."""
+    q = design_quantities(project.system, project.analysis.rigid_superstructure_ratio)
+    return _records(project, q, records_dir)
+
+
+def decided_at_design_level(rule, records, runs) -> bool:
+    """True when the design-level suite alone already makes the verdict FAIL, whatever the incremental
+    analyses would add (SPEC §15): an analysis failed (never counted as safe), or the count rule of
+    the acceptance method fails (ASCE 7-22 §16.4.1.1 count, or the binomial bound at the design level).
+    The margins can only add failing criteria, never remove one, so the word cannot change."""
+    if any(analysis_failed(r.status) for r in runs):
+        return True
+    from types import SimpleNamespace
+    from .acceptance import count_rule
+    rows = [SimpleNamespace(id=rec.id, ground_motion=ground_motion_id(rec.id, rec.meta)) for rec in records]
+    holds = count_rule(rule, rows, {rec.id for rec, r in zip(records, runs) if r.overturned})[0]
+    return not holds
 
 
 def _finish_compilation(stage) -> None:

@@ -61,6 +61,13 @@ def interpret(summary: np.ndarray, status: int, theta_c: float, alpha: float, ca
                       None if two_dof else float(summary[S_CAP_DV_MAX]))
 
 
+class AnalysisCount:
+    """Analyses (record × scale jobs) :func:`run_jobs` has run in this process: the design grid reads the
+    difference around a variant to report what it ran and what its shared work saved."""
+
+    total = 0
+
+
 def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rtol: float, atol: float,
              free_vibration: float, criterion: str, rest_velocity: float = 5e-4, energy_stop: bool = False,
              stop_at_capacity: bool = False, restitution_factor: float = 1.0, progress=None,
@@ -84,6 +91,7 @@ def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rto
     alpha = slenderness_angle(system.column.half_width, system.column.half_height)
     capacity = displacement_capacity(system.column)
     n = len(motions)
+    AnalysisCount.total += n
     t_ends = [m.duration + free_vibration for m in motions]
     out: list[RunSummary] = []
     step = chunk or max(4 * usable_cores(), 8)

@@ -203,11 +203,12 @@ def simulate(project: Path = typer.Argument(..., help="Project file (TOML)"),
 def _mount_command_modules():
     """Mount the commands that live in their own modules (records, check, spectrum, bench)."""
     from . import bench as cli_bench, check as cli_check, experiments as cli_experiments, spectrum as cli_spectrum
+    from . import design as cli_design
     from .records import app as records_app
     for command in records_app.registered_commands:
         command.callback = handle_errors(command.callback)
     app.add_typer(records_app, name="records", help="Ground-motion tools: list, show, spectrum, synth.")
-    for module in (cli_check, cli_spectrum, cli_bench, cli_experiments):
+    for module in (cli_check, cli_spectrum, cli_bench, cli_experiments, cli_design):
         module.register(app, handle_errors)
 
 

@@ -20,7 +20,7 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
     ("analyses", ("rockdesign.spectra", "rockdesign.checks")),
     ("report", ("rockdesign.report",)),
     ("experiments", ("rockdesign.experiments",)),
-    ("library", ("rockdesign.library", "rockdesign.api", "rockdesign.cylinder.commands")),
+    ("library", ("rockdesign.library", "rockdesign.api", "rockdesign.cylinder.commands", "rockdesign.design_space")),
     ("bench", ("rockdesign.bench",)),
     ("cli", ("rockdesign.cli", "rockdesign.templates")),
 )
