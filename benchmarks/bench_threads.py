@@ -6,10 +6,11 @@ Usage::
 
 1. **One analysis** (``simulate``): ``rd.simulate`` of the ``podium_flat`` example under the built-in 30-s
    record p695-ff/1a, at numba's default thread count and with ``numba.set_num_threads(1)``, interleaved
-   round by round.  The same job through the parallel batch driver (a ``prange`` region of one job, the
+   call by call.  The same job through the parallel batch driver (a ``prange`` region of one job, the
    way ``simulate`` ran before) is timed in the same rounds at both settings: the region's cost.  Done
    twice: on the machine as it is ("quiet") and with one CPU-bound competitor per core ("loaded",
-   ``python -c 'while True: pass'`` processes).
+   ``python -c 'while True: pass'`` processes).  Ratios: of the mins, of the medians, and the median of the
+   ratios of the two times in each round (paired; the most robust on a shared machine).
 2. **A batch with a busy core** (``batch``): the Housner block under the same record at
    ``--jobs`` scale factors 0.05 … 1.0 (summaries only), on one thread (the serial driver), and on all
    threads with the dynamic driver (:mod:`rockdesign.dynamics.scheduling`: each thread takes the next job
@@ -17,8 +18,8 @@ Usage::
    fixed contiguous block — the scheme the batch driver replaced; compiled here, not cached), each with
    and without a competitor pinned to the last core.  The goal: the batch on all cores with one core busy
    takes ≤ 1.3× the one-thread time.
-3. **Break-even** (``break_even``): batches of 1 … 8 jobs of the same block, serial driver against the
-   parallel driver: the smallest batch for which threads pay (``rockdesign.dynamics.batch.SERIAL_BELOW_JOBS``).
+3. **Break-even** (``break_even``): batches of 1 … 8 jobs of the same block (scale factors 0.6 … 1.0, every
+   job rocks), serial driver against the parallel driver: the smallest batch for which threads pay (``rockdesign.dynamics.batch.SERIAL_BELOW_JOBS``).
 4. **Job order** (``order``): the batch's jobs in their own order, longest first (by each job's measured
    one-thread time) and in the equal-count blocks of ``checks.runner``'s earlier ``balanced_order``, on the
    dynamic driver with a busy core.
@@ -102,17 +103,28 @@ def _timed(fn) -> float:
 
 
 def _rounds(configs: dict, rounds: int) -> dict:
-    """Time every ``configs[name] = (setup, fn)`` once per round, interleaved; setup(True/False) around it."""
+    """Time every ``configs[name] = (numba threads, fn)`` once per round, interleaved (order reversed every
+    other round)."""
     samples = {name: [] for name in configs}
-    for _ in range(rounds):
-        for name, (threads, fn) in configs.items():
+    for r in range(rounds):
+        names = list(configs) if r % 2 == 0 else list(configs)[::-1]     # no configuration always first
+        for name in names:
+            threads, fn = configs[name]
             previous = numba.get_num_threads()
             numba.set_num_threads(threads)
             try:
                 samples[name].append(_timed(fn))
             finally:
                 numba.set_num_threads(previous)
-    return {name: _stats(v) for name, v in samples.items()}
+    out = {name: _stats(v) for name, v in samples.items()}
+    for name, v in samples.items():
+        out[name]["samples_s"] = v
+    return out
+
+
+def _paired(res: dict, a: str, b: str) -> float:
+    """Median over the rounds of a's time over b's in the same round (robust to the machine's slow drift)."""
+    return statistics.median(x / y for x, y in zip(res[a]["samples_s"], res[b]["samples_s"]))
 
 
 def bench_simulate(rounds: int) -> dict:
@@ -135,17 +147,21 @@ def bench_simulate(rounds: int) -> dict:
     one_region = args + (1,)
     same = all(np.array_equal(a, b, equal_nan=True)
                for a, b in zip(batch._run_batch(*one_region), batch._run_serial(*args)))
-    configs = {"simulate, default threads": (threads, lambda: rd.simulate(project, spec)),
-               "simulate, one thread": (1, lambda: rd.simulate(project, spec)),
-               "one job in a parallel region, default threads": (threads, lambda: batch._run_batch(*one_region)),
+    pairs = {"simulate, default threads": (threads, lambda: rd.simulate(project, spec)),
+             "simulate, one thread": (1, lambda: rd.simulate(project, spec))}
+    regions = {"one job in a parallel region, default threads": (threads, lambda: batch._run_batch(*one_region)),
                "one job in a parallel region, one thread": (1, lambda: batch._run_batch(*one_region)),
                "one job, serial driver": (threads, lambda: batch._run_serial(*args))}
     out = {"threads": threads, "drivers_bit_identical": bool(same), "theta_max_rad": float(reference.theta_max)}
     for label, cpus in (("quiet", []), ("loaded", [None] * (os.cpu_count() or 2))):
         load0 = os.getloadavg()
         with Competitors(cpus):
-            res = _rounds(configs, rounds)
+            res = _rounds(pairs, rounds)
+            res.update(_rounds(regions, rounds))
         res["load_before"], res["load_after"], res["competitors"] = load0, os.getloadavg(), len(cpus)
+        res["ratio_default_over_one_thread_paired"] = _paired(res, "simulate, default threads", "simulate, one thread")
+        res["ratio_region_over_serial_paired"] = _paired(res, "one job in a parallel region, default threads",
+                                                         "one job, serial driver")
         for stat in ("min_s", "median_s"):
             res[f"ratio_default_over_one_thread_{stat[:-2]}"] = (res["simulate, default threads"][stat]
                                                                  / res["simulate, one thread"][stat])
@@ -155,10 +171,10 @@ def bench_simulate(rounds: int) -> dict:
     return out
 
 
-def _block_batch(n_jobs: int):
+def _block_batch(n_jobs: int, lowest: float = 0.05):
     sp = system_parameters(housner_block(), ModelChoice("block", "exact"))
     record = load_record(RECORD_ID, gravity=G)
-    scales = np.linspace(0.05, 1.0, n_jobs)
+    scales = np.linspace(lowest, 1.0, n_jobs)
     kinds, xps, samples, offsets, lengths = pack_motions([record] * n_jobs, scales)
     t_ends = np.full(n_jobs, record.duration)
     return sp, (kinds, xps, samples, offsets, lengths, t_ends), batch_options()
@@ -213,8 +229,9 @@ def bench_batch(n_jobs: int, rounds: int) -> dict:
 
 
 def bench_break_even(rounds: int, sizes=(1, 2, 3, 4, 6, 8)) -> dict:
-    """Serial driver against the parallel driver for small batches of the block (30-s record jobs)."""
-    sp, packed, opts = _block_batch(8)
+    """Serial driver against the parallel driver for small batches of the block (30-s record jobs, scale
+    factors 0.6 … 1.0: every job rocks, ≈ 2 ms each on one core)."""
+    sp, packed, opts = _block_batch(8, lowest=0.6)
     out = {"load_before": os.getloadavg(), "sizes": {}}
     threads = numba.get_num_threads()
     for n in sizes:
@@ -266,7 +283,7 @@ def main(argv=None) -> int:
     t0 = time.perf_counter()
     rd.simulate(rd.load_project(ROOT / "examples" / "podium_flat.toml"), f"record:{RECORD_ID}")   # warm
     result = {"machine": machine_info(), "threading_layer": None}
-    result["simulate"] = bench_simulate(rounds * 3)
+    result["simulate"] = bench_simulate(rounds * 8)
     result["threading_layer"] = numba.threading_layer()
     result["batch"] = bench_batch(jobs, rounds)
     result["break_even"] = bench_break_even(rounds * 3)
@@ -284,8 +301,9 @@ def _print(r: dict) -> None:
     for label in ("quiet", "loaded"):
         q = s[label]
         print(f"simulate ({label}, load {q['load_before'][0]:.1f}): default/one thread "
-              f"{q['ratio_default_over_one_thread_median']:.2f}× median, {q['ratio_default_over_one_thread_min']:.2f}× min;"
-              f" a one-job parallel region / serial {q['ratio_region_over_serial_median']:.1f}× median")
+              f"{q['ratio_default_over_one_thread_paired']:.2f}× paired median, "
+              f"{q['ratio_default_over_one_thread_median']:.2f}× of medians, {q['ratio_default_over_one_thread_min']:.2f}× min;"
+              f" a one-job parallel region / serial driver {q['ratio_region_over_serial_paired']:.1f}× paired median")
         for name in ("simulate, default threads", "simulate, one thread", "one job in a parallel region, default threads"):
             print(f"    {name:48s} min {q[name]['min_s'] * 1e3:7.2f} ms  median {q[name]['median_s'] * 1e3:7.2f} ms")
     b = r["batch"]
