@@ -289,6 +289,18 @@ def main(argv=None) -> int:
     result["break_even"] = bench_break_even(rounds * 3)
     result["order"] = bench_order(jobs, max(3, rounds // 2))
     result["seconds"] = time.perf_counter() - t0
+    sim, bres = result["simulate"], result["batch"]["results"]
+    result["summary"] = {
+        "simulate_default_over_one_thread_quiet": sim["quiet"]["ratio_default_over_one_thread_paired"],
+        "simulate_default_over_one_thread_loaded": sim["loaded"]["ratio_default_over_one_thread_paired"],
+        "one_job_region_over_serial_quiet": sim["quiet"]["ratio_region_over_serial_paired"],
+        "one_job_region_over_serial_loaded": sim["loaded"]["ratio_region_over_serial_paired"],
+        "batch_busy_core_over_one_thread_dynamic": bres["all threads, dynamic, one core busy"]["ratio_to_one_thread_median"],
+        "batch_busy_core_over_one_thread_static": bres["all threads, static, one core busy"]["ratio_to_one_thread_median"],
+        "goal_simulate_le_1_3": max(sim["quiet"]["ratio_default_over_one_thread_paired"],
+                                    sim["loaded"]["ratio_default_over_one_thread_paired"]) <= 1.3,
+        "goal_busy_core_le_1_3": result["batch"]["goal_busy_core_ratio_le_1_3"],
+        "load_average": result["machine"]["load_average"]}
     Path(a.out).parent.mkdir(parents=True, exist_ok=True)
     Path(a.out).write_text(json.dumps(json_ready(result), indent=1) + "\n")
     _print(result)

@@ -11,8 +11,8 @@ Scheduling (docs/engine.md, "Threads"): the parallel driver starts one worker pe
 each worker takes the next job from a shared atomic counter until none is left (:mod:`.scheduling`), so a
 thread whose core is busy with another program simply takes fewer jobs.  A batch of fewer than
 :data:`SERIAL_BELOW_JOBS` jobs, and every single analysis (:func:`run_history`), runs serially in the
-calling thread: starting and joining the threads of a parallel region costs more than such a batch
-gains, and much more on a loaded machine (benchmarks/bench_threads.py).
+calling thread: a parallel region waits for every thread to be scheduled, which costs a single analysis
+up to several times its own time on a loaded machine (benchmarks/bench_threads.py).
 """
 from __future__ import annotations
 
@@ -29,8 +29,10 @@ from .layout import (METHOD_NAMES, N_DIAG, N_OPTIONS, N_SUMMARY, O_ATOL, O_ENERG
                      O_MAX_STEPS, O_METHOD, O_RTOL, O_SCAN, O_STOP_EXCEEDED, O_T_END)
 
 SERIAL_BELOW_JOBS = 2
-"""Batches of fewer jobs run serially in the calling thread (:func:`run_packed`); measured break-even in
-benchmarks/bench_threads.py."""
+"""Batches of fewer jobs run serially in the calling thread (:func:`run_packed`).  One job cannot gain from
+threads; on an idle machine two already do, while on a loaded one small batches lose to the second
+thread's scheduling delay (benchmarks/bench_threads.py, docs/engine.md "Threads"): no larger fixed
+count suits both."""
 
 
 @njit(cache=True)
