@@ -19,7 +19,8 @@ Usage::
    and without a competitor pinned to the last core.  The goal: the batch on all cores with one core busy
    takes ≤ 1.3× the one-thread time.
 3. **Break-even** (``break_even``): batches of 1 … 8 jobs of the same block (scale factors 0.6 … 1.0, every
-   job rocks), serial driver against the parallel driver: the smallest batch for which threads pay (``rockdesign.dynamics.batch.SERIAL_BELOW_JOBS``).
+   job rocks), serial driver against the parallel driver: the smallest batch for which threads pay
+   (``rockdesign.dynamics.batch.SERIAL_BELOW_JOBS``).
 4. **Job order** (``order``): the batch's jobs in their own order, longest first (by each job's measured
    one-thread time) and in the equal-count blocks of ``checks.runner``'s earlier ``balanced_order``, on the
    dynamic driver with a busy core.
@@ -225,7 +226,8 @@ def bench_batch(n_jobs: int, rounds: int) -> dict:
             res[name][f"ratio_to_one_thread_{stat[:-2]}"] = res[name][stat] / base[stat]
     return {"jobs": n_jobs, "threads": threads, "bit_identical": bool(same), "static_compile_s": compile_static,
             "load_before": load0, "load_after": os.getloadavg(), "competitor_cpu": last_cpu, "results": res,
-            "goal_busy_core_ratio_le_1_3": res["all threads, dynamic, one core busy"]["ratio_to_one_thread_median"] <= 1.3}
+            "goal_busy_core_ratio_le_1_3":
+                res["all threads, dynamic, one core busy"]["ratio_to_one_thread_median"] <= 1.3}
 
 
 def bench_break_even(rounds: int, sizes=(1, 2, 3, 4, 6, 8)) -> dict:
@@ -295,8 +297,10 @@ def main(argv=None) -> int:
         "simulate_default_over_one_thread_loaded": sim["loaded"]["ratio_default_over_one_thread_paired"],
         "one_job_region_over_serial_quiet": sim["quiet"]["ratio_region_over_serial_paired"],
         "one_job_region_over_serial_loaded": sim["loaded"]["ratio_region_over_serial_paired"],
-        "batch_busy_core_over_one_thread_dynamic": bres["all threads, dynamic, one core busy"]["ratio_to_one_thread_median"],
-        "batch_busy_core_over_one_thread_static": bres["all threads, static, one core busy"]["ratio_to_one_thread_median"],
+        "batch_busy_core_over_one_thread_dynamic":
+            bres["all threads, dynamic, one core busy"]["ratio_to_one_thread_median"],
+        "batch_busy_core_over_one_thread_static":
+            bres["all threads, static, one core busy"]["ratio_to_one_thread_median"],
         "goal_simulate_le_1_3": max(sim["quiet"]["ratio_default_over_one_thread_paired"],
                                     sim["loaded"]["ratio_default_over_one_thread_paired"]) <= 1.3,
         "goal_busy_core_le_1_3": result["batch"]["goal_busy_core_ratio_le_1_3"],
@@ -314,9 +318,11 @@ def _print(r: dict) -> None:
         q = s[label]
         print(f"simulate ({label}, load {q['load_before'][0]:.1f}): default/one thread "
               f"{q['ratio_default_over_one_thread_paired']:.2f}× paired median, "
-              f"{q['ratio_default_over_one_thread_median']:.2f}× of medians, {q['ratio_default_over_one_thread_min']:.2f}× min;"
+              f"{q['ratio_default_over_one_thread_median']:.2f}× of medians, "
+              f"{q['ratio_default_over_one_thread_min']:.2f}× min;"
               f" a one-job parallel region / serial driver {q['ratio_region_over_serial_paired']:.1f}× paired median")
-        for name in ("simulate, default threads", "simulate, one thread", "one job in a parallel region, default threads"):
+        for name in ("simulate, default threads", "simulate, one thread",
+                     "one job in a parallel region, default threads"):
             print(f"    {name:48s} min {q[name]['min_s'] * 1e3:7.2f} ms  median {q[name]['median_s'] * 1e3:7.2f} ms")
     b = r["batch"]
     print(f"batch of {b['jobs']} jobs (load {b['load_before'][0]:.1f}), bit-identical {b['bit_identical']}:")
