@@ -9,7 +9,14 @@ The library API (imported on first use, so ``import rockdesign`` stays light)::
     c = rd.check(project, progress=False)
     rd.write_report(c, "out/")
 """
+import os
+
 __version__ = "0.1.0"
+
+# numba's OpenMP threads wait for work by sleeping, not spinning: on a shared machine a spinning thread
+# burns the CPU time the analyses need (batches ran up to 2× slower; docs/engine.md, "Threads").  Read
+# by GNU OpenMP when numba first starts its threads; a value the user set is kept.
+os.environ.setdefault("OMP_WAIT_POLICY", "passive")
 
 _EXPORTS = {
     "load_project": "rockdesign.library", "parse_project": "rockdesign.library",

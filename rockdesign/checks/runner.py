@@ -78,8 +78,9 @@ def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rto
     studies.  ``progress(n_done)`` is called after each chunk.  With an ``executor`` (the chunked
     executor of :mod:`rockdesign.execution.executor`, e.g. a dask.distributed cluster) the jobs run
     there in chunks; the results are identical to the in-process run.  ``costs``: a predicted cost per
-    job (e.g. the seconds of record a similar analysis ran), to balance the cores (:func:`balanced_order`;
-    default the end times); it changes the order the jobs run in, never their results.
+    job (e.g. the seconds of record a similar analysis ran): the longest run first, so the cores finish
+    together (:func:`balanced_order`; default the end times); it changes the order the jobs run in, never
+    their results.
     """
     sp = system_parameters(system, choice, rest_velocity=rest_velocity)
     if restitution_factor != 1.0:
@@ -108,7 +109,7 @@ def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rto
                                        chunk_jobs=step, progress=on_chunk)
         return [interpret(summaries[j], diags[j, D_STATUS], theta_c, alpha, capacity, criterion, two_dof)
                 for j in range(n)]
-    threads = numba.get_num_threads()     # the parallel loop's threads, one block of jobs each
+    threads = numba.get_num_threads()     # the batch driver's threads
     predicted = list(t_ends if costs is None else costs)
     for start in range(0, n, step):
         sl = slice(start, min(n, start + step))
@@ -126,18 +127,11 @@ def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rto
 
 
 def balanced_order(costs, threads: int) -> list[int]:
-    """An order of jobs for the batch kernel's parallel loop, which gives each of ``threads`` threads one
-    contiguous block of the jobs (equal counts): the blocks get near-equal sums of predicted ``costs``
-    (longest first, each to the block with the least so far that still has room).  Without it a block
-    of long analyses keeps one core busy while the other waits (docs/engine.md, "Speed")."""
+    """The order to hand a batch's jobs to the batch driver's threads: longest predicted ``costs`` first
+    (ties in job order).  The threads take the next job as they finish one (:mod:`rockdesign.dynamics.scheduling`),
+    so the batch ends at most one short job after its work is shared out — longest-processing-time-first
+    list scheduling, within 4/3 of the best split.  One thread keeps the jobs' own order."""
     n = len(costs)
     if threads < 2 or n < 2:
         return list(range(n))
-    size = [n // threads + (1 if b < n % threads else 0) for b in range(threads)]
-    blocks: list[list[int]] = [[] for _ in range(threads)]
-    load = [0.0] * threads
-    for k in sorted(range(n), key=lambda k: (-costs[k], k)):
-        b = min((b for b in range(threads) if len(blocks[b]) < size[b]), key=lambda b: (load[b], b))
-        blocks[b].append(k)
-        load[b] += costs[k]
-    return [k for block in blocks for k in sorted(block)]
+    return sorted(range(n), key=lambda k: (-costs[k], k))

@@ -33,9 +33,10 @@ from pathlib import Path
 
 # Kernels (module, function) each command calls; the estimates are first-run compile seconds measured
 # on the 2-core development machine (benchmarks/bench_check.py reports the first `check` run).
-ENGINE = (("rockdesign.dynamics.batch", "_run_batch"), ("rockdesign.dynamics.engine", "integrate"),
-          ("rockdesign.dynamics.transitions", "top_displacements"))
-"""The planar rocking engine: the batch kernel and the integrator it runs (also ``simulate``'s)."""
+ENGINE = (("rockdesign.dynamics.batch", "_run_batch"), ("rockdesign.dynamics.batch", "_job"),
+          ("rockdesign.dynamics.engine", "integrate"), ("rockdesign.dynamics.transitions", "top_displacements"))
+"""The planar rocking engine: the parallel batch driver, the job it runs in every driver (``simulate``'s
+one analysis, serial batches) and the integrator the job calls."""
 ELASTIC_SPECTRUM = (("rockdesign.motions.spectra", "spectral_displacements"),)
 LINEAR_EXACT = (("rockdesign.dynamics.linear_exact", "integrate_linear_exact"),)
 CYLINDER = (("rockdesign.cylinder.kernel", "integrate"),)
@@ -161,10 +162,10 @@ def _warm(command: str, parts: tuple[str, ...] = PARTS) -> None:
     if "engine" in parts and command == "spectrum":          # the integrator inside the pulse-spectrum kernel
         from ..spectra.kernel import warm_up
         warm_up()
-    elif "engine" in parts and command in ENGINE_COMMANDS:   # the batch kernel and the integrator it runs
-        simulate(system, record, t_end=0.05)
+    elif "engine" in parts and command in ENGINE_COMMANDS:   # the batch drivers and the integrator they run
+        simulate(system, record, t_end=0.05)                 # the serial driver (the job and the integrator)
         sp = system_parameters(system, ModelChoice("block", "exact"))
-        run_batch(sp, [record], [1.0], [0.05], batch_options())
+        run_batch(sp, [record, record], [1.0, 0.5], [0.05, 0.05], batch_options(), threads=True)
     if "side" in parts and command in ("check", "bench"):
         from .accuracy import accuracy_problem
         system_b1, pulse = accuracy_problem()
