@@ -198,6 +198,14 @@ def markdown(study: dict) -> str:
     return "\n".join(lines)
 
 
+def _keep_demand_section(page: str, docs: Path) -> str:
+    """``page`` with the "Superstructure demand" section of the current page appended (written by
+    bench_demand_tolerances.py)."""
+    marker = "## Superstructure demand"
+    old = docs.read_text(encoding="utf-8") if docs.exists() else ""
+    return page if marker not in old else page.rstrip("\n") + "\n\n" + marker + old.split(marker, 1)[1]
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--projects", nargs="*", default=None, help="project files (default: examples/*.toml)")
@@ -207,7 +215,8 @@ def main(argv=None) -> int:
     ap.add_argument("--markdown-only", action="store_true", help="rewrite the docs page from the JSON (no runs)")
     args = ap.parse_args(argv)
     if args.markdown_only:
-        Path(args.docs).write_text(markdown(json.loads(Path(args.out).read_text(encoding="utf-8"))), encoding="utf-8")
+        page = markdown(json.loads(Path(args.out).read_text(encoding="utf-8")))
+        Path(args.docs).write_text(_keep_demand_section(page, Path(args.docs)), encoding="utf-8")
         return 0
     projects = args.projects or sorted(str(p.relative_to(ROOT)) for p in (ROOT / "examples").glob("*.toml"))
     rtols = sorted(args.rtols, reverse=True)
@@ -234,7 +243,7 @@ def main(argv=None) -> int:
     study["recommended_rtol"] = recommend(study)
     Path(args.out).parent.mkdir(parents=True, exist_ok=True)
     Path(args.out).write_text(json.dumps(json_ready(study), indent=1) + "\n", encoding="utf-8")
-    Path(args.docs).write_text(markdown(study), encoding="utf-8")
+    Path(args.docs).write_text(_keep_demand_section(markdown(study), Path(args.docs)), encoding="utf-8")
     print(f"recommended rtol = {study['recommended_rtol']}; wrote {args.out} and {args.docs}")
     return 0
 

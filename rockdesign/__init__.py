@@ -9,7 +9,14 @@ The library API (imported on first use, so ``import rockdesign`` stays light)::
     c = rd.check(project, progress=False)
     rd.write_report(c, "out/")
 """
+import os
+
 __version__ = "0.1.0"
+
+# numba's OpenMP threads wait for work by sleeping, not spinning: on a shared machine a spinning thread
+# burns the CPU time the analyses need (batches ran up to 2× slower; docs/engine.md, "Threads").  Read
+# by GNU OpenMP when numba first starts its threads; a value the user set is kept.
+os.environ.setdefault("OMP_WAIT_POLICY", "passive")
 
 _EXPORTS = {
     # the library (every kind of structure through one front door: rockdesign.library, rockdesign.kinds)
@@ -31,7 +38,12 @@ _EXPORTS = {
     "record_history_figure": "rockdesign.motions.figures", "record_spectrum_figure": "rockdesign.motions.figures",
     "parse_pair": "rockdesign.motions.pairs", "parse_quantity": "rockdesign.units",
     "QuantityParseError": "rockdesign.units", "save_figure": "rockdesign.plots:save",
-    "progress_bars": "rockdesign.progress", "json_ready": "rockdesign.jsonable",
+    # output folders (created by a command, removed again when it fails)
+    "created_folder": "rockdesign.outdir", "refuse_wrong_type": "rockdesign.outdir",
+    "discard_unfinished": "rockdesign.outdir", "forget_created": "rockdesign.outdir",
+    # design charts (``rockdesign design``)
+    "design_command": "rockdesign.design_space.run",
+    "progress_bars": "rockdesign.progress", "working": "rockdesign.progress", "json_ready": "rockdesign.jsonable",
     # rocking spectra (``rockdesign spectrum``)
     "parse_axis": "rockdesign.spectra.axes", "spectrum_scales": "rockdesign.spectra.axes",
     "compute_spectrum": "rockdesign.spectra.spectrum", "request_from_project": "rockdesign.spectra.spectrum",
@@ -41,6 +53,7 @@ _EXPORTS = {
     "make_executor": "rockdesign.execution.executor", "remove_tree": "rockdesign.execution.executor",
     "cylinder_spectrum": "rockdesign.cylinder.spectrum", "parse_cylinder_axis": "rockdesign.cylinder.spectrum",
     "CylinderSpectrumError": "rockdesign.cylinder.spectrum",
+    "check_grid": "rockdesign.spectra.spectrum", "check_ordinates": "rockdesign.spectra.spectrum",
     "write_cylinder_spectrum": "rockdesign.cylinder.spectrum_output",
     # experiments (``rockdesign calibrate | validate | ensemble | records scale-model``)
     "calibrate": "rockdesign.experiments.calibrate", "simulated_history": "rockdesign.experiments.calibrate",

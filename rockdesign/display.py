@@ -60,7 +60,7 @@ def quantities_table(quantities: dict, console: Console, units: str | None, grav
                      warnings=()) -> None:
     """Print design quantities as a table: symbol, name, value, unit, equation."""
     targets = parse_display_units(units, gravity)
-    table = Table(title=title, title_justify="left")
+    table = Table(title=escape(title), title_justify="left")
     for col in ("symbol", "quantity", "value", "unit", "equation"):
         table.add_column(col, justify="right" if col == "value" else "left")
     for q in quantities.values():
@@ -72,12 +72,30 @@ def quantities_table(quantities: dict, console: Console, units: str | None, grav
         console.print(f"[yellow]warning:[/] {escape(w)}", highlight=False)
 
 
+def model_label(model: str, system) -> str:
+    """The analysed model as a reader names it: ``block/exact`` of a column on curved feet is
+    "block/exact (column on curved extensions, exact equations)"."""
+    structure, _, equations = model.partition("/")
+    if structure == "block":
+        ext = getattr(system.column, "extension", "none")
+        what = {"curved": "column on curved extensions", "flat": "column on flat extensions"}.get(ext, "flat-based column")
+    else:
+        what = {"frame": "frame of columns under a cap beam", "rigid-superstructure": "frame with a rigid superstructure",
+                "podium-2dof": "podium with an elastic superstructure (2DOF)"}.get(structure, structure)
+    eq = {"exact": "exact equations", "linear": "linearized equations",
+          "linear-exact": "linearized equations, closed-form solution"}.get(equations, equations)
+    return f"{model} ({what}, {eq})" if equations else f"{model} ({what})"
+
+
 def response_table(result, console: Console) -> None:
     """Print the summary of one time-history analysis (``result.summary_rows()``: quantity, value, unit)."""
-    table = Table(title=f"{result.project.name} — {result.motion_text}", title_justify="left")
+    table = Table(title=escape(f"{result.project.name} — {result.motion_text}"), title_justify="left")
     table.add_column("quantity")
     table.add_column("value", justify="right")
     table.add_column("unit")
+    caption = getattr(result, "summary_caption", None)
+    if caption:
+        table.caption, table.caption_justify = caption, "left"
     for row in result.summary_rows():
         table.add_row(*row)
     console.print(table)
@@ -85,16 +103,41 @@ def response_table(result, console: Console) -> None:
         console.print(f"[yellow]warning:[/] {escape(w)}", highlight=False)
 
 
+def demand_rows(r, g: float) -> list[tuple[str, str, str]]:
+    """Rows of the superstructure demand of a simulate response (2DOF podium: peak absolute acceleration of
+    the superstructure, the fixed-base reference and their ratio; rigid masses: the cap beam), SPEC §13."""
+    rows = []
+    until = " (until overturning)" if r.overturned else ""
+    if r.superstructure_acceleration_max is not None:
+        a = r.superstructure_acceleration_max
+        rows.append(("superstructure max |a_T| (abs.)" + until, f"{format_value(a)} ({a / g:.4g} g)", "m/s^2"))
+        if r.fixed_base_acceleration_max:
+            f = r.fixed_base_acceleration_max
+            rows.append(("same on a fixed base", f"{format_value(f)} ({f / g:.4g} g)", "m/s^2"))
+            rows.append(("force ratio rocking / fixed base", format_value(a / f), "-"))
+    elif r.cap_acceleration_max is not None:
+        rows.append(("cap beam max |a| between impacts" + until, format_value(r.cap_acceleration_max), "m/s^2"))
+        rows.append(("cap beam max velocity jump (impact)", format_value(r.cap_velocity_jump_max), "m/s"))
+    return rows
+
+
 def check_summary(data: dict, out_dir, console: Console) -> None:
     """Print the checks, what the run found (failed analyses, missing records), the verdict and its
     reason, and where the report went."""
     s = data["summary"]
-    table = Table(title=f"{data['project']['name']} — design check", title_justify="left")
-    for col in ("check", "utilisation", "result"):
-        table.add_column(col, justify="right" if col == "utilisation" else "left")
+    table = Table(title=escape(f"{data['project']['name']} — design check"), title_justify="left")
+    for col in ("check", "utilisation or ratio", "result"):
+        table.add_column(col, justify="right" if col == "utilisation or ratio" else "left")
     for c in data["checks"]:
-        res = ("PASS" if c["passed"] else "FAIL") + {"governs": "", "robustness": " (robustness)"}.get(
-            c.get("role", "governs" if c["governs_verdict"] else ""), " (info)")
+        role = c.get("role", "governs" if c["governs_verdict"] else "")
+        if not c.get("evaluated", True):
+            res = "not evaluated"
+        elif role in ("governs", "robustness"):
+            res = ("PASS" if c["passed"] else "FAIL") + (" (robustness)" if role == "robustness" else "")
+        elif c["name"].rstrip().endswith("?"):     # a question ("Does a planar analysis suffice?"): yes or no
+            res = ("yes" if c["passed"] else "no") + " (info)"
+        else:       # informs, does not decide: not a failure of the design
+            res = ("met" if c["passed"] else "not met") + " (info)"
         table.add_row(escape(c["name"]), format_value(c["utilisation"]), res)
     console.print(table)
     exc = data.get("excitation", {})
@@ -114,12 +157,12 @@ def check_summary(data: dict, out_dir, console: Console) -> None:
     console.print(f"model: {escape(data['model']['chosen'])} — records analysed: {s['n_records']}"
                   + (f" (+{s.get('n_failed')} failed)" if s.get("n_failed") else "")
                   + (f", missing: {len(exc.get('missing', []))}" if exc.get("missing") else "")
-                  + f", overturned: {s['n_overturned']} ({s['overturn_criterion']} criterion)"
-                  + (f", false negatives (class b): {s['n_false_negative']}" if "n_false_negative" in s else "")
-                  + f", {prob}", highlight=False)
+                  + (f" from {s['n_ground_motions']} ground motions" if s.get("n_ground_motions") else "")
+                  + f", overturned: {s['n_overturned']} ({s['overturn_criterion']} criterion), false negatives "
+                  f"(class b): {s['n_false_negative']}, {prob}", highlight=False)
     if exc.get("intensity_analysed"):
         console.print(f"intensity analysed: {escape(exc['intensity_analysed'])}", highlight=False)
     colour = "green" if data["verdict"] == "PASS" and data.get("verdict_robust", True) else (
-        "yellow" if data["verdict"] == "PASS" else "red")
+        "yellow" if data["verdict"] in ("PASS", "NOT DECIDED") else "red")
     console.print(f"verdict: [bold {colour}]{escape(data.get('verdict_reason') or data['verdict'])}[/]", highlight=False)
     console.print(f"output: {escape(str(out_dir))}", highlight=False)

@@ -66,6 +66,8 @@ class OutputFolder:
     def validate(self) -> None:
         """Raise :class:`OutputError` unless the run can write the folder (call before analysing)."""
         t = self.target
+        if t.is_symlink() and not t.exists():
+            refuse_wrong_type(t, self.key, folder=True)
         if t.exists() and not t.is_dir():
             raise self._error("output folder is a file", "a folder (new or from an earlier run)", f"file '{t}'")
         parent = self._parent()
@@ -174,6 +176,65 @@ class OutputFolder:
                 shutil.rmtree(old, ignore_errors=True)
             else:
                 os.rename(tmp, target)
+
+
+_CREATED: list[Path] = []
+"""Folders :func:`created_folder` made in this run (the CLI discards the empty ones when the run fails)."""
+
+
+def created_folder(path, key: str) -> Path:
+    """Create the output folder ``path`` (and missing parents) for a run that writes into it as it goes.
+
+    Refuses a path that exists as something other than a folder (a file, a dangling symbolic link)
+    naming ``key``.  The topmost folder this call creates is remembered: when the run fails,
+    :func:`discard_unfinished` removes it again if no file was written in it — a failed run leaves
+    no empty folder (files kept on purpose, such as the chunks a spectrum resumes from, stay).
+    """
+    path = Path(path).expanduser()
+    for p in [path, *path.parents]:
+        refuse_wrong_type(p, key, folder=True)
+    missing = [p for p in [path, *path.parents] if not p.exists()]
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise OutputError("cannot create the output folder", key=key, expected="a folder that can be created",
+                          found=f"'{path}': {exc.strerror or exc}") from None
+    if missing:
+        _CREATED.append(missing[-1])
+    return path
+
+
+def refuse_wrong_type(path, key: str, *, folder: bool) -> None:
+    """Raise :class:`OutputError` if the output ``path`` exists as the wrong type: a dangling symbolic
+    link, a file where a folder goes (``folder=True``), a folder where a file goes."""
+    path = Path(path)
+    expected = "a folder (new or existing)" if folder else "a file name"
+    if path.is_symlink() and not path.exists():
+        raise OutputError("the output path is a dangling symbolic link", key=key, expected=expected,
+                          found=f"'{path}' → '{os.readlink(path)}' (does not exist)")
+    if folder and path.exists() and not path.is_dir():
+        raise OutputError("the output path is a file, not a folder", key=key, expected=expected,
+                          found=f"'{path}' (an existing file)")
+    if not folder and path.is_dir():
+        raise OutputError("the output path is a folder", key=key, expected=expected,
+                          found=f"'{path}' (an existing folder)")
+
+
+def discard_unfinished() -> list[Path]:
+    """Remove the folders :func:`created_folder` made in this run that hold no file (call when it fails);
+    returns the removed folders."""
+    removed = []
+    while _CREATED:
+        folder = _CREATED.pop()
+        if folder.is_dir() and not any(p.is_file() or p.is_symlink() for p in folder.rglob("*")):
+            shutil.rmtree(folder, ignore_errors=True)
+            removed.append(folder)
+    return removed
+
+
+def forget_created() -> None:
+    """Start a new run: the folders of an earlier (finished) run are no longer discarded."""
+    _CREATED.clear()
 
 
 def _writable(folder: Path) -> bool:

@@ -15,7 +15,7 @@ def time_history_figure(response, g: float, title: str = ""):
         fig, axes = plt.subplots(3, 1, figsize=(7.0, 6.2), sharex=True)
         t = response.t
         axes[0].plot(t, response.ground_acceleration / g, lw=0.8, color="0.3")
-        axes[0].set_ylabel("ü_g [g]")
+        axes[0].set_ylabel("ü$_g$ [g]")
         a = response.alpha
         axes[1].plot(t, response.theta / a, lw=1.0, color="C0", label="θ/α")
         for s in (1, -1):
@@ -29,9 +29,9 @@ def time_history_figure(response, g: float, title: str = ""):
             axes[1].plot(ups, np.zeros(len(ups)), "g^", ms=4, label="uplift")
         axes[1].set_ylabel("θ/α [-]")
         axes[1].legend(loc="upper right", fontsize=7, ncol=4)
-        axes[2].plot(t, response.u_B, lw=1.0, color="C1", label="u_B (column top)")
+        axes[2].plot(t, response.u_B, lw=1.0, color="C1", label=r"$u_B$ (column top)")
         if np.any(response.u_rel != 0):
-            axes[2].plot(t, response.u_rel, lw=0.8, color="C2", label="u_T − u_B (superstructure)")
+            axes[2].plot(t, response.u_rel, lw=0.8, color="C2", label=r"$u_T - u_B$ (superstructure drift)")
         axes[2].set_ylabel("displacement [m]")
         axes[2].set_xlabel("t [s]")
         axes[2].legend(loc="upper right", fontsize=7)

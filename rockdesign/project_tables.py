@@ -23,7 +23,8 @@ PROJECT_KEYS = ("name", "engineer", "checker", "job", "client", "notes")
 ANALYSIS_KEYS = ("model", "equations", "rtol", "atol", "overturn", "g", "rest_velocity", "sdmax_damping",
                  "sdmax_band", "linearization_tolerance", "restitution_variation", "margin_precision",
                  "margin_max_scale", "free_vibration", "rigid_superstructure_ratio", "scan_rtol",
-                 "overturn_probability_limit", "fragility_im", "fragility_period", "quality", "ensemble_size", "seed")
+                 "overturn_probability_limit", "fragility_im", "fragility_period", "quality", "ensemble_size", "seed",
+                 "risk_category", "acceptance")
 
 
 MODELS = ("auto", "rigid-superstructure", "podium-2dof", "block", "frame")
@@ -65,6 +66,10 @@ class AnalysisSettings:
     quality: tuple[tuple[str, str], ...] = (("design_requirements", "B"), ("test_data", "B"), ("modeling", "B"))
     ensemble_size: int = 8
     seed: int = 20090601
+    # acceptance (SPEC §14, CONTRACT §6.1; parsed by _parse_acceptance)
+    risk_category: str = "II"
+    acceptance: str = "asce7"
+    overturn_probability_limit_set: bool = False    # the project gave overturn_probability_limit (binomial limit)
 
 
 DEFAULTS = AnalysisSettings()
@@ -254,7 +259,19 @@ def _parse_analysis(data: dict, file: str) -> AnalysisSettings:
         if isinstance(t.data.get("overturn_probability_limit"), str)
         else t.number("overturn_probability_limit", default=DEFAULTS.overturn_probability_limit, low=0.0, high=1.0),
         **_parse_fragility(t),
+        **_parse_acceptance(t),
     )
+
+
+RISK_CATEGORIES = ("I", "II", "III", "IV")
+ACCEPTANCE_METHODS = ("asce7", "binomial")
+
+
+def _parse_acceptance(t: _Table) -> dict:
+    """``risk_category`` and ``acceptance`` of ``[analysis]`` (CONTRACT §6.1, docs/model.md "Verdict")."""
+    return {"risk_category": t.choice("risk_category", RISK_CATEGORIES, DEFAULTS.risk_category),
+            "acceptance": t.choice("acceptance", ACCEPTANCE_METHODS, DEFAULTS.acceptance),
+            "overturn_probability_limit_set": t.has("overturn_probability_limit")}
 
 
 def _free_vibration(t: _Table) -> float:

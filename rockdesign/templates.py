@@ -4,6 +4,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from .errors import ProjectError
+from .outdir import refuse_wrong_type
 from .paths import templates_dir
 
 KINDS = ("podium", "column", "cylinder")
@@ -25,6 +26,9 @@ def write_template(kind: str, path: Path | None = None, *, force: bool = False) 
     if out.exists() and not force:
         raise ProjectError("file exists", file=str(out), expected="a new file name (or --force to overwrite)",
                            found="an existing file")
+    refuse_wrong_type(out, "path", folder=False)
+    for parent in out.parents:      # a file or a dangling link where a folder of the path goes
+        refuse_wrong_type(parent, "path", folder=True)
     out.parent.mkdir(parents=True, exist_ok=True)
     out.write_text(text, encoding="utf-8")
     return out

@@ -29,9 +29,11 @@ from ..motions.config import default_excitation, resolve_motions
 from ..motions.measures import plausibility_warnings
 from ..motions.spectra import motion_spectrum, period_grid, sd_max
 from ..project import Project
-from .criteria import CheckContext, analysis_failed, decide, evaluate_criteria, minimum_records
-from .collapse_margin import collapse_margin, collapse_margin_criterion
-from .ensemble import ensemble_summary, record_fields, run_ensembles, verdict_basis
+from ..motions.grouping import earthquake_id, ground_motion_id
+from .acceptance import acceptance_rule, acceptance_summary, minimum_records, require_suite_size
+from .criteria import CheckContext, analysis_failed, decide, evaluate_criteria
+from .collapse_margin import collapse_margin
+from .ensemble import ensemble_summary, record_fields, run_ensembles
 from .fragility import check_fragility
 from .margins import SCAN_AFTER_FIRST, SCAN_RATIO, Margin, _scan_grid, overturning_margins
 from .polyakov import CLASS_MEANING, CLASSES, PolyakovRule, classify
@@ -39,6 +41,7 @@ from .runner import RunSummary, run_jobs
 from .selection import ModelSelection, select_model
 from .statistics import empirical_cdf, overturning_probability
 from .governing import history_records
+from .demand import governing_demand_history, superstructure_demand
 
 
 
@@ -67,12 +70,16 @@ class RecordOutcome:
     margin: Margin | None
     sensitivity_flip: bool = False
     ensemble: dict = field(default_factory=lambda: record_fields(None, 0))
+    superstructure: dict | None = None     # CONTRACT §6.2 (checks/demand.py)
+    cap_beam: dict | None = None           # frames and rigid superstructures: the cap beam's demand
+    ground_motion: str = ""     # the ground motion (station and event) the record belongs to (motions.grouping)
 
     def as_json(self) -> dict:
         r = self.run
         m = self.margin
         return {
             "id": self.id,
+            "ground_motion": self.ground_motion or self.id,
             "suite": self.suite,
             "event": self.meta.get("event"),
             "station": self.meta.get("station"),
@@ -102,6 +109,8 @@ class RecordOutcome:
             "status": r.status,
             "analysis_failed": analysis_failed(r.status),
             **self.ensemble,
+            "superstructure": self.superstructure,
+            **({} if self.cap_beam is None else {"cap_beam": self.cap_beam}),
         }
 
 
@@ -113,7 +122,8 @@ SPECTRUM_PERIODS = 160
 class CheckResult:
     """A design check: everything the report and results.json need (SI units throughout).
 
-    ``verdict`` "PASS" | "FAIL"; ``records`` one :class:`RecordOutcome` per record; ``checks`` the
+    ``verdict`` "PASS" | "FAIL" | "NOT DECIDED" (criteria.decide); ``records`` one
+    :class:`RecordOutcome` per record; ``checks`` the
     criteria with utilisation [-] and result; ``statistics`` the suite summary (P(overturn) with its
     bound, classes, margins); ``quantities`` the design quantities (value + unit); ``as_json()`` is
     results.json (= ``rockdesign check --json``).
@@ -153,6 +163,8 @@ class CheckResult:
     collapse_margin: dict | None = None    # checks/collapse_margin.py
     ensemble: dict | None = None           # checks/ensemble.py
     governing_check: str | None = None     # criterion key of the governing check (criteria.decide)
+    demand_history: tuple | None = None    # (record id, 2DOF Response) of the largest superstructure demand
+    acceptance: dict | None = None         # checks/acceptance.py: the rule, its numbers and the per-ground-motion table
 
     def as_json(self) -> dict:
         p = self.project
@@ -188,6 +200,7 @@ class CheckResult:
             "checks": self.checks,
             "settings": self.settings,
             "fragility": self.fragility, "collapse_margin": self.collapse_margin, "ensemble": self.ensemble,
+            "acceptance": self.acceptance,
         }
 
 
@@ -226,23 +239,32 @@ def _records(project: Project, q, records_dir):
         raise ProjectError("no record of the excitation could be found", file=project.path, key="excitation",
                            expected="at least one available record",
                            found="; ".join(f"{i}: {r}" for i, r, _ in resolved.missing) or "an empty suite")
+    # the acceptance rule's suite size, before any analysis (ground motions, not components)
+    gms = {ground_motion_id(r.id, r.meta) for r in resolved.records}
+    require_suite_size(acceptance_rule(project.analysis), len(gms), len(resolved.records), resolved.suites,
+                       file=project.path, key="excitation", missing=[i for i, _, _ in resolved.missing])
     return spec, resolved
 
 
 def run_check(project: Project, *, records_dir: str | None = None, margins: bool = True, progress=None,
-              executor=None) -> CheckResult:
+              executor=None, records=None, verdict_only: bool = False) -> CheckResult:
     """Run the design check of a project (see module docstring).
 
     ``progress(stage, done, total)`` is called as work proceeds (the CLI draws rich progress bars).
     ``executor``: run the analyses on the chunked executor of :mod:`rockdesign.execution.executor`
     (e.g. a dask.distributed cluster); default in-process on all cores.  Results are identical.
+    Hooks of the design grid (:mod:`rockdesign.design_space.grid`): ``records`` — the (excitation,
+    resolved records) pair of :func:`suite_records`, read and scaled once for many variants;
+    ``verdict_only`` — compute only what the verdict word and the design table need: no c_r
+    sensitivity, ensembles, report histories or engine-accuracy appendix, and, when the design-level
+    suite already decides FAIL (:func:`decided_at_design_level`), no margin scans or demand either.
     """
     system = project.system
     a = project.analysis
     q = design_quantities(system, a.rigid_superstructure_ratio)
     capacity = q["u_capacity"].value
     rule = PolyakovRule(capacity, a.sdmax_damping, tuple(a.sdmax_band))
-    spec, resolved = _records(project, q, records_dir)
+    spec, resolved = _records(project, q, records_dir) if records is None else records
     motions = [r.motion for r in resolved.records]
     n = len(motions)
     record_warnings = [w for r in resolved.records for w in plausibility_warnings(r.motion, system.g)]
@@ -270,7 +292,9 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     # incremental analyses need verdicts to 1 %, not histories to 1e-10: a looser tolerance there
     scan_kw = dict(run_kw, rtol=max(a.rtol, a.scan_rtol))
     margin_list: list[Margin | None] = [None] * n
-    if margins:
+    decided_fail = verdict_only and decided_at_design_level(acceptance_rule(a), resolved.records, runs)
+    margins_run = margins and not decided_fail
+    if margins_run:
         up = q["uplift_acceleration"].value
         uplift_factors = [up / m.pga if m.pga > 0 else a.margin_max_scale for m in motions]
         total = 0
@@ -285,7 +309,7 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     tick = stage(f"restitution sensitivity (c_r ± {100 * a.restitution_variation:g} %)", 2 * n)
     flips = [False] * n
     sens = {}
-    for j, factor in enumerate((1.0 - a.restitution_variation, 1.0 + a.restitution_variation)):
+    for j, factor in enumerate(() if verdict_only else (1.0 - a.restitution_variation, 1.0 + a.restitution_variation)):
         res = run_jobs(system, chosen, motions, [1.0] * n, restitution_factor=factor, energy_stop=True,
                        progress=(lambda d, j=j: tick(j * n + d)) if tick else None, **run_kw)
         # (same tolerance as the nominal suite run: a verdict flip must come from c_r, not from rtol)
@@ -301,37 +325,48 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
                    "verdict_flips": sum(flips), "note": "c_r ≤ 1 (capped)"}
 
     ens = None
-    if a.ensemble_size:
+    if a.ensemble_size and not verdict_only:
         ens = run_ensembles(system, chosen, motions, runs, size=a.ensemble_size, seed=a.seed,
                             progress=stage(f"perturbation ensembles ({a.ensemble_size} runs per record)",
                                            a.ensemble_size * n), **run_kw)
+    demand, caps, demand_summary, demand_runs = superstructure_demand(
+        system, chosen, motions, runs, run_kw, q["uplift_acceleration"].value,
+        stage=stage) if not decided_fail else ([None] * n, [None] * n, None, None)
     outcomes = []
     for i, (rec, (sd, t_sd), run) in enumerate(zip(resolved.records, sds, runs)):
         ratio = rule.utilisation(sd)
         outcomes.append(RecordOutcome(rec.id, rec.suite, rec.meta, rec.scale, rec.motion, rec.motion.pga, sd, t_sd,
                                       ratio, rule.predicted_scale(sd), run,
                                       classify(ratio, run.u_B_max_over_capacity, run.overturned), margin_list[i],
-                                      flips[i], record_fields(ens, i)))
+                                      flips[i], record_fields(ens, i), demand[i], caps[i],
+                                      ground_motion_id(rec.id, rec.meta)))
     valid = [o for o in outcomes if not analysis_failed(o.run.status)]
-    stats = _statistics(valid, a, margins)
+    stats = _statistics(valid, a, margins_run)
     stats["n_failed"] = n - len(valid)
-    stats["min_records_for_bound"] = minimum_records(a.overturn_probability_limit)
+    acc_rule = acceptance_rule(a)
+    stats["n_ground_motions"] = len({o.ground_motion for o in outcomes})
+    stats["n_earthquakes"] = len({e for e in (earthquake_id(o.meta) for o in outcomes) if e}) or None
+    stats["min_records_for_bound"] = minimum_records(acc_rule.binomial_limit)
+    stats["superstructure"] = demand_summary
     ens_json = ens and ensemble_summary([o.id for o in outcomes], ens, size=a.ensemble_size, seed=a.seed,
                                         rtol=a.rtol, atol=a.atol, nominal_overturned=stats["n_overturned"])
     stats["p_overturn_ensemble"] = ens_json["p_overturn"] if ens_json else None
     fragility = check_fragility(valid, a, empirical=(stats["n_overturned"], len(valid)), stripe_ratio=SCAN_RATIO)
-    margin_fema = collapse_margin(fragility, dict(a.quality))
-    extra = {"ensemble": ens, "collapse_margin": margin_fema, "verdict_basis": verdict_basis(stats)}
-    items, skipped = evaluate_criteria(CheckContext(outcomes, a, q, sensitivity, margins, extra))
-    decision = decide(items, skipped)
+    margin_fema = collapse_margin(fragility, dict(a.quality), acc_rule.target)
+    extra = {"ensemble": ens, "collapse_margin": margin_fema}
+    items, skipped = evaluate_criteria(CheckContext(outcomes, a, q, sensitivity, margins_run, extra, acc_rule))
+    decision = decide(items, skipped, acc_rule)
+    acceptance = acceptance_summary(acc_rule, items, decision, valid, margin_fema)
     checks = [i.as_json() for i in items]
     checks.sort(key=lambda c: (not c["governs_verdict"], -c["utilisation"]))
     verdict = decision.verdict
     histories = {}
-    for o in (valid[i] for i in history_records([o.run.theta_max_over_theta_c for o in valid])):
+    for o in (valid[i] for i in ([] if verdict_only else
+                                 history_records([o.run.theta_max_over_theta_c for o in valid]))):
         histories[o.id] = simulate(system, o.motion, model=chosen.equations, structure=chosen.structure, rtol=a.rtol,
                                    atol=a.atol, t_end=o.motion.duration + a.free_vibration, overturn=a.overturn,
                                    rest_velocity=a.rest_velocity)
+    demand_history = None if verdict_only else governing_demand_history(system, outcomes, chosen, a)
     settings = {"rtol": a.rtol, "atol": a.atol, "overturn_criterion": a.overturn, "g": system.g,
                 "rest_velocity": a.rest_velocity, "free_vibration": a.free_vibration,
                 "linearization_tolerance": a.linearization_tolerance, "margin_precision": a.margin_precision,
@@ -341,20 +376,44 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
                 "overturn_probability_limit": a.overturn_probability_limit,
                 "rigid_superstructure_ratio": a.rigid_superstructure_ratio,
                 "scale_basis": "overturn_scale and polyakov_scale multiply the design-level (scaled) record"}
+    if verdict_only:
+        settings["decided_at_design_level"] = decided_fail
     if at_critical_curvature(system) and "R_hat" in q:
         settings["equivalent_block"] = (
             f"ρ = ρc: to linear order and up to the first impact the columns respond like flat-based blocks of "
             f"size R̂ = {q['R_hat'].value:.4g} m ({q['R_hat'].equation}); not used as a substitute model because "
             "impacts differ (c_r) — the curved column itself is analysed (docs/model.md §3)")
     # the engine's error against a closed form at the tolerance used (report appendix)
-    acc = engine_accuracy(a.rtol, a.atol)
-    settings["engine_accuracy"] = {k: v for k, v in acc.items() if k != "seconds"}
+    if not verdict_only:
+        acc = engine_accuracy(a.rtol, a.atol)
+        settings["engine_accuracy"] = {k: v for k, v in acc.items() if k != "seconds"}
     intensity = {"design_pga": spec.design_pga, "intensity_analysed": resolved.scale_description,
                  "record_warnings": record_warnings}
     return CheckResult(project, q, rule, selection, outcomes, resolved.missing, resolved.scale_description,
                        resolved.default_used or spec.default_used, resolved.suites, stats, checks, verdict, histories,
                        sensitivity, settings, decision.reason, decision.robust, intensity, fragility, margin_fema,
-                       ens_json, decision.governing)
+                       ens_json, decision.governing, demand_history, acceptance)
+
+
+def suite_records(project: Project, records_dir: str | None = None):
+    """(excitation spec, resolved records) of a project as :func:`run_check` analyses them (its
+    ``records`` hook): the records read and scaled once, e.g. for every variant of a design grid."""
+    q = design_quantities(project.system, project.analysis.rigid_superstructure_ratio)
+    return _records(project, q, records_dir)
+
+
+def decided_at_design_level(rule, records, runs) -> bool:
+    """True when the design-level suite alone already makes the verdict FAIL, whatever the incremental
+    analyses would add (SPEC §15): an analysis failed (never counted as safe), or the count rule of
+    the acceptance method fails (ASCE 7-22 §16.4.1.1 count, or the binomial bound at the design level).
+    The margins can only add failing criteria, never remove one, so the word cannot change."""
+    if any(analysis_failed(r.status) for r in runs):
+        return True
+    from types import SimpleNamespace
+    from .acceptance import count_rule
+    rows = [SimpleNamespace(id=rec.id, ground_motion=ground_motion_id(rec.id, rec.meta)) for rec in records]
+    holds = count_rule(rule, rows, {rec.id for rec, r in zip(records, runs) if r.overturned})[0]
+    return not holds
 
 
 def _finish_compilation(stage) -> None:

@@ -38,7 +38,8 @@ from ..motions.motion import record_motion
 from ..motions.pairs import suite_pairs
 from ..motions.spectra import sd_max_of_samples
 from ..systems import Column, RockingSystem
-from .criteria import CheckContext, decide, evaluate_criteria, minimum_records
+from .acceptance import minimum_records
+from .criteria import CheckContext, decide, evaluate_criteria
 from .cylinder_criteria import CYLINDER_CRITERIA
 from .cylinder_margins import pair_margins
 from .ensemble import AMPLITUDE_VARIATION, TOLERANCE_FACTOR, perturbations
@@ -338,10 +339,16 @@ def run_cylinder_check(project, progress=None, margins: bool = True) -> Cylinder
                                decision.robust, decision.governing, ensemble_json)
 
 
+MAX_HISTORIES = 8
+"""At most this many time histories in the report (every overturning pair up to it)."""
+
+
 def governing_ids(data: dict, n: int = GOVERNING_PAIRS) -> list[str]:
-    """Ids of the ``n`` pairs with the largest 3D θ_max/α (overturned pairs first; stable order)."""
+    """Ids of the pairs whose histories the report shows: every overturning pair (up to MAX_HISTORIES),
+    at least ``n`` pairs, by decreasing 3D θ_max/α (overturned pairs first; stable order)."""
     rows = sorted(data["records"], key=lambda r: (not r["overturned"], -r["theta_max_over_alpha"]))
-    return [r["id"] for r in rows[:n]]
+    count = min(max(n, sum(r["overturned"] for r in rows)), MAX_HISTORIES)
+    return [r["id"] for r in rows[:count]]
 
 
 def cylinder_check(project, progress=None, margins: bool = True) -> CylinderCheckResult:

@@ -1,40 +1,114 @@
 """The criteria of a cylinder's check (thesis Ch. 5), in the terms of :mod:`rockdesign.checks.criteria`.
 
-The governing criteria are the planar check's own — every analysis completed, and the one-sided 95 %
-bound of P(overturn) within the limit — read from the typed pair outcomes of
+The governing criteria are every analysis completed, the one-sided 95 % bound of P(overturn) over the
+record pairs (each pair one ground motion) within the limit, and the same bound over the pairs that
+overturn at some intensity up to the design level — read from the typed pair outcomes of
 :mod:`rockdesign.checks.cylinder_check`; the cylinder adds its overturning criterion's words (θ reaching
 θ_ot), its perturbation ensemble (no c_r: the 3D model has no impact law) and two informative checks
 (does a planar analysis suffice; Polyakov's rule 2 per component).
 """
 from __future__ import annotations
 
-import dataclasses
 import math
 import statistics
 
-from .criteria import (GOVERNS, INFORMATIVE, ROBUSTNESS, AnalysesCompleted, Criterion, IncrementalMargin,
-                       OverturningProbability, probability_bound)
+from .acceptance import minimum_records, probability_bound
+from .criterion_base import GOVERNS, INFORMATIVE, ROBUSTNESS, Criterion
+from .criteria import AnalysesCompleted
 
 
 def _pct(x: float) -> str:
     return f"{100 * x:g} %"
 
 
-class CylinderOverturning(OverturningProbability):
-    """P(overturn) of the 3D cylinder at the design level ≤ limit at 95 % one-sided confidence."""
+class CylinderOverturning(Criterion):
+    """P(overturn) of the 3D cylinder at the design level ≤ limit at 95 % one-sided confidence over the
+    record pairs (Clopper & Pearson 1934 exact binomial bound)."""
 
+    key = "overturning_probability"
     role = GOVERNS
     source = ("thesis Sec 5.5.1 (θ reaching θ_ot = overturn_tilt·α) and Ch. 6–7 (suite statistics); "
               "Clopper & Pearson (1934) exact binomial bound")
 
     def evaluate(self, ctx):
-        item = super().evaluate(ctx)
+        limit = ctx.analysis.overturn_probability_limit
+        valid = ctx.valid
+        n, k = len(valid), sum(o.run.overturned for o in valid)
+        upper = probability_bound(k, n)
+        n_min = minimum_records(limit)
         tilt = ctx.extra["cylinder"].overturn_tilt
-        name = (f"RHA (3D): P(overturn) ≤ {_pct(ctx.analysis.overturn_probability_limit)} at 95 % confidence "
+        name = (f"RHA (3D): P(overturn) ≤ {_pct(limit)} at 95 % confidence "
                 f"(θ reaching θ_ot = {tilt:g}α counts as overturning)")
-        return dataclasses.replace(item, name=name, source=self.source,
-                                   verdict_reason=item.verdict_reason.replace("records", "record pairs"),
-                                   detail=item.detail.replace("records", "record pairs"))
+        util = upper / limit if limit > 0 else math.inf
+        passed = upper <= limit
+        need = f"needs ≥ {n_min} record pairs" if n_min else "no suite can show it"
+        detail = (f"{k} of {n} record pairs overturn at the design level; one-sided 95 % upper bound {upper:.3g} "
+                  f"(= upper end of the two-sided 90 % interval); {need}")
+        if passed:
+            reason = f"{k} of {n} record pairs overturn at the design level (P ≤ {upper:.3g} at 95 % confidence)"
+        else:
+            parts = []
+            if k:
+                ids = ", ".join(o.id for o in valid if o.run.overturned)
+                parts.append(f"{k} of {n} record pairs overturn at the design level ({ids})")
+            if n_min is None or n < n_min:
+                parts.append(f"{n} record pairs cannot show P(overturn) ≤ {_pct(limit)} at 95 % confidence "
+                             f"(the bound {upper:.3g}; {need})")
+            reason = "; ".join(parts)
+        return self.item(util, passed, detail, reason, name=name)
+
+
+class CylinderIncrementalMargin(Criterion):
+    """No more pairs overturning at any intensity up to the design level than the suite bound allows
+    (responses are not monotonic)."""
+
+    key = "incremental_margin"
+    role = GOVERNS
+    name = "RHA incremental: P(overturn at some intensity ≤ design) within the limit"
+    source = ("thesis Sec 2.2 (Zhang & Makris 2001: safe, overturn, safe again as the amplitude grows); "
+              "incremental dynamic analysis (Vamvatsikos & Cornell 2002)")
+
+    def applies(self, ctx):
+        return ctx.margins_run
+
+    def evaluate(self, ctx):
+        limit = ctx.analysis.overturn_probability_limit
+        valid = ctx.valid
+        below = []      # (factor, id) of pairs overturning at some factor ≤ 1
+        failed_scan = []
+        for o in valid:
+            m = o.margin
+            if m is None:
+                continue
+            if getattr(m, "failed_scales", None) and min(m.failed_scales) <= 1.0:
+                failed_scan.append((min(m.failed_scales), o.id))
+            if m.overturn_scale is not None and m.overturn_scale <= 1.0:
+                below.append((m.overturn_scale, o.id))
+            elif o.run.overturned:
+                below.append((1.0, o.id))
+        below.sort()
+        n, k = len(valid), len(below)
+        upper = probability_bound(k, n)
+        util = upper / limit if limit > 0 else math.inf
+        passed = upper <= limit and not failed_scan
+        listing = ", ".join(f"{i} at {f:.3g}×" for f, i in below)
+        detail = (f"{k} of {n} records overturn at some intensity up to the design level"
+                  + (f" ({listing})" if below else "") + f"; one-sided 95 % bound {upper:.3g}")
+        if failed_scan:
+            detail += "; incremental analyses failed: " + ", ".join(f"{i} at {f:.3g}×" for f, i in failed_scan)
+        if passed:
+            reason = f"no intensity up to the design level overturns more than the suite bound allows ({k} of {n})"
+        elif below and below[0][0] < 1.0:
+            f, rid = below[0]
+            reason = f"overturning at {f:.2g}× design ({rid}" + (f" and {k - 1} more)" if k > 1 else ")")
+        elif below:
+            reason = f"{k} of {n} records overturn at or below the design level"
+        else:
+            reason = "incremental analyses failed below the design level (" + ", ".join(
+                f"{i} at {f:.3g}×" for f, i in failed_scan) + ")"
+        if failed_scan and below:
+            reason += "; incremental analyses failed for " + ", ".join(i for _, i in failed_scan)
+        return self.item(util, passed, detail, reason)
 
 
 class CylinderEnsembleRobustness(Criterion):
@@ -110,6 +184,6 @@ class PolyakovPerComponent(Criterion):
                          f"median SD_max/2B = {median:.3g}")
 
 
-CYLINDER_CRITERIA: list[type[Criterion]] = [AnalysesCompleted, CylinderOverturning, IncrementalMargin,
+CYLINDER_CRITERIA: list[type[Criterion]] = [AnalysesCompleted, CylinderOverturning, CylinderIncrementalMargin,
                                             CylinderEnsembleRobustness, PlanarSuffices, PolyakovPerComponent]
 """The criteria of a cylinder's check in evaluation order (:func:`~rockdesign.checks.criteria.evaluate_criteria`)."""

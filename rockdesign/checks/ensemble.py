@@ -82,14 +82,3 @@ def record_fields(ensemble: dict | None, index: int) -> dict:
         return {"ensemble_overturn_fraction": None, "outcome_robust": None}
     return {"ensemble_overturn_fraction": float(ensemble["fractions"][index]),
             "outcome_robust": bool(ensemble["robust"][index])}
-
-
-def verdict_basis(stats: dict) -> str:
-    """Which P(overturn) estimate the statistical verdict uses, and why (appended to its detail)."""
-    text = ("estimate used: the fraction of records overturning in the nominal analysis with its exact "
-            "Clopper–Pearson bound, since the records are the independent trials of a binomial model")
-    pe = stats.get("p_overturn_ensemble")
-    if pe is not None:
-        text += (f"; the perturbation-ensemble mean {pe:.3g} is reported beside it, not used: runs of one record "
-                 "are not independent trials, so it has no exact bound")
-    return text + "; the fragility fit's value at the design level assumes a lognormal shape (reported, not used)"

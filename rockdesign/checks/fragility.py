@@ -29,6 +29,7 @@ import numpy as np
 from scipy import optimize, stats
 from scipy.special import log_ndtr
 
+from .acceptance import first_overturn_scale
 from .statistics import overturning_probability
 
 IMS = ("pga", "sa", "sdmax")
@@ -281,13 +282,15 @@ def record_intensities(outcomes, im: str, period: float | None) -> list[float]:
 
 def check_fragility(outcomes, analysis, *, empirical: tuple[int, int], stripe_ratio: float) -> dict | None:
     """:func:`fragility_analysis` of a check's records (None without incremental analysis); the design
-    intensity is the median IM of the design-level records (= the design PGA for PGA scaling)."""
+    intensity is the median IM of the design-level records (= the design PGA for PGA scaling).  Each
+    record's capacity is its *first* overturning intensity: the incremental analysis's lowest
+    overturning factor, or the design level when the design-level analysis overturned below it."""
     if not outcomes or any(o.margin is None for o in outcomes):
         return None     # no incremental analysis, or no completed analysis to fit
     im = analysis.fragility_im
     period = analysis.fragility_period if im == "sa" else None
     ims = record_intensities(outcomes, im, period)
-    return fragility_analysis([o.id for o in outcomes], [o.margin.overturn_scale for o in outcomes],
+    return fragility_analysis([o.id for o in outcomes], [first_overturn_scale(o) for o in outcomes],
                               [o.margin.intervals for o in outcomes], [o.margin.scanned_up_to for o in outcomes],
                               ims, im=im, unit=IM_UNITS[im], design_intensity=float(np.median(ims)),
                               empirical=empirical, stripe_ratio=stripe_ratio, seed=analysis.seed, period=period)

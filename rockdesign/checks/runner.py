@@ -9,9 +9,10 @@ import numpy as np
 
 from ..design.geometry import displacement_capacity, slenderness_angle
 from ..dynamics.batch import batch_options, run_batch
-from ..dynamics.layout import D_STATUS, STATUS_NAMES, S_IMPACTS, S_THETA_MAX, S_T_END, S_T_UPLIFT, S_UB_MAX, S_UPLIFT_TIME
+from ..dynamics.layout import (D_STATUS, STATUS_NAMES, S_CAP_ACC_MAX, S_CAP_DV_MAX, S_DRIFT_MAX, S_FS_MAX, S_IMPACTS,
+                                S_THETA_MAX, S_T_END, S_T_UPLIFT, S_UB_MAX, S_UPLIFT_TIME)
 from ..dynamics.model import ModelChoice, system_parameters
-from ..dynamics.eom import P_CR, P_THETA_C
+from ..dynamics.eom import P_CR, P_THETA_C, P_TWO_DOF
 from ..dynamics.overturning import classify
 from ..execution.executor import usable_cores
 from ..systems import RockingSystem
@@ -34,11 +35,19 @@ class RunSummary:
     impacts_before_overturn: int | None
     status: str
     t_end: float                # time the analysis ended [s] (early when it overturned or stopped)
+    # superstructure demand (SPEC §13): 2DOF podium — peak absolute acceleration |f_s| [m/s²] and peak drift
+    # |u_T − u_B| [m]; rigid masses — the cap beam's peak acceleration between impacts [m/s²] and largest
+    # velocity jump at an impact [m/s]; None where the model has no such quantity
+    superstructure_acceleration_max: float | None = None
+    drift_max: float | None = None
+    cap_acceleration_max: float | None = None
+    cap_velocity_jump_max: float | None = None
 
 
 def interpret(summary: np.ndarray, status: int, theta_c: float, alpha: float, capacity: float,
-              criterion: str) -> RunSummary:
-    """Turn an engine summary row into a :class:`RunSummary` (same rules as ``simulate``)."""
+              criterion: str, two_dof: bool = False) -> RunSummary:
+    """Turn an engine summary row into a :class:`RunSummary` (same rules as ``simulate``); ``two_dof``: the
+    row is the 2DOF podium's (its superstructure demand is read, else the cap beam's)."""
     theta_max = float(summary[S_THETA_MAX])
     outcome = classify(summary, theta_c, criterion)
     mode, overturned, before = outcome.mode, outcome.overturned, outcome.impacts_before
@@ -46,7 +55,17 @@ def interpret(summary: np.ndarray, status: int, theta_c: float, alpha: float, ca
     return RunSummary(theta_max, theta_max / alpha, theta_max / theta_c, float(summary[S_UB_MAX]),
                       float(summary[S_UB_MAX]) / capacity, int(summary[S_IMPACTS]),
                       None if math.isnan(t_up) else t_up, float(summary[S_UPLIFT_TIME]), mode, bool(overturned),
-                      before, STATUS_NAMES[int(status)], float(summary[S_T_END]))
+                      before, STATUS_NAMES[int(status)], float(summary[S_T_END]),
+                      float(summary[S_FS_MAX]) if two_dof else None, float(summary[S_DRIFT_MAX]) if two_dof else None,
+                      None if two_dof else float(summary[S_CAP_ACC_MAX]),
+                      None if two_dof else float(summary[S_CAP_DV_MAX]))
+
+
+class AnalysisCount:
+    """Analyses (record × scale jobs) :func:`run_jobs` has run in this process: the design grid reads the
+    difference around a variant to report what it ran and what its shared work saved."""
+
+    total = 0
 
 
 def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rtol: float, atol: float,
@@ -59,8 +78,9 @@ def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rto
     studies.  ``progress(n_done)`` is called after each chunk.  With an ``executor`` (the chunked
     executor of :mod:`rockdesign.execution.executor`, e.g. a dask.distributed cluster) the jobs run
     there in chunks; the results are identical to the in-process run.  ``costs``: a predicted cost per
-    job (e.g. the seconds of record a similar analysis ran), to balance the cores (:func:`balanced_order`;
-    default the end times); it changes the order the jobs run in, never their results.
+    job (e.g. the seconds of record a similar analysis ran): the longest run first, so the cores finish
+    together (:func:`balanced_order`; default the end times); it changes the order the jobs run in, never
+    their results.
     """
     sp = system_parameters(system, choice, rest_velocity=rest_velocity)
     if restitution_factor != 1.0:
@@ -68,9 +88,11 @@ def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rto
         sp[P_CR] = min(1.0, sp[P_CR] * restitution_factor)
     opts = batch_options(rtol, atol, energy_stop=energy_stop, stop_at_capacity=stop_at_capacity)
     theta_c = float(sp[P_THETA_C])
+    two_dof = bool(sp[P_TWO_DOF] != 0.0)
     alpha = slenderness_angle(system.column.half_width, system.column.half_height)
     capacity = displacement_capacity(system.column)
     n = len(motions)
+    AnalysisCount.total += n
     t_ends = [m.duration + free_vibration for m in motions]
     out: list[RunSummary] = []
     step = chunk or max(4 * usable_cores(), 8)
@@ -85,8 +107,9 @@ def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rto
 
         summaries, diags = run_motions(sp, list(motions), list(scales), t_ends, opts, executor=executor,
                                        chunk_jobs=step, progress=on_chunk)
-        return [interpret(summaries[j], diags[j, D_STATUS], theta_c, alpha, capacity, criterion) for j in range(n)]
-    threads = numba.get_num_threads()     # the parallel loop's threads, one block of jobs each
+        return [interpret(summaries[j], diags[j, D_STATUS], theta_c, alpha, capacity, criterion, two_dof)
+                for j in range(n)]
+    threads = numba.get_num_threads()     # the batch driver's threads
     predicted = list(t_ends if costs is None else costs)
     for start in range(0, n, step):
         sl = slice(start, min(n, start + step))
@@ -96,7 +119,7 @@ def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rto
                                      opts)
         rows = [None] * len(order)
         for j, k in enumerate(order):
-            rows[k] = interpret(summaries[j], diags[j, D_STATUS], theta_c, alpha, capacity, criterion)
+            rows[k] = interpret(summaries[j], diags[j, D_STATUS], theta_c, alpha, capacity, criterion, two_dof)
         out.extend(rows)
         if progress is not None:
             progress(len(out))
@@ -104,18 +127,11 @@ def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rto
 
 
 def balanced_order(costs, threads: int) -> list[int]:
-    """An order of jobs for the batch kernel's parallel loop, which gives each of ``threads`` threads one
-    contiguous block of the jobs (equal counts): the blocks get near-equal sums of predicted ``costs``
-    (longest first, each to the block with the least so far that still has room).  Without it a block
-    of long analyses keeps one core busy while the other waits (docs/engine.md, "Speed")."""
+    """The order to hand a batch's jobs to the batch driver's threads: longest predicted ``costs`` first
+    (ties in job order).  The threads take the next job as they finish one (:mod:`rockdesign.dynamics.scheduling`),
+    so the batch ends at most one short job after its work is shared out — longest-processing-time-first
+    list scheduling, within 4/3 of the best split.  One thread keeps the jobs' own order."""
     n = len(costs)
     if threads < 2 or n < 2:
         return list(range(n))
-    size = [n // threads + (1 if b < n % threads else 0) for b in range(threads)]
-    blocks: list[list[int]] = [[] for _ in range(threads)]
-    load = [0.0] * threads
-    for k in sorted(range(n), key=lambda k: (-costs[k], k)):
-        b = min((b for b in range(threads) if len(blocks[b]) < size[b]), key=lambda b: (load[b], b))
-        blocks[b].append(k)
-        load[b] += costs[k]
-    return [k for block in blocks for k in sorted(block)]
+    return sorted(range(n), key=lambda k: (-costs[k], k))

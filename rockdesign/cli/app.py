@@ -17,18 +17,20 @@ from pathlib import Path
 from typing import Optional
 
 import typer
-from rich.console import Console
 from rich.markup import escape
 
 from .. import __version__
+from ..console import make_console
 from ..errors import RockdesignError
+from .. import discard_unfinished, forget_created
+from .inputs import OptionsOnce
 
-app = typer.Typer(add_completion=False, no_args_is_help=True,
+app = typer.Typer(cls=OptionsOnce, add_completion=False, no_args_is_help=True,
                   help="Design checks for rocking columns, rocking frames and rocking podium buildings.")
-err_console = Console(stderr=True)
+err_console = make_console(stderr=True)
 FLAG = " "
 """metavar of on/off options (typer would print "<bool>" after them in --help)."""
-console = Console()
+console = make_console()
 
 
 INTERRUPTED = 130
@@ -62,6 +64,19 @@ def handle_errors(func):
     """Convert user-input errors to a clean message and exit code 2; Ctrl-C to one line and exit 130; any
     other exception (a bug) to its traceback, one line saying so and exit code 3 (never 1, which means FAIL)."""
 
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        forget_created()
+        try:
+            return func(*args, **kwargs)
+        except BaseException as exc:   # a failed run leaves no empty output folder (outdir.created_folder)
+            if getattr(exc, "exit_code", getattr(exc, "code", 1)) not in (0, None):
+                discard_unfinished()
+            raise
+    return _report_errors(wrapper)
+
+
+def _report_errors(func):
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
         try:
@@ -167,6 +182,7 @@ def simulate(project: Path = typer.Argument(..., help="Project file (TOML)"),
         result.write_csv(csv)
     if plot:
         result.write_figure(plot)
+        err_console.print(f"wrote {plot}", highlight=False, soft_wrap=True)
     if as_json:
         sys.stdout.write(json.dumps(result.as_json(), indent=2) + "\n")
     else:
@@ -181,11 +197,12 @@ def simulate(project: Path = typer.Argument(..., help="Project file (TOML)"),
 def _mount_command_modules():
     """Mount the commands that live in their own modules (records, check, spectrum, bench)."""
     from . import bench as cli_bench, check as cli_check, experiments as cli_experiments, spectrum as cli_spectrum
+    from . import design as cli_design
     from .records import app as records_app
     for command in records_app.registered_commands:
         command.callback = handle_errors(command.callback)
     app.add_typer(records_app, name="records", help="Ground-motion tools: list, show, spectrum, synth.")
-    for module in (cli_check, cli_spectrum, cli_bench, cli_experiments):
+    for module in (cli_check, cli_spectrum, cli_bench, cli_experiments, cli_design):
         module.register(app, handle_errors)
 
 

@@ -17,6 +17,7 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
+from ..console import make_console
 from ..errors import RockdesignError
 
 
@@ -25,7 +26,7 @@ class BenchError(RockdesignError):
 
 
 def _console() -> Console:
-    console = Console(highlight=False, soft_wrap=True)
+    console = make_console(highlight=False, soft_wrap=True)
     if not console.is_terminal:
         console.width = 160
     return console
@@ -148,7 +149,7 @@ def register(app: typer.Typer, handle_errors) -> None:
         output_folder(out, "--out")
         if docs is not None:
             output_folder(docs, "--docs")
-        err = Console(stderr=True, highlight=False, soft_wrap=True)
+        err = make_console(stderr=True, highlight=False, soft_wrap=True)
         from .inputs import compile_kernels
         compile_kernels("bench")      # (every point's first run is untimed anyway: this is for the screen)
         progress = (lambda line: err.print(line, markup=False)) if verbose else None

@@ -7,7 +7,8 @@ from pathlib import Path
 from typing import Optional
 
 import typer
-from rich.console import Console
+
+from ..console import make_console
 
 
 def register(app: typer.Typer, handle_errors) -> None:
@@ -23,7 +24,8 @@ def register(app: typer.Typer, handle_errors) -> None:
               dask: Optional[str] = typer.Option(None, "--dask", help="Run the analyses on dask.distributed: "
                                                  "'local:N' (a local cluster of N workers) or a scheduler address.")):
         """Polyakov design check over record suites, with a PDF calculation report (exit 0 = PASS,
-        1 = FAIL, 2 = input error or failed analyses, 130 = interrupted)."""
+        1 = FAIL, 2 = input error or failed analyses, 4 = not decided: a governing criterion was not
+        evaluated, e.g. --no-margins; 130 = interrupted)."""
         # a second process loads WeasyPrint on the core this one leaves idle while it starts, and writes
         # the PDF at the end (report.pdf_worker)
         from .. import library as rd      # (lazy: mounting the commands loads no numerical library)
@@ -44,24 +46,30 @@ def _check(rd, project, out, as_json, no_pdf, html, no_margins, records_dir, das
     folder = rd.check_output_folder(proj, out if out is not None else Path(f"{Path(project).stem}_check"),
                                     key="-o/--out")
     with folder.locked():   # before the analyses: a file, a read-only or busy folder stops here (exit 2)
-        rd.prepare_check(proj, records_dir=records_dir, say=Console(stderr=True).print, report=not no_pdf,
+        rd.prepare_check(proj, records_dir=records_dir, say=make_console(stderr=True).print, report=not no_pdf,
                          pdf_in_process=pdf_worker is None)
         result = rd.run_check(proj, records_dir=records_dir, margins=not no_margins,
-                              progress=not as_json or Console(stderr=True).is_terminal, executor=dask)
+                              progress=not as_json or make_console(stderr=True).is_terminal, executor=dask)
         _report(rd.write_report, result, folder, no_pdf, html, pdf_worker)
     data = result.as_json()
     if as_json:
         sys.stdout.write(rd.json_text(data))
     else:
-        check_summary(data, folder.target, Console())
+        check_summary(data, folder.target, make_console())
     # failed analyses: the check is incomplete (exit 2), whatever the other records say
-    raise typer.Exit(2 if data.get("failed_records") else 0 if data["verdict"] == "PASS" else 1)
+    raise typer.Exit(2 if data.get("failed_records") else _exit_code(data["verdict"]))
+
+
+def _exit_code(verdict: str) -> int:
+    """0 PASS, 1 FAIL, 4 not decided (a governing criterion was not evaluated; CONTRACT §6.1)."""
+    return {"PASS": 0, "FAIL": 1}.get(verdict, 4)
 
 
 def _report(write_report, result, folder, no_pdf: bool, html: bool, pdf_worker=None) -> None:
-    """Write the output folder (results.json/csv and the report), with a spinner on a terminal: the
-    figures and the PDF take seconds after the analyses' progress bars have ended."""
+    """Write the output folder (results.json/csv and the report), with a spinner on a terminal (plain lines
+    elsewhere): the figures and the PDF take seconds after the analyses' progress bars have ended."""
     what = ("results and calculation report (figures, PDF)" if not no_pdf
             else "results and HTML report" if html else "results")
-    with Console(stderr=True).status(f"writing the {what}"):
+    from .. import working
+    with working(f"writing the {what}"):
         write_report(result, folder, pdf=not no_pdf, html=html or not no_pdf, pdf_worker=pdf_worker)

@@ -5,6 +5,12 @@ import json
 import sys
 from pathlib import Path
 
+PLANAR_ONLY = {"pulse": "--pulse", "dask": "--dask", "model": "--model", "structure": "--structure",
+               "overturn": "--overturn", "t_free": "--t-free", "rtol": "--rtol", "tm_ratio": "--tm-ratio",
+               "chunk_rows": "--chunk-rows", "resume": "--resume/--no-resume", "keep_chunks": "--keep-chunks",
+               "energy_stop": "--energy-stop/--no-energy-stop", "stop_at_capacity": "--stop-at-capacity",
+               "polyakov": "--polyakov/--no-polyakov", "equivalent_at": "--equivalent-at", "quiet": "--quiet"}
+"""Options of ``spectrum`` that a cylinder's spectrum does not use (refused when given)."""
 
 
 def cylinder_spectrum_command(project, project_path, record, x, y, relative, out, as_json, figures, console) -> None:
@@ -27,6 +33,9 @@ def cylinder_spectrum_command(project, project_path, record, x, y, relative, out
     if other is not None and spectrum_excitation(other) != "record pair":
         raise CylinderSpectrumError("a relative cylinder spectrum needs a second cylinder", key="--relative",
                                     expected="a [cylinder] project", found=f"a {other.system.kind}")
+    out_dir = Path(out) if out is not None else Path(f"{Path(project_path).stem}-spectrum-{pair.name.replace('/', '-')}")
+    from .. import created_folder
+    created_folder(out_dir, "-o/--out")         # before any work (removed again if the run fails)
     from .inputs import compile_kernels
     compile_kernels("cylinder-spectrum")
     from .. import progress_bars
@@ -40,7 +49,6 @@ def cylinder_spectrum_command(project, project_path, record, x, y, relative, out
                                     free_vibration=other.analysis.free_vibration,
                                     rest_velocity=other.analysis.rest_velocity,
                                     progress=lambda done, n: bars(f"reference ({other.name})", done, n))
-    out_dir = Path(out) if out is not None else Path(f"{Path(project_path).stem}-spectrum-{pair.name.replace('/', '-')}")
     summary = write_cylinder_spectrum(out_dir, spec, ref, project_name=project.name, record_text=text,
                                       relative=relative, overturn_tilt=cyl.overturn_tilt, figures=figures)
     if as_json:

@@ -15,9 +15,11 @@ from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
+from ..console import make_console
+
 
 def _console() -> Console:
-    console = Console(highlight=False, markup=False, soft_wrap=True)
+    console = make_console(highlight=False, markup=False, soft_wrap=True)
     if not console.is_terminal:
         console.width = 160
     return console
@@ -77,6 +79,10 @@ def validation_tables(data: dict, console: Console) -> None:
                   f"p_o = {data['p_overturn_analyses']:.3f}; Kolmogorov distance {data['kolmogorov_distance']:.3f}"
                   + (f" (measured c_r: {data['kolmogorov_distance_measured_cr']:.3f})"
                      if "kolmogorov_distance_measured_cr" in data else ""))
+    console.print(f"model runs paired with the tests by {data['model_pairing']}"
+                  + {"id": "", "row": " (no ids in both files: row k with row k)",
+                     "all": " (no ids in both files and different numbers of runs: the whole model sample)"}
+                  [data["model_pairing"]])
     console.print(f"DKW band half-width on the test CDF: {data['dkw_epsilon']['90%']:.3f} (90 %), "
                   f"{data['dkw_epsilon']['95%']:.3f} (95 %)")
     for key, title, stat in (("proportions", "test of equal proportions of overturning (Sec 7.2.1)", "p_D1 − p_other"),
@@ -94,6 +100,9 @@ def scale_model_command(record_id: str, length_ratio: float, table: Optional[str
     """Body of ``records scale-model`` (the motion already loaded): returns the exit code (1 = a limit exceeded)."""
     from ..errors import MotionError
     from .. import parse_limits, scale_record, write_at2
+    from .inputs import FIGURE_SUFFIXES, output_file
+    output_file(out, "-o/--out")
+    output_file(plot, "--plot", FIGURE_SUFFIXES)
     limits = parse_limits(table, gravity)
     corners = None
     if band:
@@ -152,6 +161,8 @@ def register(app: typer.Typer, handle_errors) -> None:
         from .. import calibrate as run, simulated_history
         from .. import read_tilt_csv
         from ..library import load_project
+        from .inputs import FIGURE_SUFFIXES, output_file
+        output_file(plot, "--plot", FIGURE_SUFFIXES)
         proj = load_project(project)
         history = read_tilt_csv(free_vibration)
         cal = run(proj.system, history, max_half_cycles=half_cycles, min_amplitude=min_amplitude)
@@ -187,6 +198,10 @@ def register(app: typer.Typer, handle_errors) -> None:
                  plot: Optional[Path] = typer.Option(None, "--plot", help="Write the CDF figure (png/svg/pdf).")):
         """Compare test and model statistics of θ_max/α (thesis Ch. 7: Eq 7.1, Tables 7.2, 7.3)."""
         from .. import read_results_csv, validate as run
+        from .inputs import FIGURE_SUFFIXES, output_file, output_folder
+        if out is not None:
+            output_folder(out, "-o/--out")
+        output_file(plot, "--plot", FIGURE_SUFFIXES)
         result = run(read_results_csv(tests, "tests"), read_results_csv(analyses, "analyses"),
                      read_results_csv(measured, "analyses_measured_cr") if measured else None, seed=seed)
         data = result.as_json()
@@ -221,8 +236,10 @@ def register(app: typer.Typer, handle_errors) -> None:
         """Run a project over a ground-motion ensemble and write the analyses.csv that 'validate' reads."""
         from .. import run_ensemble, write_analyses_csv
         from ..library import load_project
+        from .inputs import output_file
+        output_file(out, "-o/--out")
         proj = load_project(project)
-        err = Console(stderr=True)
+        err = make_console(stderr=True)
         with Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
                       console=err, disable=as_json and not err.is_terminal) as bar:
             from .inputs import compile_kernels

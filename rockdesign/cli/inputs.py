@@ -11,7 +11,11 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from typer.core import TyperGroup
+
+from ..console import make_console
 from ..errors import RockdesignError
+from .. import refuse_wrong_type
 
 FIGURE_SUFFIXES = (".png", ".svg", ".pdf")
 G_RANGE = (9.7, 9.9)
@@ -59,6 +63,7 @@ def output_file(path: Path | None, key: str, suffixes: tuple[str, ...] | None = 
                               found=f"'{path}'")
     if path.is_dir():
         raise RockdesignError("is a directory", key=key, expected="a file name", found=f"'{path}' (a directory)")
+    refuse_wrong_type(path, key, folder=False)
     parent = path.parent if str(path.parent) else Path(".")
     if not parent.is_dir():
         raise RockdesignError("folder not found", key=key, expected="a file in an existing folder",
@@ -69,6 +74,8 @@ def output_file(path: Path | None, key: str, suffixes: tuple[str, ...] | None = 
 def output_folder(path: Path, key: str) -> Path:
     """A folder we can write into (created if missing): not an existing file, parent not a file."""
     path = Path(path).expanduser()
+    if path.is_symlink():
+        refuse_wrong_type(path, key, folder=True)
     if path.exists() and not path.is_dir():
         raise RockdesignError("is a file, not a folder", key=key, expected="a folder (new or existing)",
                               found=f"'{path}' (an existing file)")
@@ -81,13 +88,68 @@ def output_folder(path: Path, key: str) -> Path:
     return path
 
 
+def refuse_given(ctx, options: dict[str, str], used_by: str, expected: str) -> None:
+    """Refuse options the user gave that this run would ignore: ``options`` maps a parameter name of
+    the command to its option (``{"pulse": "--pulse"}``); ``ctx`` is the command's typer context."""
+    for name, flag in options.items():
+        source = ctx.get_parameter_source(name)
+        if source is not None and source.name in ("COMMANDLINE", "ENVIRONMENT"):
+            value = ctx.params.get(name)
+            raise RockdesignError(f"{flag} is not used by {used_by}", key=flag, expected=expected,
+                                  found=f"{flag} {value!r}" if not isinstance(value, bool) else flag)
+
+
 def compile_kernels(command: str, say=None) -> float:
-    """Compile the kernels ``command`` needs on its first run, saying so ("compiling numerical kernels,
-    once per installation, ~N s") with ``say`` (default: print on stderr): the step after the input was
+    """Compile the kernels ``command`` needs on its first run, saying so ("compiling the numerical kernels
+    of `check` (…): expect N–M s at the current machine load") with ``say`` (default: print on stderr): the step after the input was
     checked and before the analyses (:func:`rockdesign.dynamics.compilation.prepare`); seconds spent (0
     when all are cached)."""
     from ..library import compile_kernels as prepare
     if say is None:
-        from rich.console import Console
-        say = Console(stderr=True).print
+        say = make_console(stderr=True).print
     return prepare(command, say)
+
+
+def repeated_option(command, args: list[str]) -> None:
+    """Refuse an option given twice (``--table a=1 --table a=2``: click would keep the last silently);
+    options declared repeatable (``--equivalent-at``) may repeat."""
+    spelled: dict[str, object] = {}
+    takes_value: dict[str, bool] = {}
+    for param in getattr(command, "params", []):
+        if getattr(param, "param_type_name", "") != "option" or getattr(param, "multiple", False) \
+                or getattr(param, "count", False):
+            continue
+        for flag in [*param.opts, *param.secondary_opts]:
+            spelled[flag] = param
+            takes_value[flag] = not param.is_flag
+    seen: dict[object, str] = {}
+    k = 0
+    while k < len(args) and args[k] != "--":
+        token = args[k]
+        flag = token.split("=", 1)[0] if token.startswith("--") else token
+        param = spelled.get(flag)
+        width = 2 if param is not None and takes_value[flag] and "=" not in token else 1
+        if param is not None:
+            shown = " ".join(args[k:k + width])
+            if param in seen:
+                raise RockdesignError("option given twice (only one value would be used)", key=flag,
+                                      expected="/".join([*param.opts, *param.secondary_opts]) + " once",
+                                      found=f"'{seen[param]}' and '{shown}'")
+            seen[param] = shown
+        k += width
+
+
+class OptionsOnce(TyperGroup):
+    """The command groups of the CLI: an option of a command given twice is an input error (exit 2)."""
+
+    def resolve_command(self, ctx, args):
+        name, command, rest = super().resolve_command(ctx, args)
+        if command is not None and not isinstance(command, TyperGroup):
+            try:
+                repeated_option(command, rest)
+            except RockdesignError as exc:
+                from rich.markup import escape
+                make_console(stderr=True).print(f"[bold red]error:[/] {escape(str(exc))}", highlight=False,
+                                           soft_wrap=True)
+                ctx.exit(2)
+        return name, command, rest

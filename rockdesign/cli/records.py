@@ -15,13 +15,15 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
+from ..console import make_console
 from ..errors import MotionError
 from .. import DEFAULT_BAND, DEFAULT_DAMPING, DEFAULT_N_PERIODS
+from .inputs import OptionsOnce
 
 # the records, spectra and units modules (numba, pint) are imported by the commands that use them: the
 # CLI mounts this module for every command, `--help` and `init` included
 
-app = typer.Typer(help="Ground-motion records: list, show, spectra, synthetic ensembles.", no_args_is_help=True)
+app = typer.Typer(cls=OptionsOnce, help="Ground-motion records: list, show, spectra, synthetic ensembles.", no_args_is_help=True)
 
 RECORDS_DIR_HELP = "Folder of your PEER *.AT2 files (for rsn:<RSN>:<component> ids)."
 FLAG = " "  # metavar of on/off options (typer prints "<bool>" otherwise)
@@ -29,7 +31,7 @@ GRAVITY_HELP = "Gravitational acceleration g [m/s²] for records in g."
 
 
 def _console() -> Console:
-    console = Console(highlight=False, markup=False, soft_wrap=True)
+    console = make_console(highlight=False, markup=False, soft_wrap=True)
     if not console.is_terminal:
         console.width = 160  # pipes and files: do not wrap tables at 80 columns
     return console
@@ -47,7 +49,7 @@ def _load(record_id: str, gravity: float, records_dir: Optional[Path]):
     from .. import load_record
     motion = load_record(_record_id(record_id), gravity=gravity, records_dir=records_dir)
     for text in plausibility_warnings(motion, gravity):
-        Console(stderr=True, highlight=False, markup=False, soft_wrap=True).print(f"warning: {text}")
+        make_console(stderr=True, highlight=False, markup=False, soft_wrap=True).print(f"warning: {text}")
     return motion
 
 
@@ -237,7 +239,9 @@ def synth_command(
     motion = _load(seed, gravity, records_dir)
     from .inputs import compile_kernels
     compile_kernels("records")                  # (SD_max of the seed and of every member)
-    path, match = synthesize(motion, n, out_dir, seed_value=seed_value, scale_to=scale_to)
+    from .. import progress_bars
+    with progress_bars() as progress:
+        path, match = synthesize(motion, n, out_dir, seed_value=seed_value, scale_to=scale_to, progress=progress)
     console = _console()
     console.print(f"wrote {n} records to {path} (+ {path.with_suffix('.npz').name}, model.json, match.json)")
     console.print(match.describe())

@@ -15,6 +15,8 @@ import typer
 from rich.console import Console
 from rich.markup import escape
 
+from ..console import make_console
+
 HELP_PULSE = "ricker-anti | ricker-sym | sine | cycloidal-a | cycloidal-b | cycloidal-c"
 
 
@@ -38,6 +40,7 @@ def register(app: typer.Typer, handle_errors) -> None:
     @app.command()
     @handle_errors
     def spectrum(
+        ctx: typer.Context,
         project: Path = typer.Argument(..., help="Project file (TOML)"),
         pulse: Optional[str] = typer.Option(None, "--pulse", "-p", help=HELP_PULSE),
         record: Optional[str] = typer.Option(None, "--record", help="Cylinders: the record pair, e.g. p695-ff/11 "
@@ -87,14 +90,19 @@ def register(app: typer.Typer, handle_errors) -> None:
         from .. import make_executor
         from .. import spectrum_warm_up as warm_up
         from .. import analyse_spectrum as analyse, write_spectrum_outputs as write_outputs
-        from .. import SpectrumError, compute_spectrum, request_from_project
+        from .. import SpectrumError, check_grid, check_ordinates, compute_spectrum, request_from_project
 
         t_start = time.perf_counter()
-        console = Console(stderr=True, highlight=False)
+        console = make_console(stderr=True, highlight=False)
         proj = load_project(project)
+        from .inputs import refuse_given
         if spectrum_excitation(proj) == "record pair":       # the 3D cylinder (thesis Ch. 5, Figs 5.16-5.17)
-            from .cylinder_spectrum import cylinder_spectrum_command
+            from .cylinder_spectrum import PLANAR_ONLY, cylinder_spectrum_command
+            refuse_given(ctx, PLANAR_ONLY, "the spectrum of a cylinder (a record pair on R × pga axes)",
+                         "--record, --x R:…, --y pga/up:…, --relative, -o, --figures, --json")
             return cylinder_spectrum_command(proj, project, record, x, y, relative, out, as_json, figures, console)
+        refuse_given(ctx, {"record": "--record"}, "the spectrum of a planar system (pulses)",
+                     "--pulse (a cylinder project takes --record)")
         if pulse is None:
             raise RockdesignError("missing pulse", key="--pulse", expected="--pulse ricker-anti (or another pulse)",
                                   found="none")
@@ -122,14 +130,16 @@ def register(app: typer.Typer, handle_errors) -> None:
                                                stop_at_capacity=stop_at_capacity)
             resolve_structure(ref_proj.system, ref_request.structure, ref_request.rigid_ratio)
         out_dir = out if out is not None else Path(f"{Path(project).stem}-spectrum-{pulse_name}")
-        if out_dir.exists() and not out_dir.is_dir():
-            raise RockdesignError("output path is a file", key="-o", expected="a folder", found=str(out_dir))
-        out_dir.mkdir(parents=True, exist_ok=True)
+        check_ordinates(equivalent_at, y_axis, ref_proj is not None)
+        check_grid(x_axis, y_axis, 2 if ref_proj is not None else 1,    # memory and time, before any work
+                   distributed=dask is not None and not str(dask).startswith("local"))
+        executor = make_executor(dask, warm_up=warm_up)     # (an unreachable scheduler stops here)
+        from .. import created_folder
+        created_folder(out_dir, "-o/--out")                 # (removed again if the run fails before writing)
         chunks_root = out_dir / "chunks"
         if dask is None or str(dask).startswith("local"):   # (a remote cluster's workers compile there)
             from .inputs import compile_kernels
             compile_kernels("spectrum")
-        executor = make_executor(dask, warm_up=warm_up)
         ny, nx = y_axis.n, x_axis.n
         runs = [("spectrum", proj, request, chunks_root / "project")]
         if ref_proj is not None:
@@ -176,7 +186,7 @@ def register(app: typer.Typer, handle_errors) -> None:
         if as_json:
             sys.stdout.write(json.dumps(summary, indent=1, ensure_ascii=False) + "\n")
             return
-        _print_summary(Console(highlight=False), summary, out_dir)
+        _print_summary(make_console(highlight=False), summary, out_dir)
 
 
 def _print_summary(console: Console, summary: dict, out_dir: Path) -> None:

@@ -36,6 +36,12 @@ EVENT_NAMES = {EV_UPLIFT: "uplift", EV_QUASI_IMPACT: "quasi-impact", EV_THETA_MA
                EV_CROSSING: "planar-crossing", EV_REST: "rest", EV_OVERTURN: "overturn"}
 
 
+SPIN_TILT_MIN = 0.2
+"""θ/α above which the spin φ̇ is reported.  Near θ = 0 the contact point whirls round the rim: φ̇ grows like
+the vertical angular momentum over sin²θ, without bound at a quasi-impact (Sec 5.4.1), while the cylinder
+barely moves; a spin read there is the speed of the contact point, not a rotation of the body."""
+
+
 @dataclass(frozen=True)
 class CylinderResponse:
     """Response of a cylinder to a pair of ground motions (SI units).
@@ -116,6 +122,15 @@ class CylinderResponse:
         """Plan-view position (x, y) [m] of the centre of mass: R(sinα − sin(α−θ))(cosφ, sinφ)."""
         rho = self.R * (math.sin(self.alpha) - np.sin(self.alpha - self.theta))
         return rho * np.cos(self.phi), rho * np.sin(self.phi)
+
+    def spin(self, tilt_min: float = SPIN_TILT_MIN) -> np.ndarray:
+        """φ̇ [rad/s] where θ ≥ ``tilt_min``·α, NaN elsewhere (see :data:`SPIN_TILT_MIN`)."""
+        return np.where(self.theta >= tilt_min * self.alpha, self.phidot, np.nan)
+
+    def spin_max(self, tilt_min: float = SPIN_TILT_MIN) -> float | None:
+        """max |φ̇| [rad/s] over θ ≥ ``tilt_min``·α; None if the tilt never gets there."""
+        spin = self.spin(tilt_min)
+        return float(np.nanmax(np.abs(spin))) if np.any(np.isfinite(spin)) else None
 
     @property
     def min_contact_force_over_weight(self) -> float:

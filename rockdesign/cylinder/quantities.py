@@ -112,9 +112,13 @@ def cylinder_quantities(cyl: Cylinder) -> dict[str, Quantity]:
     half = 0.5 * alpha
     add("wobbling_period", "T_w(α/2)", "wobbling period at the tilt θ = α/2", float(wobbling_period(half, R, alpha, g)),
         "s", "Eq 5.29", "T_w = 2π/φ̇0, φ̇0² = −g sin(α−θ)/(R X(θ))", "",
-        f"spin φ̇0 = {_f(float(wobbling_spin(half, R, alpha, g)))} rad/s; T_w(θ) is a curve, see the figure")
+        f"X(θ) = sin θ cos θ (5/4 sin²α − 4/3 cos²α) − 3/2 sin θ sin²α + cos α sin α (cos 2θ − cos θ), the "
+        f"coefficient of φ̇² in Eq 5.22 (X({_f(half)}) = {_f(float(wobbling_factor(half, alpha)))}); spin "
+        f"φ̇0 = {_f(float(wobbling_spin(half, R, alpha, g)))} rad/s; T_w(θ) is a curve, see the figure")
     add("theta_overturn", "θ_ot", "overturning tilt", cyl.theta_overturn, "rad", "Sec 5.5.1",
-        "θ_ot = overturn_tilt·α", f"{_f(cyl.overturn_tilt)}·{_f(alpha)}")
+        "θ_ot = n_ot·α", f"{_f(cyl.overturn_tilt)}·{_f(alpha)}",
+        f"n_ot = {_f(cyl.overturn_tilt)}: the overturning tilt in units of α given by the project (default 1.5, "
+        f"Sec 5.5.1)")
     if cyl.damped:
         add("contact_frequency", "ω_n", "contact spring frequency", cyl.contact_frequency, "1/s", "Eq 5.31")
         add("contact_damping", "ζ", "contact damping ratio", cyl.contact_damping, "-", "Eq 5.31")

@@ -3,9 +3,10 @@
 The abscissa is the size R (the cylinder's slenderness tan α is the project's), the ordinate the
 resultant PGA over the uplift acceleration, max|ü_g|/(g tan α) (Eq 5.43); each grid point is one 3D
 analysis (:func:`rockdesign.cylinder.kernel.integrate`), run in parallel over both cores by a numba
-``prange`` loop.  The value is θ_max/α, set to θ_ot/α where the cylinder overturns.  A relative
-spectrum subtracts the same spectrum of a second project (e.g. damped minus undamped, Fig 5.17): where
-it is negative the first project performs better.
+``prange`` loop whose threads take the points one at a time (:mod:`rockdesign.dynamics.scheduling`).
+The value is θ_max/α, set to θ_ot/α where the cylinder overturns.  A relative spectrum subtracts the
+same spectrum of a second project (e.g. damped minus undamped, Fig 5.17): where it is negative the
+first project performs better.
 """
 from __future__ import annotations
 
@@ -17,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit, prange
 
+from ..dynamics.scheduling import take, worker_count
 from ..errors import RockdesignError
 from .eom import parameters
 from .kernel import ST_OVERTURNED, integrate
@@ -49,31 +51,38 @@ def parse_cylinder_axis(text: str, which: str) -> tuple[str, np.ndarray]:
 
 @njit(cache=True, parallel=True)
 def _grid(pars, scales, params0, sx, sy, t_end, t_exc_end, rtol, atol, theta_seed, theta_ot, quasi_tilt,
-          rest_energy, planar_restitution, ups, out_theta, out_ot, out_qi):
-    """All grid points: pars[i] per size, scales[j] per amplitude; θ_max, overturned, quasi-impacts."""
+          rest_energy, planar_restitution, ups, out_theta, out_ot, out_qi, workers):
+    """All grid points: pars[i] per size, scales[j] per amplitude; θ_max, overturned, quasi-impacts.
+
+    ``workers`` workers (one per numba thread) take the points one at a time from a shared counter
+    (:mod:`rockdesign.dynamics.scheduling`), so a busy core does not hold up the grid."""
     nx = pars.shape[0]
     ny = scales.shape[0]
-    for k in prange(nx * ny):
-        i = k % nx
-        j = k // nx
-        params = params0.copy()
-        params[0] = scales[j]
-        y0 = np.zeros(6)
-        hist, events, stats = integrate(y0, 0.0, t_end, t_exc_end, pars[i], 0, params, sx, sy, 1.0, 1.0, rtol, atol,
-                                        theta_seed, theta_ot, quasi_tilt, rest_energy[i], planar_restitution,
-                                        ups[i], 20_000_000, 0.0)
-        th = 0.0
-        for r in range(hist.shape[0]):
-            th = max(th, hist[r, 1])
-        nq = 0
-        for e in range(events.shape[0]):
-            if events[e, 0] == 2.0:
-                th = max(th, events[e, 2])
-            elif events[e, 0] == 1.0 or events[e, 0] == 3.0:
-                nq += 1
-        out_theta[j, i] = th
-        out_ot[j, i] = stats[4] == ST_OVERTURNED
-        out_qi[j, i] = nq
+    counter = np.zeros(1, dtype=np.int64)
+    for _ in prange(workers):
+        k = take(counter)
+        while k < nx * ny:
+            i = k % nx
+            j = k // nx
+            params = params0.copy()
+            params[0] = scales[j]
+            y0 = np.zeros(6)
+            hist, events, stats = integrate(y0, 0.0, t_end, t_exc_end, pars[i], 0, params, sx, sy, 1.0, 1.0, rtol,
+                                            atol, theta_seed, theta_ot, quasi_tilt, rest_energy[i],
+                                            planar_restitution, ups[i], 20_000_000, 0.0)
+            th = 0.0
+            for r in range(hist.shape[0]):
+                th = max(th, hist[r, 1])
+            nq = 0
+            for e in range(events.shape[0]):
+                if events[e, 0] == 2.0:
+                    th = max(th, events[e, 2])
+                elif events[e, 0] == 1.0 or events[e, 0] == 3.0:
+                    nq += 1
+            out_theta[j, i] = th
+            out_ot[j, i] = stats[4] == ST_OVERTURNED
+            out_qi[j, i] = nq
+            k = take(counter)
 
 
 @dataclass(frozen=True)
@@ -124,7 +133,8 @@ def cylinder_spectrum(cyl, pair, R_values, pga_over_up, *, rtol: float = 1e-10, 
         b = min(ny, a + rows)
         _grid(pars, scales[a:b], np.array([1.0, pair.dt]), pair.x, pair.y, pair.duration + free_vibration,
               pair.duration, rtol, atol, THETA_SEED, cyl.theta_overturn, QUASI_IMPACT_TILT * alpha, rest,
-              restitution_root(alpha) if cyl.damped else 1.0, ups, theta[a:b], ot[a:b], qi[a:b])
+              restitution_root(alpha) if cyl.damped else 1.0, ups, theta[a:b], ot[a:b], qi[a:b],
+              worker_count((b - a) * nx))
         if progress is not None:
             progress(b * nx, ny * nx)
     seconds = time.perf_counter() - t0

@@ -118,7 +118,8 @@ def design_quantities(system: RockingSystem, rigid_ratio: float = RIGID_SUPERSTR
         "k*_II = −1")
     tan_up = c.tan_alpha_ext if ext == "flat" else c.tan_alpha
     alpha_up = math.atan(tan_up)
-    add("uplift_acceleration", "ü_g,up", "ground acceleration at uplift (rigid superstructure)",
+    add("uplift_acceleration", "ü_g,up", "ground acceleration at uplift"
+        + (" (rigid superstructure)" if system.superstructure is not None else ""),
         uplift_acceleration(tan_up, g), "m/s^2", "Eq 3.34", "ü_g,up = g tan α" + ("'" if ext == "flat" else ""),
         f"{_f(g)}·{_f(tan_up)}")
     add("uplift_acceleration_linear", "g α", "linearized uplift acceleration", uplift_acceleration_linear(alpha_up, g),

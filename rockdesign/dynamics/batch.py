@@ -1,59 +1,118 @@
-"""Many time-history analyses in one call, in parallel over the machine's cores (numba prange).
+"""Many time-history analyses in one call: in parallel over the machine's cores (numba prange, jobs handed
+out dynamically), or one after the other in the calling thread when a batch is too small to pay for threads.
 
 A batch is a list of jobs that share one system (``sp``) and differ in their excitation: each job
 has an excitation kind, a parameter row (pulse amplitude/period, or record scale/dt) and a slice
 of one concatenated sample array.  Only the summaries (θ_max, impacts, overturning...) are kept —
-what spectra, suites and margins need.  Results are identical to one-by-one :func:`integrate` calls.
+what spectra, suites and margins need.  Results are identical to one-by-one :func:`integrate` calls,
+whichever driver runs them and in whatever order the threads take the jobs.
+
+Scheduling (docs/engine.md, "Threads"): the parallel driver starts one worker per numba thread and
+each worker takes the next job from a shared atomic counter until none is left (:mod:`.scheduling`), so a
+thread whose core is busy with another program simply takes fewer jobs.  A batch of fewer than
+:data:`SERIAL_BELOW_JOBS` jobs, and every single analysis (:func:`run_history`), runs serially in the
+calling thread: a parallel region waits for every thread to be scheduled, which costs a single analysis
+up to several times its own time on a loaded machine (benchmarks/bench_threads.py).
 """
 from __future__ import annotations
 
 import math
 
+import numba
 import numpy as np
 from numba import njit, prange
 
 from ..errors import ModelError
 from .engine import integrate
+from .scheduling import take, worker_count
 from .layout import (METHOD_NAMES, N_DIAG, N_OPTIONS, N_SUMMARY, O_ATOL, O_ENERGY_STOP, O_H_MAX, O_MAX_EVENTS,
                      O_MAX_STEPS, O_METHOD, O_RTOL, O_SCAN, O_STOP_EXCEEDED, O_T_END)
 
+SERIAL_BELOW_JOBS = 2
+"""Batches of fewer jobs run serially in the calling thread (:func:`run_packed`).  One job cannot gain from
+threads; on an idle machine two already do, while on a loaded one small batches lose to the second
+thread's scheduling delay (benchmarks/bench_threads.py, docs/engine.md "Threads"): no larger fixed
+count suits both."""
+
+
+@njit(cache=True)
+def _job(j, sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides, t_out, out_y, ev_t, ev_k, ev_y,
+         summaries, diags, written):
+    """Job ``j`` of a batch (the arguments of :func:`_run_batch`): its :func:`integrate` run, written into row
+    ``j`` of ``summaries``/``diags``/``written``.  The one loop body of both drivers."""
+    n = kinds.shape[0]
+    o = opts.copy()
+    o[O_T_END] = t_ends[j]
+    s = samples[offsets[j]:offsets[j] + lengths[j]]
+    if n == 1:
+        t_o, o_y, e_t, e_k, e_y = t_out, out_y, ev_t, ev_k, ev_y
+    else:
+        t_o, o_y, e_t, e_k, e_y = (np.zeros(0), np.zeros((0, 4)), np.zeros(0), np.zeros(0, dtype=np.int64),
+                                   np.zeros((0, 4)))
+    summ, diag, w = integrate(sp, kinds[j], xps[j], s, y0s[j], sides[j], 0.0, o, t_o, o_y, e_t, e_k, e_y)
+    written[j] = w
+    for k in range(N_SUMMARY):
+        summaries[j, k] = summ[k]
+    for k in range(N_DIAG):
+        diags[j, k] = diag[k]
+
 
 @njit(cache=True, parallel=True)
-def _run_batch(sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides, t_out, out_y, ev_t, ev_k, ev_y):
-    """The jobs in parallel (prange); a batch of one job also records its history into ``t_out``/``out_y``
-    and its events into ``ev_t``/``ev_k``/``ev_y`` (pass empty arrays otherwise).
+def _run_batch(sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides, t_out, out_y, ev_t, ev_k, ev_y,
+               workers):
+    """The jobs in parallel: ``workers`` workers (prange; one per numba thread), each taking the next job
+    until none is left; a batch of one job also records its history into ``t_out``/``out_y`` and its
+    events into ``ev_t``/``ev_k``/``ev_y`` (pass empty arrays otherwise).
 
-    Returns (summaries n × N_SUMMARY, diagnostics n × N_DIAG, output rows written per job).
+    Returns (summaries n × N_SUMMARY, diagnostics n × N_DIAG, output rows written per job), in job order.
     """
     n = kinds.shape[0]
     summaries = np.zeros((n, N_SUMMARY))
     diags = np.zeros((n, N_DIAG), dtype=np.int64)
     written = np.zeros(n, dtype=np.int64)
-    for j in prange(n):
-        o = opts.copy()
-        o[O_T_END] = t_ends[j]
-        s = samples[offsets[j]:offsets[j] + lengths[j]]
-        if n == 1:
-            t_o, o_y, e_t, e_k, e_y = t_out, out_y, ev_t, ev_k, ev_y
-        else:
-            t_o, o_y, e_t, e_k, e_y = (np.zeros(0), np.zeros((0, 4)), np.zeros(0), np.zeros(0, dtype=np.int64),
-                                       np.zeros((0, 4)))
-        summ, diag, w = integrate(sp, kinds[j], xps[j], s, y0s[j], sides[j], 0.0, o, t_o, o_y, e_t, e_k, e_y)
-        written[j] = w
-        for k in range(N_SUMMARY):
-            summaries[j, k] = summ[k]
-        for k in range(N_DIAG):
-            diags[j, k] = diag[k]
+    counter = np.zeros(1, dtype=np.int64)
+    for _ in prange(workers):
+        j = take(counter)
+        while j < n:
+            _job(j, sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides, t_out, out_y, ev_t, ev_k,
+                 ev_y, summaries, diags, written)
+            j = take(counter)
     return summaries, diags, written
 
 
-def run_packed(sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s):
-    """The packed jobs (:func:`pack_motions`) in parallel, summaries only: (summaries, diagnostics)."""
+def _run_serial(sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides, t_out, out_y, ev_t, ev_k, ev_y):
+    """:func:`_run_batch` one job after the other in the calling thread (no parallel region; the same
+    machine code for each job, :func:`_job`)."""
+    n = kinds.shape[0]
+    summaries = np.zeros((n, N_SUMMARY))
+    diags = np.zeros((n, N_DIAG), dtype=np.int64)
+    written = np.zeros(n, dtype=np.int64)
+    for j in range(n):
+        _job(j, sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides, t_out, out_y, ev_t, ev_k, ev_y,
+             summaries, diags, written)
+    return summaries, diags, written
+
+
+def use_threads(jobs: int) -> bool:
+    """True when a batch of ``jobs`` runs on numba's threads, False when serially in the calling thread."""
+    return jobs >= SERIAL_BELOW_JOBS and numba.get_num_threads() > 1
+
+
+def run_packed(sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, threads: bool | None = None):
+    """The packed jobs (:func:`pack_motions`), summaries only: (summaries, diagnostics).
+
+    ``threads``: run on numba's threads (True), serially in the calling thread (False), or by the size of
+    the batch (None, :func:`use_threads`); the results are the same."""
     sides = np.where(y0s[:, 0] >= 0.0, 1.0, -1.0)
     empty = np.zeros(0)
     empty_rows = np.zeros((0, 4))
-    summaries, diags, _ = _run_batch(sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides, empty,
-                                     empty_rows, empty, np.zeros(0, dtype=np.int64), empty_rows)
+    args = (sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides, empty, empty_rows, empty,
+            np.zeros(0, dtype=np.int64), empty_rows)
+    n = kinds.shape[0]
+    if use_threads(n) if threads is None else threads:
+        summaries, diags, _ = _run_batch(*args, worker_count(n))
+    else:
+        summaries, diags, _ = _run_serial(*args)
     return summaries, diags
 
 
@@ -61,11 +120,10 @@ def run_history(sp, kind, xp, samples, y0, side0, opts, t_out, out_y, ev_t, ev_k
     """One analysis from t = 0 with its history (the arguments of :func:`~.engine.integrate`, t0 = 0, the
     end time in ``opts``); returns (summary, diagnostics, output rows written).
 
-    It runs as a batch of one job: numba's machine code for the integrator is about 1.5 times faster
-    inside the batch kernel's parallel loop than called on its own (benchmarks/bench_engine.py; the
-    generated code differs, the thread does not), and the check compiles that kernel anyway.
+    It runs in the calling thread, as the one job of a serial batch (:func:`_job`, the machine code of
+    the parallel driver's jobs): a parallel region would cost more than the analysis on a loaded machine.
     """
-    summaries, diags, written = _run_batch(
+    summaries, diags, written = _run_serial(
         sp, np.array([kind], dtype=np.int64), np.ascontiguousarray(xp, dtype=np.float64).reshape(1, -1),
         np.ascontiguousarray(samples, dtype=np.float64), np.zeros(1, dtype=np.int64),
         np.array([samples.shape[0]], dtype=np.int64), np.array([opts[O_T_END]]), opts,
@@ -99,8 +157,8 @@ def batch_options(rtol: float = 1e-10, atol: float = 1e-12, energy_stop: bool = 
     return opts
 
 
-def run_batch(sp: np.ndarray, motions, scales, t_ends, opts: np.ndarray, y0s=None):
-    """Run ``motions[i]`` scaled by ``scales[i]`` until ``t_ends[i]`` (all jobs in parallel).
+def run_batch(sp: np.ndarray, motions, scales, t_ends, opts: np.ndarray, y0s=None, threads: bool | None = None):
+    """Run ``motions[i]`` scaled by ``scales[i]`` until ``t_ends[i]`` (in parallel unless the batch is small).
 
     Args:
         sp: system parameters (:func:`rockdesign.dynamics.model.system_parameters`).
@@ -110,6 +168,7 @@ def run_batch(sp: np.ndarray, motions, scales, t_ends, opts: np.ndarray, y0s=Non
         t_ends: end times [s] per job.
         opts: :func:`batch_options`.
         y0s: optional initial states (n × 4).
+        threads: numba's threads (True), the calling thread (False) or by the batch's size (None).
 
     Returns:
         (summaries n × N_SUMMARY, diagnostics n × N_DIAG) in the order of the jobs.
@@ -117,7 +176,8 @@ def run_batch(sp: np.ndarray, motions, scales, t_ends, opts: np.ndarray, y0s=Non
     n = len(motions)
     kinds, xps, samples, offsets, lengths = pack_motions(motions, scales)
     y0 = np.zeros((n, 4)) if y0s is None else np.ascontiguousarray(y0s, dtype=np.float64)
-    return run_packed(sp, kinds, xps, samples, offsets, lengths, np.asarray(t_ends, dtype=np.float64), opts, y0)
+    return run_packed(sp, kinds, xps, samples, offsets, lengths, np.asarray(t_ends, dtype=np.float64), opts, y0,
+                      threads)
 
 
 def pack_motions(motions, scales) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:

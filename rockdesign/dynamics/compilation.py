@@ -6,7 +6,9 @@ upgrade) the first command therefore spends tens of seconds compiling — former
 bar that did not move.  :func:`prepare` is called by the CLI commands before their work starts: when
 numba's cache index of a kernel the command needs is missing, it prints
 
-    compiling numerical kernels, once per installation, ~N s
+    compiling the numerical kernels of `check` (first use after installing or upgrading; later runs
+    load them from the cache): expect 30–51 s at the current machine load
+
 
 and compiles exactly those kernels by calling them on a tiny problem with the argument types of the
 real calls (so the real calls load them from the cache), then reports the seconds it took.  On two or
@@ -35,9 +37,10 @@ from pathlib import Path
 
 # Kernels (module, function) each command calls; the estimates are first-run compile seconds measured
 # on the 2-core development machine (benchmarks/bench_check.py reports the first `check` run).
-ENGINE = (("rockdesign.dynamics.batch", "_run_batch"), ("rockdesign.dynamics.engine", "integrate"),
-          ("rockdesign.dynamics.transitions", "top_displacements"))
-"""The planar rocking engine: the batch kernel and the integrator it runs (also ``simulate``'s)."""
+ENGINE = (("rockdesign.dynamics.batch", "_run_batch"), ("rockdesign.dynamics.batch", "_job"),
+          ("rockdesign.dynamics.engine", "integrate"), ("rockdesign.dynamics.transitions", "top_displacements"))
+"""The planar rocking engine: the parallel batch driver, the job it runs in every driver (``simulate``'s
+one analysis, serial batches) and the integrator the job calls."""
 ELASTIC_SPECTRUM = (("rockdesign.motions.spectra", "spectral_displacements"),)
 LINEAR_EXACT = (("rockdesign.dynamics.linear_exact", "integrate_linear_exact"),)
 CYLINDER = (("rockdesign.cylinder.kernel", "integrate"),)
@@ -61,7 +64,71 @@ ENGINE_COMMANDS = ("check", "simulate", "ensemble", "calibrate", "spectrum", "cy
 """Commands that run the planar integrator: a helper process compiles half of its callees (:func:`prepare`)."""
 ESTIMATE_SECONDS = {"check": 30, "simulate": 30, "ensemble": 30, "calibrate": 30, "records": 5, "spectrum": 30,
                     "cylinder": 30, "cylinder-check": 45, "cylinder-spectrum": 30, "bench": 30}
-MESSAGE = "compiling numerical kernels, once per installation, ~{seconds} s"
+"""First-run compile seconds of each command on an idle 2-core machine (the low end of the estimate)."""
+MESSAGE = ("compiling the numerical kernels of `{command}` (first use after installing or upgrading; later runs "
+           "load them from the cache): expect {low}–{high} s at the current machine load")
+SPREAD = 1.7
+"""High end / low end of the estimate: compile times measured at one load scatter by this much."""
+MEASURED = Path(__file__).resolve().parents[1] / "__pycache__" / "compile-seconds.json"
+"""Compile seconds measured on this machine, per command, normalised to an idle machine (:func:`estimate`)."""
+
+
+def _load_factor() -> float:
+    """How much slower than on an idle machine a compilation runs now: the 1-minute load average over the
+    usable cores (at least 1; 1 where the load average is unknown)."""
+    from ..execution.executor import usable_cores
+    try:
+        load = os.getloadavg()[0]
+    except (AttributeError, OSError):
+        return 1.0
+    return max(1.0, load / max(1, usable_cores()))
+
+
+def _measured() -> dict:
+    import json
+    try:
+        return json.loads(MEASURED.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return {}
+
+
+def estimate(command: str) -> tuple[int, int]:
+    """(low, high) seconds the first-run compilation of ``command`` will take now: its idle-machine time —
+    measured on this machine by an earlier compilation when there is one (of this command, else scaled
+    from another command's), else :data:`ESTIMATE_SECONDS` — times the current :func:`_load_factor`."""
+    base = float(ESTIMATE_SECONDS.get(command, 30))
+    measured = _measured()
+    if command in measured:
+        base = float(measured[command])
+    elif measured:
+        ratios = [v / ESTIMATE_SECONDS[k] for k, v in measured.items() if k in ESTIMATE_SECONDS]
+        if ratios:
+            base *= max(ratios)
+    low = base * _load_factor()
+    return max(1, round(low)), max(2, round(SPREAD * low))
+
+
+def _remember(command: str, seconds: float, factor: float) -> None:
+    """Store the idle-machine equivalent of a measured compilation for :func:`estimate` (best effort)."""
+    import json
+    data = _measured()
+    data[command] = round(seconds / factor, 1)
+    try:
+        MEASURED.parent.mkdir(parents=True, exist_ok=True)
+        MEASURED.write_text(json.dumps(data, indent=1, sort_keys=True), encoding="utf-8")
+    except OSError:
+        pass
+
+
+def announcement(command: str) -> str:
+    """The line printed before a first-run compilation of ``command`` (:data:`MESSAGE`)."""
+    low, high = estimate(command)
+    return MESSAGE.format(command=command, low=low, high=high)
+
+
+CYLINDER_WARM_UP = ("rockdesign.cylinder.warm_up", "warm_up")
+"""The cylinder's warm-up (its integrator, or its spectrum grid), reached by name like :data:`WARM_UPS`: the
+cylinder's spectrum runs on :mod:`rockdesign.dynamics.scheduling`, so a direct import would make a cycle."""
 
 
 def _dispatcher(module: str, name: str):
@@ -107,10 +174,10 @@ def _warm(command: str, parts: tuple[str, ...] = PARTS) -> None:
     record = record_motion("warm-up", np.array([0.0, 0.3, -0.3, 0.0]) * g, 0.01)
     if "engine" in parts and command in WARM_UPS:            # e.g. the integrator inside the pulse-spectrum kernel
         _dispatcher(*WARM_UPS[command])()
-    elif "engine" in parts and command in ENGINE_COMMANDS:   # the batch kernel and the integrator it runs
-        simulate(system, record, t_end=0.05)
+    elif "engine" in parts and command in ENGINE_COMMANDS:   # the batch drivers and the integrator they run
+        simulate(system, record, t_end=0.05)                 # the serial driver (the job and the integrator)
         sp = system_parameters(system, ModelChoice("block", "exact"))
-        run_batch(sp, [record], [1.0], [0.05], batch_options())
+        run_batch(sp, [record, record], [1.0, 0.5], [0.05, 0.05], batch_options(), threads=True)
     if "side" in parts and command in ("check", "bench"):
         from .accuracy import accuracy_problem
         system_b1, pulse = accuracy_problem()
@@ -119,21 +186,7 @@ def _warm(command: str, parts: tuple[str, ...] = PARTS) -> None:
         from ..motions.spectra import sd_max
         sd_max(record)
     if "side" in parts and command.startswith("cylinder"):
-        _warm_cylinder(command, record)
-
-
-def _warm_cylinder(command: str, record) -> None:
-    """The cylinder's integrator (or its spectrum grid) on a short record pair."""
-    from ..cylinder.engine import simulate_cylinder
-    from ..cylinder.spectrum import cylinder_spectrum
-    from ..cylinder.system import cylinder
-    from ..motions.pairs import pair_of_records
-    cyl = cylinder(1.5, 0.3)
-    pair = pair_of_records("warm-up", record, record)
-    if command == "cylinder-spectrum":
-        cylinder_spectrum(cyl, pair, [cyl.R], [1.0], free_vibration=0.05)
-    else:
-        simulate_cylinder(cyl, pair, t_end=0.05)
+        _dispatcher(*CYLINDER_WARM_UP)(command, record)
 
 
 HELPER_STARTUP_SECONDS = 1.0
@@ -200,6 +253,8 @@ class _Pending:
     kernels: int
     t0: float
     say: object
+    factor: float = 1.0
+    full: bool = False
 
 
 _pending: _Pending | None = None
@@ -226,12 +281,14 @@ def prepare(command: str, say=None, *, background: bool = False) -> float:
     if not missing:
         return 0.0
     if say is not None:
-        say(MESSAGE.format(seconds=ESTIMATE_SECONDS.get(command, 30)))
+        say(announcement(command))
+    factor = _load_factor()
+    full = len(missing) == len(KERNELS[command])     # only a complete compilation measures the command
     t0 = time.perf_counter()
     helper = _start_helper(command)
     if helper is None:
         _warm(command, PARTS)
-        return _compiled(len(missing), t0, say)
+        return _compiled(len(missing), t0, say, command if full else None, factor)
     try:
         from .compile_plan import compile_entries
         compile_entries(_shares(command)[0])
@@ -241,7 +298,7 @@ def prepare(command: str, say=None, *, background: bool = False) -> float:
         helper.kill()
         raise
     global _pending
-    _pending = _Pending(helper, command, len(missing), t0, say)
+    _pending = _Pending(helper, command, len(missing), t0, say, factor, full)
     return time.perf_counter() - t0 if background else finish_compilation()
 
 
@@ -264,7 +321,8 @@ def finish_compilation() -> float:
         raise
     if not ok:
         _warm(pending.command, ("engine",))
-    return _compiled(pending.kernels, pending.t0, pending.say)
+    return _compiled(pending.kernels, pending.t0, pending.say, pending.command if pending.full else None,
+                     pending.factor)
 
 
 def _abandon() -> None:
@@ -278,8 +336,10 @@ def _abandon() -> None:
 atexit.register(_abandon)
 
 
-def _compiled(kernels: int, t0: float, say) -> float:
+def _compiled(kernels: int, t0: float, say, command: str | None = None, factor: float = 1.0) -> float:
     seconds = time.perf_counter() - t0
+    if command is not None:
+        _remember(command, seconds, max(factor, _load_factor()))
     if say is not None:
         say(f"compiled {kernels} kernel{'s' if kernels > 1 else ''} in {seconds:.0f} s")
     return seconds

@@ -28,11 +28,12 @@ from numba import njit
 
 from ..motions.excitation import (EXC_SAMPLES, excitation_end, ground_acceleration, ground_acceleration_right,
                                   next_breakpoint)
-from .eom import (rest_acceleration, rhs_given_acceleration, P_RADIUS, P_R, P_TWO_DOF, uplift_condition)
+from .eom import (rest_acceleration, rhs_given_acceleration, P_GAMMA, P_RADIUS, P_R, P_TWO_DOF, uplift_condition)
 from .rest_step import exact_rest_available, fill_rest_outputs, rest_state, rest_substeps, rest_uplift_scan
 from .events import next_threshold_crossing, root_on_dense
 from .transitions import (change_phase, event_levels, new_summary, crossing_event, energy_bound, enter_overturn, enter_uplift, impact, phase_of,
                           store_event, top_displacement)
+from .demand import track_demand, track_impact_jump
 from .dop853 import ERROR_EXPONENT_853, FSAL_ROW_853, N_STAGES_EXTENDED, dop853_dense, dop853_error_norm, dop853_step
 from .rk import (ERROR_EXPONENT, MAX_FACTOR, MIN_FACTOR, SAFETY, dense_coefficients, dense_value,
                  dp5_step, error_norm, initial_step)
@@ -511,6 +512,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
     # cannot raise the drift maximum skip the trigonometry of u_B
     drift_slope = 2.0 * sp[P_R] * (1.0 + 2.0 * sp[P_RADIUS] / sp[P_R])
     t_exc = excitation_end(kind, xp, samples)
+    track_cap = (not two_dof) and sp[P_GAMMA] != 0.0     # a frame's rigid cap beam (SPEC §13)
     high = resolve_method(int(opts[O_METHOD]), two_dof, rtol) == METHOD_DOP853
     error_exponent = ERROR_EXPONENT_853 if high else ERROR_EXPONENT
     fsal = FSAL_ROW_853 if high else 6
@@ -594,6 +596,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
             t, h, i_out, s_up = _exact_rest_step(t, h, t_end, y, y_new, f0, ftmp, m_scan, hyst, kind, xp, samples,
                                                  sp, rest_coef, t_out, out_y, i_out, summary, ev_t, ev_kind, ev_y,
                                                  diag)
+            track_demand(t, y, 0.0, rocking, side, phase, 0.0, sp, summary)
             if s_up != 0.0:
                 t_rock_start = t
                 rocking, side, phase = True, s_up, 1
@@ -693,6 +696,12 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
                              phase, kind, xp, samples, sp, diag)
             t = t_new
             h = h_next
+            if track_cap:
+                # θ̈ at the new state is the FSAL derivative (ü_g at t, or its right limit after a restart)
+                track_demand(t, y, f0[1], rocking, side, phase, ground_acceleration(t, kind, xp, samples), sp,
+                             summary)
+            elif two_dof:
+                track_demand(t, y, 0.0, rocking, side, phase, 0.0, sp, summary)
             if energy_stop and t >= t_exc and energy_bound(y, rocking, side, phase + 0, summary[S_THETA_MAX], sp):
                 status = ST_ENERGY_BOUND
                 if rocking:
@@ -712,6 +721,8 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
         t = t_e
         for i in range(4):
             y[i] = y_e[i]
+        ag_e = ground_acceleration(t, kind, xp, samples)
+        track_demand(t, y, math.nan, rocking, side, phase, ag_e, sp, summary)
         if ev_type == -1:
             status = ST_STOPPED_EXCEEDED
             if theta_c > summary[S_THETA_MAX]:
@@ -729,12 +740,16 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
             need_start = True
             continue
         # impact
+        thd_before = y[1]
         rocking, impacts = impact(y, sqrt_cr, v_rest, impacts, t, t_rock_start, summary, ev_t, ev_kind, ev_y, diag)
         phase = 1
+        track_impact_jump(thd_before, y[1], side, -side, sp, summary)
         if rocking:
             side = -side
         else:
             fresh_start = True
+        # after the impact map: u̇_B jumps with θ̇, u̇_T does not (Eq 4.21) — f_s on the other side
+        track_demand(t, y, math.nan, rocking, side, phase, ag_e, sp, summary)
         need_start = True
         if energy_stop and t >= t_exc and energy_bound(y, rocking, side, phase + 0, summary[S_THETA_MAX], sp):
             status = ST_ENERGY_BOUND

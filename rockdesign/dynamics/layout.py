@@ -76,7 +76,12 @@ S_T_END = 11
 S_UPLIFTS = 12
 S_IMPACTS_BEFORE_EXCEEDED = 13
 S_UPLIFT_TIME = 14     # total time spent uplifted [s]
-N_SUMMARY = 15
+S_FS_MAX = 15          # 2DOF podium: peak |f_s| = peak absolute acceleration of the superstructure [m/s²] (SPEC §13)
+S_T_FS_MAX = 16        # its time [s]
+S_CAP_ACC_MAX = 17     # rigid masses (frame, rigid superstructure): peak |absolute acceleration| of the cap beam
+                       # while rocking, between impacts [m/s²] (SPEC §13)
+S_CAP_DV_MAX = 18      # rigid masses: largest jump |Δu̇_B| of the cap beam's velocity at an impact [m/s]
+N_SUMMARY = 19
 
 # diagnostics array
 D_STEPS = 0

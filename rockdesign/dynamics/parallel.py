@@ -20,7 +20,7 @@ from ..execution.executor import ChunkStore, LocalExecutor, fingerprint, run_chu
 def motion_rows(sp: np.ndarray, samples: np.ndarray, opts: np.ndarray, kinds: np.ndarray, xps: np.ndarray,
                 offsets: np.ndarray, lengths: np.ndarray, t_ends: np.ndarray, y0s: np.ndarray) -> dict:
     """The chunk function: jobs ``kinds[i], xps[i], samples[offsets[i]:offsets[i]+lengths[i]]`` until
-    ``t_ends[i]`` [s] (numba prange over the jobs). Returns {"summaries": n × N_SUMMARY,
+    ``t_ends[i]`` [s] (:func:`~.batch.run_packed`: numba's threads, jobs handed out dynamically). Returns {"summaries": n × N_SUMMARY,
     "diagnostics": n × N_DIAG}."""
     s, d = run_packed(sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s)
     return {"summaries": s, "diagnostics": d}

@@ -106,6 +106,16 @@ class Response:
     diagnostics: dict = field(default_factory=dict)
     status_code: int = ST_OK                 # ST_* of rockdesign.dynamics.layout
     solver: SolverStats | None = None        # typed counters (``diagnostics`` holds them for the JSON)
+    # superstructure demand (SPEC §13; None where it does not exist): 2DOF podium — a_T_abs = −f_s history
+    # [m/s²] (absolute acceleration of the superstructure), its peak, the same superstructure on a fixed base;
+    # rigid masses — the cap beam's peak absolute acceleration between impacts [m/s²] and largest velocity
+    # jump at an impact [m/s]
+    a_T_abs: np.ndarray | None = None
+    superstructure_acceleration_max: float | None = None
+    t_superstructure_acceleration_max: float | None = None
+    fixed_base_acceleration_max: float | None = None
+    cap_acceleration_max: float | None = None
+    cap_velocity_jump_max: float | None = None
 
     @property
     def success(self) -> bool:
@@ -158,6 +168,12 @@ class Response:
             "overturn_criterion": self.overturn_criterion,
             "t_theta_max": self.t_theta_max,
             "drift_max": self.drift_max,
+            **({} if self.superstructure_acceleration_max is None else {
+                "superstructure_acceleration_max": self.superstructure_acceleration_max,
+                "fixed_base_acceleration_max": self.fixed_base_acceleration_max}),
+            **({} if self.cap_acceleration_max is None else {
+                "cap_acceleration_max": self.cap_acceleration_max,
+                "cap_velocity_jump_max": self.cap_velocity_jump_max}),
             "events": [{"kind": e.kind, "time": e.time, "theta": e.state[0], "thetadot": e.state[1]}
                        for e in self.events],
         }

@@ -7,13 +7,14 @@ import numpy as np
 
 from ..design.geometry import displacement_capacity, rocking_geometry, slenderness_angle
 from ..errors import ModelError
+from ..motions.excitation import EXC_NONE
 from ..motions.motion import GroundMotion, no_motion
 from ..systems import RockingSystem
 from .layout import (D_EVENTS, D_EVENTS_STORED, D_NFEV, D_REFINE, D_REJECTED, D_REST, D_STATUS, D_STEPS, EVENT_NAMES,
                      O_T_END, STATUS_NAMES, S_DRIFT_MAX, S_IMPACTS, S_THETA_MAX, S_T_END, S_T_THETA_MAX, S_T_UPLIFT,
-                     S_UB_MAX, S_UPLIFT_TIME)
+                     S_UB_MAX, S_UPLIFT_TIME, S_FS_MAX, S_T_FS_MAX, S_CAP_ACC_MAX, S_CAP_DV_MAX)
 from .model import REST_VELOCITY, ModelChoice, resolve_structure, system_parameters
-from .eom import P_THETA_C, P_TWO_DOF
+from .eom import P_OMEGA, P_THETA_C, P_TWO_DOF, P_ZETA
 from .overturning import classify
 from .response import Event, Response, SolverStats
 from ..design.quantities import RIGID_SUPERSTRUCTURE_RATIO
@@ -209,6 +210,7 @@ def _build_response(system, motion, sp, model, label, summary, diag, t_out, out_
                    "rest_entries": int(diag[D_REST]), "event_refinements": int(diag[D_REFINE]),
                    "status": STATUS_NAMES[int(diag[D_STATUS])],
                    "events_stored": n_ev}
+    demand = _demand(system, motion, sp, summary, y) if label.split("/")[1] != "linear-exact" else {}
     if n_ev < int(diag[D_EVENTS]):
         diagnostics["warning"] = (f"only the first {n_ev} of {int(diag[D_EVENTS])} events are listed "
                                   "(event_capacity); counts and maxima include all")
@@ -221,4 +223,25 @@ def _build_response(system, motion, sp, model, label, summary, diag, t_out, out_
                     impacts_before_overturn=before, drift_max=float(summary[S_DRIFT_MAX]),
                     t_end=float(summary[S_T_END]), model=label, status=STATUS_NAMES[int(diag[D_STATUS])],
                     diagnostics=diagnostics, status_code=int(diag[D_STATUS]),
-                    solver=SolverStats.from_diagnostics(diag))
+                    solver=SolverStats.from_diagnostics(diag), **demand)
+
+
+def _demand(system, motion, sp, summary, y) -> dict:
+    """The superstructure-demand fields of a :class:`Response` (SPEC §13): the 2DOF podium's a_T_abs history,
+    its peak and the fixed-base reference; a rigid mass's cap-beam acceleration and velocity jump."""
+    if sp[P_TWO_DOF] != 0.0:
+        from .demand import force_history
+        from ..motions.spectra import fixed_base_acceleration, motion_samples
+        a_t = -force_history(*(np.ascontiguousarray(y[:, i]) for i in range(4)), sp)
+        fixed = None
+        if motion.is_record or (motion.kind != EXC_NONE and motion.params.size >= 2):
+            accel, dt = motion_samples(motion)
+            # the damping the model gives the superstructure before uplift (Eq 4.3; ζ_s/S_r with the damping
+            # correction): a record that never uplifts the storey has a force ratio of exactly 1
+            fixed = fixed_base_acceleration(accel, dt, 2.0 * math.pi / sp[P_OMEGA], sp[P_ZETA])
+        return {"a_T_abs": a_t, "superstructure_acceleration_max": float(summary[S_FS_MAX]),
+                "t_superstructure_acceleration_max": float(summary[S_T_FS_MAX]), "fixed_base_acceleration_max": fixed}
+    if system.kind == "podium":
+        return {"cap_acceleration_max": float(summary[S_CAP_ACC_MAX]),
+                "cap_velocity_jump_max": float(summary[S_CAP_DV_MAX])}
+    return {}

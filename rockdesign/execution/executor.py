@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import os
 import shutil
+import socket
 import threading
 import time
 from dataclasses import dataclass, field
@@ -163,6 +164,33 @@ def _noop(_):
     return None
 
 
+PROBE_TIMEOUT = 5.0
+"""Seconds to wait for a TCP connection to a remote dask scheduler before refusing ``--dask``."""
+
+
+def reach_scheduler(address: str, timeout: float = PROBE_TIMEOUT) -> None:
+    """Open (and close) a TCP connection to the scheduler at ``address`` (``tcp://host:port`` or
+    ``host:port``), so an unreachable scheduler is refused at once, before any output is created."""
+    scheme, _, target = address.rpartition("://")
+    if scheme not in ("", "tcp"):       # tls://, ws://, inproc://: left to dask's own connection
+        return
+    target = target.rstrip("/")
+    host, _, port = target.rpartition(":")
+    try:
+        number = int(port)
+    except ValueError:
+        raise ExecutorError("invalid dask scheduler address", key="--dask",
+                            expected="a scheduler address with a port, such as tcp://host:8786",
+                            found=repr(address)) from None
+    try:
+        with socket.create_connection((host.strip("[]") or "localhost", number), timeout=timeout):
+            pass
+    except (OSError, ValueError) as exc:
+        raise ExecutorError(f"cannot reach the dask scheduler ({getattr(exc, 'strerror', None) or exc})",
+                            key="--dask", expected="a running scheduler (dask scheduler; dask worker ADDRESS) "
+                            "reachable within {:g} s".format(timeout), found=repr(address)) from None
+
+
 class DaskExecutor:
     """Run chunks on a dask.distributed cluster.
 
@@ -210,6 +238,8 @@ class DaskExecutor:
             raise ExecutorError("invalid dask scheduler address", key="--dask",
                                 expected="local:N or a scheduler address such as tcp://host:8786",
                                 found=repr(address))
+        else:
+            reach_scheduler(self.address)
 
     @property
     def slots(self) -> int:

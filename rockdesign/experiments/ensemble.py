@@ -9,6 +9,7 @@ The model is the project's full model (``[analysis] model``; exact equations unl
 from __future__ import annotations
 
 import csv
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -62,12 +63,18 @@ def run_ensemble(project, suite: str, *, scale: float = 1.0, restitution: float 
             raise ProjectError("invalid coefficient of restitution", key="--restitution", expected="0 < c_r <= 1",
                                found=repr(restitution))
         system = system.with_restitution(restitution)
-    if not scale > 0.0:
-        raise ProjectError("invalid scale factor", key="--scale", expected="a factor > 0", found=repr(scale))
+    if not (math.isfinite(scale) and scale > 0.0):
+        raise ProjectError("invalid scale factor", key="--scale", expected="a finite factor > 0", found=repr(scale))
     loaded = load_suite(suite, gravity=system.g, records_dir=records_dir, key="--suite")
     if not loaded.records:
         raise ProjectError("the ensemble has no available record", key="--suite", expected="a suite with records",
                            found="; ".join(f"{i}: {r}" for i, r in loaded.missing) or "an empty suite")
+    if loaded.missing:   # the CSV feeds 'validate': a dropped record would change its count silently
+        shown = "; ".join(f"{i}: {r}" for i, r in loaded.missing[:3])
+        more = f" and {len(loaded.missing) - 3} more" if len(loaded.missing) > 3 else ""
+        raise ProjectError(f"{len(loaded.missing)} of {len(loaded.entries)} records of the ensemble are missing",
+                           key="--suite", expected="every record of the suite available (or --records-dir "
+                           "with the PEER AT2 files)", found=shown + more)
     rule = loaded.default_scale
     if rule is not None and rule.method != "factor":
         raise ProjectError("the ensemble's scale rule is not applied by 'ensemble'", file=str(loaded.path),

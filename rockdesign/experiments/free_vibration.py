@@ -148,7 +148,15 @@ def read_tilt_csv(path) -> TiltHistory:
         raise ExperimentError("time is not increasing", file=file, line=lineno[bad], key=rows[0][t_col],
                               expected="strictly increasing times",
                               found=f"t = {t[bad]:g} after t = {t[bad - 1]:g}")
-    return TiltHistory(t_arr, np.asarray(theta) * _ANGLE_UNITS[a_unit], file, dropped)
+    theta_arr = np.asarray(theta) * _ANGLE_UNITS[a_unit]
+    beyond = np.abs(theta_arr) >= math.pi / 2
+    if np.any(beyond):
+        k = int(np.argmax(beyond))
+        hint = " (the column may be in degrees: name it 'theta_deg' or 'theta [deg]')" if a_unit == "rad" else ""
+        raise ExperimentError("tilt angle beyond π/2" + hint, file=file, line=lineno[k], key=rows[0][a_col],
+                              expected="|θ| < π/2 rad = 90° (a rocking body lies flat at π/2)",
+                              found=f"{theta[k]:g} {a_unit}")
+    return TiltHistory(t_arr, theta_arr, file, dropped)
 
 
 def noise_level(history: TiltHistory) -> float:

@@ -92,6 +92,9 @@ def parse_limits(text: str | None, gravity: float) -> dict:
         if not sep or key not in LIMIT_DIMENSIONS:
             raise MotionError("invalid table limit", key="--table", expected="d=<length>,v=<velocity>,a=<acceleration>",
                               found=repr(part.strip()))
+        if key in limits:
+            raise MotionError("table limit given twice (only one value would be used)", key=f"--table {key}",
+                              expected=f"{key}=… once", found=repr(text))
         try:
             limits[key] = parse_quantity(value.strip(), LIMIT_DIMENSIONS[key][0], gravity=gravity)
         except QuantityParseError as exc:

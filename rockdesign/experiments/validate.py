@@ -109,14 +109,17 @@ def read_results_csv(path, name: str) -> MixedSample:
     file = str(path)
     if not path.is_file():
         raise ExperimentError("results file not found", file=file, expected="a CSV file", found="no such file")
-    with open(path, newline="", encoding="utf-8") as fh:
-        rows = list(csv.DictReader(line for line in fh if not line.lstrip().startswith("#")))
-    if not rows or "theta_max_over_alpha" not in rows[0]:
-        raise ExperimentError("missing column", file=file, line=1, key="theta_max_over_alpha",
+    rows, header_line = _rows(path, file)
+    if not rows or "theta_max_over_alpha" not in rows[0][1]:
+        raise ExperimentError("missing column", file=file, line=header_line, key="theta_max_over_alpha",
                               expected="a column 'theta_max_over_alpha' (and optionally 'overturned', 'id')",
-                              found=", ".join(rows[0].keys()) if rows else "no rows")
+                              found=", ".join(str(c) for c in rows[0][1].keys()) if rows else "no rows")
     values, ids = [], []
-    for k, row in enumerate(rows, start=2):
+    for k, row in rows:
+        if None in row or None in row.values():
+            raise ExperimentError("the row does not match the header", file=file, line=k,
+                                  expected=f"{len(rows[0][1])} comma-separated fields as in the header",
+                                  found=f"{len(row) - (None in row) + len(row.get(None) or [])} field(s)")
         text = (row.get("theta_max_over_alpha") or "").strip()
         flag = (row.get("overturned") or "").strip().lower()
         if flag not in _TRUE and flag not in _FALSE:
@@ -125,8 +128,8 @@ def read_results_csv(path, name: str) -> MixedSample:
         if flag in _TRUE or text.lower() in ("inf", "+inf", "ot", "overturned"):
             values.append(math.inf)
         else:
-            try:
-                v = float(text)
+            try:   # a decimal comma ("0,5") as Excel writes it beside semicolons
+                v = float(text.replace(",", ".") if "," in text and "." not in text else text)
             except ValueError:
                 v = math.nan
             if not (math.isfinite(v) and v >= 0.0):
@@ -136,7 +139,48 @@ def read_results_csv(path, name: str) -> MixedSample:
         ids.append((row.get("id") or "").strip())
     if len(values) < 2:
         raise ExperimentError("too few runs", file=file, expected="at least 2 rows", found=str(len(values)))
-    return MixedSample(name, np.asarray(values, dtype=float), ids if all(ids) else [])
+    if "id" in rows[0][1]:   # ids pair tests with model runs: every row has one, each once
+        lines = [k for k, _ in rows]
+        for k, rid in zip(lines, ids):
+            if not rid:
+                raise ExperimentError("missing id", file=file, line=k, key="id",
+                                      expected="an id on every row (it pairs tests with model runs)", found="''")
+        first: dict[str, int] = {}
+        for k, rid in zip(lines, ids):
+            if rid in first:
+                raise ExperimentError("duplicate id", file=file, line=k, key="id",
+                                      expected="each id once (it pairs tests with model runs)",
+                                      found=f"'{rid}' again (first on line {first[rid]})")
+            first[rid] = k
+    return MixedSample(name, np.asarray(values, dtype=float), ids if "id" in rows[0][1] else [])
+
+
+def _rows(path: Path, file: str) -> tuple[list[tuple[int, dict]], int]:
+    """(line number, row) of a results CSV (UTF-8 with or without the byte-order mark Excel writes;
+    comma-, semicolon- or tab-separated as the header shows; ``#`` lines are comments) and the header's
+    line number."""
+    data = path.read_bytes()
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        line = data[:exc.start].count(b"\n") + 1
+        raise ExperimentError("not UTF-8 text", file=file, line=line,
+                              expected="a CSV saved as UTF-8 (Excel: 'CSV UTF-8')",
+                              found=f"byte 0x{data[exc.start]:02x} (another encoding, e.g. Latin-1)") from None
+    numbered = [(k, ln) for k, ln in enumerate(text.splitlines(), start=1)
+                if ln.strip() and not ln.lstrip().startswith("#")]
+    if not numbered:
+        return [], 1
+    header = numbered[0][1]
+    delimiter = next((d for d in (",", ";", "\t") if d in header), ",")
+    reader = csv.DictReader((ln for _, ln in numbered), delimiter=delimiter)
+    rows = [(numbered[i + 1][0], row) for i, row in enumerate(reader)]
+    if not rows:
+        return [], numbered[0][0]
+    for _, row in rows:
+        for key in [k for k in row if isinstance(k, str) and k != k.strip()]:
+            row[key.strip()] = row.pop(key)
+    return rows, numbered[0][0]
 
 
 def kolmogorov_distance(a: MixedSample, b: MixedSample) -> float:
@@ -186,17 +230,26 @@ def relative_errors(model: dict, tests: dict) -> dict:
 
 def split_tests(tests: MixedSample, seed: int) -> tuple[np.ndarray, np.ndarray]:
     """Seeded random split of the test indices into D1 (⌊n/2⌋) and D2 (the rest) (Sec 7.2)."""
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+        raise ExperimentError("invalid random seed", key="--seed", expected="an integer ≥ 0", found=repr(seed))
     order = np.random.default_rng(seed).permutation(tests.n)
     half = tests.n // 2
     return np.sort(order[:half]), np.sort(order[half:])
 
 
 def _model_on(model: MixedSample, tests: MixedSample, d2: np.ndarray, name: str) -> tuple[MixedSample, str]:
-    """The model runs for D2's motions: matched by id, else by row, else all runs."""
+    """The model runs for D2's motions: matched by id when both files have ids (every test's id must
+    be among the model's), else by row (same number of runs), else all runs."""
     if tests.ids and model.ids:
         where = {rid: k for k, rid in enumerate(model.ids)}
-        if all(tests.ids[i] in where for i in d2):
-            return model.subset(np.array([where[tests.ids[i]] for i in d2]), name), "id"
+        missing = [rid for rid in tests.ids if rid not in where]
+        if missing:
+            shown = ", ".join(repr(m) for m in missing[:4]) + (f" and {len(missing) - 4} more" if len(missing) > 4
+                                                               else "")
+            raise ExperimentError("tests without a model run of the same id", key="id",
+                                  expected=f"every test id among the ids of --{model.name.replace('_', '-')}",
+                                  found=f"{len(missing)} of {tests.n}: {shown}")
+        return model.subset(np.array([where[tests.ids[i]] for i in d2]), name), "id"
     if model.n == tests.n:
         return model.subset(d2, name), "row"
     return MixedSample(name, model.values, model.ids), "all"

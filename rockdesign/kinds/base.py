@@ -30,6 +30,9 @@ class StructureKind(abc.ABC):
     """What the kind's rocking spectrum runs over: "pulse" (planar: a pulse family, thesis Ch. 3) or
     "record pair" (cylinder: one record pair over R and PGA, Figs 5.16–5.17)."""
     report_files: frozenset[str] = frozenset()
+    design_charts: bool = True
+    """``rockdesign design`` can chart the kind's check over project keys (it needs the check's grid hooks:
+    ``records=``, ``verdict_only=``, :func:`rockdesign.checks.check.suite_records`)."""
     """Files a check writes into its output folder besides :data:`~rockdesign.outdir.RUN_FILES`."""
 
     # --- the project file -------------------------------------------------------------------

@@ -9,7 +9,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..cylinder.engine import STATUS, CylinderResponse, simulate_cylinder
+from ..cylinder.engine import SPIN_TILT_MIN, STATUS, CylinderResponse, simulate_cylinder
 from ..cylinder.kernel import ST_COMPLETED, ST_OVERTURNED
 from ..report.cylinder_figures import cylinder_history_figure
 from ..cylinder.quantities import frequency_parameter
@@ -71,14 +71,29 @@ class CylinderSimulation:
         save(cylinder_history_figure(self.response, self.project.system.g,
                                      f"{self.project.name} — {self.motion_text}", self.pair), path)
 
+    @property
+    def summary_caption(self) -> str:
+        """The caption under the console summary: what the spin rate φ̇ means and where it is reported."""
+        return (f"φ̇ near θ = 0 is the contact point whirling round the rim (quasi-impact, unbounded as θ → 0), "
+                f"not a rotation of the body: it is reported where θ ≥ {SPIN_TILT_MIN:g}α")
+
     def summary_rows(self) -> list[tuple[str, str, str]]:
         """(quantity, value, unit) rows of the console summary of ``simulate``."""
         r = self.response
         j = r.as_json()
-        rows = [("model", j["model"], ""), ("θ_max", format_value(r.theta_max), "rad"),
+        rows = [("model", j["model"], "")]
+        pair = self.pair
+        if pair is not None and pair.is_record:
+            pga = pair.resultant_pga
+            g = self.project.system.g
+            rows += [("resultant PGA as applied", f"{format_value(pga)} ({pga / g:.4g} g)", "m/s^2"),
+                     ("scale (× the records as read)", format_value(pair.scale), "-")]
+        spin = r.spin_max()
+        rows += [("θ_max", format_value(r.theta_max), "rad"),
                 ("θ_max/α", format_value(r.theta_max / r.alpha), "-"),
                 ("first uplift", "none" if r.uplift_time is None else format_value(r.uplift_time), "s"),
-                ("quasi-impacts", str(r.quasi_impacts), ""), ("max |φ̇|", format_value(j["phidot_max"]), "rad/s"),
+                ("quasi-impacts", str(r.quasi_impacts), ""),
+                (f"max |φ̇| where θ ≥ {SPIN_TILT_MIN:g}α", "—" if spin is None else format_value(spin), "rad/s"),
                 ("φ at the end", format_value(j["phi_end"]), "rad"),
                 (f"overturned (θ ≥ θ_ot = {r.theta_overturn:.4g} rad)", "YES" if r.overturned else "no", ""),
                 ("analysed until", format_value(float(r.t[-1])), "s")]

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..display import format_value
+from ..display import demand_rows, format_value, model_label
 from ..errors import RockdesignError
 from ..dynamics.layout import COMPLETED_STATUSES, STATUS_NAMES
 from ..dynamics.response import Response
@@ -42,6 +42,7 @@ class SimulationResult:
     response: Response
     motion_parameters: dict | None = None     # resolved pulse parameters (SI): a_p [m/s²], T_p [s], t_m/t_0 [s]
     motion_warnings: tuple[str, ...] = ()
+    motion_record: dict | None = None         # a record as applied: pga [m/s²] (after scale), scale on the raw record
 
     @property
     def t(self):
@@ -82,10 +83,16 @@ class SimulationResult:
         return out
 
     def write_csv(self, path) -> None:
-        """Time history as CSV: t [s], ag [m/s²], theta [rad], thetadot [rad/s], u_B, u_T, u_T−u_B [m]."""
+        """Time history as CSV: t [s], ag [m/s²], theta [rad], thetadot [rad/s], u_B, u_T, u_T−u_B [m]; a 2DOF
+        podium adds ``a_T_abs`` (the superstructure's absolute acceleration −f_s [m/s²], SPEC §13) and ``drift``
+        (u_T − u_B [m]) — the column names of CONTRACT §6.2."""
         r = self.response
-        data = np.column_stack([r.t, r.ground_acceleration, r.theta, r.thetadot, r.u_B, r.u_T, r.u_rel])
+        columns = [r.t, r.ground_acceleration, r.theta, r.thetadot, r.u_B, r.u_T, r.u_rel]
         header = "t_s,ground_acceleration_m_s2,theta_rad,thetadot_rad_s,u_B_m,u_T_m,u_T_minus_u_B_m"
+        if r.a_T_abs is not None:
+            columns += [r.a_T_abs, r.u_rel]
+            header += ",a_T_abs,drift"
+        data = np.column_stack(columns)
         np.savetxt(path, data, delimiter=",", header=header, comments="", fmt="%.10g")
 
     def write_figure(self, path) -> None:
@@ -97,7 +104,7 @@ class SimulationResult:
         """(quantity, value, unit) rows of the console summary of ``simulate``."""
         r = self.response
         rows = [
-            ("model", r.model, ""),
+            ("model", model_label(r.model, self.project.system), ""),
             ("θ_max", format_value(r.theta_max), "rad"),
             ("θ_max/α", format_value(r.theta_max_over_alpha), "-"),
             ("θ_max/θc", format_value(r.theta_max_over_theta_c), "-"),
@@ -115,6 +122,8 @@ class SimulationResult:
         ]
         if r.drift_max:
             rows.insert(5, ("max |u_T − u_B| (sampled)", format_value(r.drift_max), "m"))
+        at = next(i for i, row in enumerate(rows) if row[0] == "u_B,max / capacity") + 1
+        rows[at:at] = demand_rows(r, self.project.system.g)
         params = self.motion_parameters
         if params:
             g = self.project.system.g
@@ -123,6 +132,12 @@ class SimulationResult:
             if "t_m" in params:
                 extra.append(("wavelet centre t_m", format_value(params["t_m"]), "s"))
             rows[1:1] = extra
+        record = self.motion_record
+        if record:
+            g = self.project.system.g
+            rows[1:1] = [("record PGA as applied", f"{format_value(record['pga'])} ({record['pga'] / g:.4g} g)",
+                          "m/s^2"),
+                         ("scale (× the record as read)", format_value(record["scale"]), "-")]
         return rows
 
 
@@ -178,8 +193,9 @@ def run_simulation(request: SimulationRequest) -> SimulationResult:
     m = spec.motion
     params = ({k: float(m.meta[k]) for k in ("a_p", "T_p", "t_m", "t_0") if k in m.meta}
               if not m.is_record and "a_p" in m.meta else None)
+    record = {"pga": float(m.pga), "scale": float(m.meta.get("scale", 1.0))} if m.is_record else None
     return SimulationResult(project, request.motion_text, response, params,
-                            tuple(plausibility_warnings(m, project.system.g)))
+                            tuple(plausibility_warnings(m, project.system.g)), record)
 
 
 def simulate_motion(project: Project, motion: GroundMotion, *, model: str = "auto", t_end: float | None = None,

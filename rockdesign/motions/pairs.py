@@ -27,7 +27,7 @@ from ..errors import MotionError
 from ..units import QuantityParseError, parse_quantity
 from .excitation import EXC_NONE, EXC_SAMPLES, excitation_end, ground_acceleration_array
 from .motion import PULSE_KINDS, GroundMotion, no_motion
-from .parse import scale_factor
+from .parse import finite, record_file_only, scale_factor
 
 _EMPTY = np.zeros(0)
 _PAIR_ID = re.compile(r"^(p695-(?:ff|nfp|nfnp))/(\d+)$", re.I)
@@ -132,7 +132,8 @@ def pair_of_records(name: str, x: GroundMotion, y: GroundMotion | None, meta: di
     else:
         if abs(x.dt - y.dt) > 1e-9 * x.dt:
             raise MotionError("the two components have different time steps", key="--motion",
-                              expected="records sampled at the same dt", found=f"dt = {x.dt:g} s and {y.dt:g} s")
+                              expected="records sampled at the same dt",
+                              found=f"dt = {x.dt:g} s in '{_source(x)}' and {y.dt:g} s in '{_source(y)}'")
         sy = y.scale * y.samples
         n = max(sx.size, sy.size)
         sx = np.concatenate([sx, np.zeros(n - sx.size)])
@@ -140,6 +141,11 @@ def pair_of_records(name: str, x: GroundMotion, y: GroundMotion | None, meta: di
     info = dict(meta or {}, dt=x.dt, npts=int(sx.size), scale=1.0, components=[x.name] + ([y.name] if y else []))
     return MotionPair(name, EXC_SAMPLES, np.array([1.0, x.dt]), np.ascontiguousarray(sx, dtype=float),
                       np.ascontiguousarray(sy, dtype=float), (1.0, 1.0), y is None, info)
+
+
+def _source(motion: GroundMotion) -> str:
+    """The file a record came from (its name) or the record's id."""
+    return motion.meta.get("file_name") or motion.name
 
 
 def load_pair(pair_id: str, *, gravity: float = 9.81) -> MotionPair:
@@ -186,15 +192,18 @@ class PairSpec:
     text: str = ""
 
 
-def _angle(text: str, value: str) -> float:
+def _angle(text: str, value: str, name: str = "azimuth") -> float:
+    """An angle parameter [rad] (``30deg``, ``30°``, ``0.5rad``): finite, or a one-line error naming it."""
     v = value.strip()
     try:
         if v.endswith("deg") or v.endswith("°"):
-            return math.radians(float(v.rstrip("°").removesuffix("deg").strip()))
-        return parse_quantity(v, "angle")
+            angle = math.radians(float(v.rstrip("°").removesuffix("deg").strip()))
+        else:
+            angle = parse_quantity(v, "angle")
     except (ValueError, QuantityParseError):
-        raise MotionError("azimuth expects an angle", key="--motion", expected="e.g. azimuth=30deg or "
-                          "azimuth=0.5rad", found=f"'{value}' in '{text}'") from None
+        raise MotionError(f"{name} expects an angle", key="--motion", expected=f"e.g. {name}=30deg or "
+                          f"{name}=0.5rad", found=f"'{value}' in '{text}'") from None
+    return finite(text, name, value, angle)
 
 
 def _split(text: str, body: str, allowed: tuple[str, ...]) -> tuple[list[str], dict[str, str]]:
@@ -221,6 +230,7 @@ def _apply_scaling(pair: MotionPair, named: dict, text: str, gravity: float, upl
         except QuantityParseError as exc:
             raise MotionError(f"resultant_pga expects {exc} or a multiple of 'up'", key="--motion",
                               found=f"'{text}'") from None
+        finite(text, "resultant_pga", value, target)
         if not target > 0 or pair.resultant_pga == 0:
             raise MotionError("resultant_pga must be positive", key="--motion", expected="e.g. resultant_pga=0.3g",
                               found=f"'{text}'")
@@ -248,13 +258,14 @@ def parse_pair(text: str, *, gravity: float = 9.81, alpha: float = 0.0, uplift_a
                               expected="free:theta0=0.1rad[,phidot0=1e-3rad/s]", found=f"'{text}'")
         base = parse_motion("free:" + ",".join(f"{k}={v}" for k, v in named.items() if k in ("theta0", "thetadot0")),
                             scales)
-        phi0 = _angle(text, named["phi0"]) if "phi0" in named else 0.0
+        phi0 = _angle(text, named["phi0"], "phi0") if "phi0" in named else 0.0
         phidot0 = 0.0
         if "phidot0" in named:
             try:
                 phidot0 = parse_quantity(named["phidot0"], "frequency")
             except QuantityParseError as exc:
                 raise MotionError(f"phidot0 expects {exc}", key="--motion", found=f"'{text}'") from None
+            finite(text, "phidot0", named["phidot0"], phidot0)
         if base.theta0 <= 0.0 and base.thetadot0 <= 0.0:
             raise MotionError("the cylinder's tilt is θ ≥ 0", key="--motion", expected="theta0 > 0 or thetadot0 > 0",
                               found=f"'{text}'")
@@ -270,6 +281,7 @@ def parse_pair(text: str, *, gravity: float = 9.81, alpha: float = 0.0, uplift_a
         if kind == "files" and len(positional) != 2:
             raise MotionError("files: needs two record files", key="--motion", expected="files:X.AT2,Y.AT2",
                               found=f"'{text}'")
+        record_file_only(text, kind, named)
         if kind != "files" and len(positional) != 1:
             raise MotionError("one record id or file", key="--motion", expected="record:p695-ff/11 or file:X.AT2",
                               found=f"'{text}'")

@@ -49,11 +49,11 @@ def _fields(text: str, body: str, allowed: tuple[str, ...], positional: list | N
     out = {}
     if not body.strip():
         return out
-    for part in body.split(","):
+    parts = body.split(",")
+    no_empty_part(text, parts)
+    for part in parts:
         if positional is not None:
             part = part.strip()
-            if not part:
-                continue
             if "=" not in part:
                 positional.append(part)
                 continue
@@ -71,6 +71,14 @@ def _fields(text: str, body: str, allowed: tuple[str, ...], positional: list | N
     return out
 
 
+def no_empty_part(text: str, parts: list[str]) -> None:
+    """Refuse an empty parameter (``,,`` or a comma at either end): nothing the user typed is skipped."""
+    if any(not part.strip() for part in parts):
+        raise MotionError("empty motion parameter (two commas in a row, or a comma at either end)",
+                          key="--motion", expected="name=value pairs separated by single commas",
+                          found=f"'{text}'")
+
+
 def _relative(value: str, units: dict[str, float]):
     m = _MULTIPLE.match(value)
     if m and m.group(2) in units:
@@ -80,13 +88,20 @@ def _relative(value: str, units: dict[str, float]):
 
 def _quantity(text: str, name: str, value: str, dimension: str, scales: SystemScales, relative: dict[str, float]):
     rel = _relative(value, relative)
-    if rel is not None:
-        return rel
     try:
-        return parse_quantity(value, dimension, gravity=scales.g)
+        result = rel if rel is not None else parse_quantity(value, dimension, gravity=scales.g)
     except QuantityParseError as exc:
         extra = " or " + " / ".join(f"a multiple of '{u}'" for u in relative) if relative else ""
         raise MotionError(f"parameter '{name}' expects {exc}{extra}", key="--motion", found=f"'{text}'") from None
+    return finite(text, name, value, result)
+
+
+def finite(text: str, name: str, raw: str, value: float) -> float:
+    """``value`` if it is a finite number (NaN or ±inf, e.g. from ``1e999``, never reach a kernel)."""
+    if not math.isfinite(value):
+        raise MotionError(f"parameter '{name}' must be a finite number", key="--motion",
+                          expected=f"{name}=… with a finite value", found=f"'{raw}' in '{text}'")
+    return value
 
 
 def scale_factor(text: str, raw: str) -> float:
@@ -99,6 +114,15 @@ def scale_factor(text: str, raw: str) -> float:
         raise MotionError("scale must be positive", key="--motion", expected="a finite scale > 0",
                                   found=f"'{text}'")
     return scale
+
+
+def record_file_only(text: str, kind: str, named: dict) -> None:
+    """Refuse ``units=``/``dt=`` on a built-in record (it carries its own): they apply to ``file:`` motions."""
+    ignored = [k for k in ("units", "dt") if k in named]
+    if kind == "record" and ignored:
+        raise MotionError(f"'{ignored[0]}=' applies to record files (file:…); a built-in record has its own "
+                          "units and time step", key="--motion", expected="record:ID[,scale=…] or "
+                          "file:PATH[,units=…,dt=…]", found=f"'{ignored[0]}={named[ignored[0]]}' in '{text}'")
 
 
 def parse_motion(text: str, scales: SystemScales, *, records_dir: str | None = None) -> MotionSpec:
@@ -162,7 +186,9 @@ def parse_motion(text: str, scales: SystemScales, *, records_dir: str | None = N
     if kind in ("record", "file"):
         parts = body.split(",")
         ident = parts[0].strip()
+        no_empty_part(text, parts)
         f = _fields(text, ",".join(parts[1:]), ("scale", "units", "dt"))
+        record_file_only(text, kind, f)
         scale = scale_factor(text, f["scale"]) if "scale" in f else 1.0
         try:
             if kind == "record":
@@ -170,7 +196,7 @@ def parse_motion(text: str, scales: SystemScales, *, records_dir: str | None = N
                 motion = load_record(ident, gravity=scales.g, records_dir=records_dir)
             else:
                 from .records import read_record_file
-                dt = parse_quantity(f["dt"], "time") if "dt" in f else None
+                dt = _quantity(text, "dt", f["dt"], "time", scales, {}) if "dt" in f else None
                 motion = read_record_file(ident, units=f.get("units"), dt=dt, gravity=scales.g)
         except RockdesignError:
             raise

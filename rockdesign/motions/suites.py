@@ -14,7 +14,8 @@ A suite is a TOML manifest (built-in ones in ``ground_motions/*.toml``)::
     id = "p695-ff/11a"           #   id: any record id of rockdesign.motions.library
     rsn = 900                    #   rsn + component: the user's records folder first, then the
     component = "270"            #     built-in record (``builtin = "p695-ff/11a"`` or same RSN/component)
-    label = "A9"                 # every other key is metadata (event, station, reference values...)
+    label = "A9"                 # every other key is metadata (event, station, reference values...);
+    ground_motion = "Yermo"      #   ground_motion groups the components of one station (motions.grouping)
 
 Records that cannot be found (an ``rsn`` not in the records folder nor built in, a missing
 ``file``) are listed in :attr:`Suite.missing` with the reason — never skipped silently.

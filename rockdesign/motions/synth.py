@@ -123,12 +123,13 @@ class EnsembleMatch:
 
 def scale_ensemble(motions: list[GroundMotion], seed: GroundMotion, *, scale_to: str = "sdmax",
                    damping: float = DEFAULT_DAMPING, band=DEFAULT_BAND,
-                   n_periods: int = 100) -> tuple[list[GroundMotion], EnsembleMatch]:
+                   n_periods: int = 100, progress=None) -> tuple[list[GroundMotion], EnsembleMatch]:
     """Scale an ensemble by one common factor towards its seed and report the match.
 
     ``sdmax``: factor = seed SD_max / ensemble median SD_max. ``spectrum``: factor =
     exp(mean over a log grid of ln(seed SD/ensemble mean SD)). ``none``: factor 1.
     SD_max and spectra use ``damping`` and ``band`` (defaults 2 %, 0.05–10 s, SPEC §5).
+    ``progress(stage, done, total)`` is called as the members' spectra are computed.
     """
     if scale_to not in SCALE_CHOICES:
         raise MotionError("unknown ensemble scaling", key="scale_to", expected=" | ".join(SCALE_CHOICES),
@@ -136,8 +137,14 @@ def scale_ensemble(motions: list[GroundMotion], seed: GroundMotion, *, scale_to:
     periods = np.geomspace(band[0], band[1], n_periods)
     seed_sd_max, seed_period = sd_max(seed, damping, band)
     seed_sd = motion_spectrum(seed, periods, damping)[0]
-    members = [sd_max(m, damping, band)[0] for m in motions]
-    mean_sd = np.mean([motion_spectrum(m, periods, damping)[0] for m in motions], axis=0)
+    members, spectra = [], []
+    stage = "spectra of the synthetic records (SD_max, SD)"
+    for k, m in enumerate(motions):
+        members.append(sd_max(m, damping, band)[0])
+        spectra.append(motion_spectrum(m, periods, damping)[0])
+        if progress is not None:
+            progress(stage, k + 1, len(motions))
+    mean_sd = np.mean(spectra, axis=0)
     ratio = mean_sd / seed_sd
     if scale_to == "sdmax":
         factor = seed_sd_max / float(np.median(members))
@@ -160,20 +167,31 @@ def scale_ensemble(motions: list[GroundMotion], seed: GroundMotion, *, scale_to:
 
 def synthesize(seed: GroundMotion, n: int, out_dir, *, seed_value: int = 1, scale_to: str = "sdmax",
                damping: float = DEFAULT_DAMPING, band=DEFAULT_BAND, modulating: str = "dual",
-               name: str | None = None) -> tuple[Path, EnsembleMatch]:
+               name: str | None = None, progress=None) -> tuple[Path, EnsembleMatch]:
     """Fit, simulate ``n`` records, scale and save them as a suite in ``out_dir``.
 
     Writes ``ensemble.toml`` + ``ensemble.npz`` (load with
     :func:`rockdesign.motions.suites.load_suite`), ``model.json`` (sgsim parameters) and
     ``match.json`` (:class:`EnsembleMatch`). Returns (manifest path, match).
+    ``progress(stage, done, total)`` is called at each stage (fit, simulation, spectra, writing).
     """
+    if isinstance(seed_value, bool) or not isinstance(seed_value, int) or seed_value < 0:
+        raise MotionError("invalid random seed", key="--seed-value", expected="an integer ≥ 0",
+                          found=repr(seed_value))
+    def tick(stage: str, done: int, total: int) -> None:
+        if progress is not None:
+            progress(stage, done, total)
+
     out = Path(out_dir).expanduser()
-    out.mkdir(parents=True, exist_ok=True)
     seed_id = str(seed.meta.get("id", seed.name))
     name = name or f"synth-{seed_id.replace('/', '-').replace(':', '-')}-s{seed_value}"
+    tick("fitting the stochastic model to the seed record", 0, 1)
     model = fit_model(seed, modulating=modulating)
+    tick(f"simulating {n} records", 0, 1)
     motions = simulate_ensemble(seed, n, seed_value=seed_value, name=name, model=model)
-    scaled, match = scale_ensemble(motions, seed, scale_to=scale_to, damping=damping, band=band)
+    scaled, match = scale_ensemble(motions, seed, scale_to=scale_to, damping=damping, band=band, progress=progress)
+    tick("writing the suite", 0, 1)
+    out.mkdir(parents=True, exist_ok=True)   # (after the work: a failed run leaves no empty folder)
     path = save_suite(out / "ensemble.toml", scaled, name=name,
                       description=f"{n} synthetic records (sgsim) from seed {seed_id}, seed value {seed_value}, "
                                   f"scaled by {match.factor:.4g} ({scale_to})",
@@ -182,4 +200,5 @@ def synthesize(seed: GroundMotion, n: int, out_dir, *, seed_value: int = 1, scal
                             "ensemble_factor": match.factor, "ensemble_scaling": scale_to})
     (out / "model.json").write_text(json.dumps(json_ready(model.params), indent=2))
     (out / "match.json").write_text(json.dumps(json_ready(asdict(match)), indent=2))
+    tick("writing the suite", 1, 1)
     return path, match

@@ -6,6 +6,7 @@ construction.  Text (formulas, assumptions, record metadata) comes from the resu
 """
 from __future__ import annotations
 
+import math
 import os
 import platform
 import re
@@ -15,6 +16,8 @@ from pathlib import Path
 
 from .. import __version__
 from ..kernel_cache import sources_digest
+from .formatting import fmt
+from .methods import PLANAR_METHODS
 
 SOFTWARE = ("rockdesign", "numpy", "scipy", "numba", "matplotlib", "weasyprint", "jinja2", "pint", "pypdf")
 """Packages whose versions the report lists (besides Python)."""
@@ -32,6 +35,59 @@ def pretty_exponents(text: str) -> str:
         sign = "-" if m.group(2) == "-" else ""
         return f"{m.group(1)}·10{(sign + m.group(3)).translate(_SUPERSCRIPT)}"
     return _E_NOTATION.sub(repl, text or "")
+
+
+_SI_UNIT = {"mass": "kg", "length": "m"}
+"""Input dimensions whose values the substituted formulas print in SI (mass, length)."""
+
+
+def _si_texts(value: float, unit: str) -> list[str]:
+    """The ways the design quantities print an SI input inside a substituted formula (5 significant
+    digits, powers of ten as ``2.9·10^5`` or ``2.9e+05``), with the unit."""
+    plain = f"{value:.5g}"
+    out = [f"{plain} {unit}"]
+    if "e" in plain:
+        mant, exp = plain.split("e")
+        out.append(f"{mant}·10^{int(exp)} {unit}")
+    return out
+
+
+def inputs_as_given(project) -> dict[str, str]:
+    """SI text → the project file's own text, for every mass and length the project gives in other
+    units (``"2.9·10^5 kg"`` → ``"290 t"``): the report echoes inputs in the units of the input."""
+    from ..units import QuantityParseError, parse_quantity
+    g = getattr(project.system, "g", 9.81)
+    out: dict[str, str] = {}
+    for table in (project.raw or {}).values():
+        if not isinstance(table, dict):
+            continue
+        for text in table.values():
+            if not isinstance(text, str):
+                continue
+            for dimension, unit in _SI_UNIT.items():
+                try:
+                    value = parse_quantity(text, dimension, gravity=g)
+                except (QuantityParseError, KeyError):
+                    continue
+                given = " ".join(text.split())
+                if given.split(" ", 1)[-1] != unit:
+                    for si in _si_texts(value, unit):
+                        out[si] = given
+                break
+    return out
+
+
+def as_given(text: str, given: dict[str, str]) -> str:
+    """``text`` with every SI rendering of an input (see :func:`inputs_as_given`) replaced by the input."""
+    for si, raw in sorted(given.items(), key=lambda kv: -len(kv[0])):
+        text = re.sub(rf"(?<![\w.·^]){re.escape(si)}(?!\w)", raw, text)
+    return text
+
+
+def given_value(project, table: str, key: str) -> str | None:
+    """The project file's text of ``[table] key`` (whitespace normalised), None if absent or not text."""
+    value = ((project.raw or {}).get(table) or {}).get(key)
+    return " ".join(value.split()) if isinstance(value, str) else None
 
 
 def _lambda_source(project) -> str:
@@ -91,6 +147,94 @@ def _processing_note(meta: dict) -> str:
     return "; ".join(parts)
 
 
+def _formula(name: str, formula: str, quantities: dict) -> str:
+    """The formula as the report prints it: R̂ of a podium with a superstructure is evaluated with
+    γ̂ = γ(1+η), so it is written with γ̂ (the substituted numbers are γ̂'s)."""
+    if name == "R_hat" and formula and "eta" in quantities:
+        return formula.replace("γ", "γ̂")
+    return formula
+
+
+def _quantity_note(name: str, note: str, data: dict, project) -> str:
+    """The note under a quantity, with what an engineer needs to read it (where a force acts, what a
+    ratio means, how an input was used)."""
+    q = data["quantities"]
+    g = data["settings"]["g"]
+    if name == "uplift_force" and "gamma" in q:
+        gamma = q["gamma"]["value"]
+        g_hat = gamma * (1.0 + (q["eta"]["value"] if "eta" in q else 0.0))
+        base_shear = q[name]["value"] * (1.0 + g_hat) / (1.0 + 2.0 * g_hat)
+        extra = ("horizontal force at the columns' mid-height that lifts the frame off (virtual work: columns "
+                 "at H, cap beam and superstructure at 2H); the same force at the cap beam is half of it. Under "
+                 f"ground shaking the base shear at uplift is V_up = (1+γ̂) N m_C g tan α = {fmt(base_shear, 'N')}, "
+                 "the weight of columns, cap beam and (rigid) superstructure times tan α (uplift at ü_g = g tan α)")
+        return f"{note}; {extra}" if note else extra
+    if name == "R_hat" and "lambda" in q and q[name]["value"] > 0:
+        p_block = math.sqrt(g / (q[name]["value"] * (1.0 + q["lambda"]["value"])))
+        extra = (f"a solitary block of size R̂ has p = √(g/(R̂(1+λ))) = {fmt(p_block, '1/s')}, the frame's p̂ with γ̂ "
+                 "(superstructure rigid: its mass adds weight and rocking inertia)")
+        if "p_hat" in q and q["p_hat"]["equation"] == "Eq 4.32":
+            extra += (f"; p̂ = {fmt(q['p_hat']['value'], '1/s')} above (Eq 4.32) is the podium's with the "
+                      "superstructure elastic, whose mass adds weight but not rocking inertia")
+        return f"{note}; {extra}" if note else extra
+    if name == "zeta_su" and "damping ζ_s/S_r" in (note or ""):
+        given = given_value(project, "superstructure", "damping") or fmt(data["quantities"][name]["value"])
+        return (f"ζ_in = ζ_s/S_r: the project's ζ_s = {given} divided by S_r (damping_correction = true), so that the "
+                "uplifted superstructure has the damping given (Eq 4.27)")
+    return note
+
+
+def _model_rows(model: dict) -> dict:
+    """The model-selection texts without repetition: the rationale keeps only what the structure and
+    equations rows do not already say; a rejected simplification equal to the equations row is dropped."""
+    reason = model.get("reason") or ""
+    for part in (model.get("structure_reason"), model.get("equations_reason")):
+        if part:
+            reason = reason.replace(part, "")
+    reason = re.sub(r"^\s*[\w./-]+:\s*", "", reason)          # "podium-2dof/exact: " prefix
+    reason = re.sub(r"^[\s;.]+", "", reason).strip()
+    rejected = [r for r in (model.get("rejected") or []) if r not in (model.get("equations_reason") or "")]
+    return {"rationale": reason, "rejected": rejected,
+            "same_as_full": model.get("chosen") == model.get("full_model")}
+
+
+def _verdict_link(data: dict, checks: list[dict]) -> str:
+    """One sentence linking the design-level counts of the verdict box with the verdict."""
+    deciding = [c for c in checks if c.get("governs_verdict")]
+    not_evaluated = [c for c in deciding if c.get("evaluated") is False]
+    failing = [c for c in deciding if not c["passed"] and c.get("evaluated") is not False]
+    s = data["summary"]
+    ac = data.get("acceptance") or {}
+    counts = (f"The box's {s['n_overturned']} of {s['n_records']} records (P(overturn) = {fmt(s['p_overturn'])}) "
+              "count overturning at the design level")
+    if ac.get("n_ground_motions"):
+        counts += (f"; they belong to {ac['n_unacceptable']} of {ac['n_ground_motions']} ground motions, the count "
+                   f"the acceptance rule uses ({ac['allowed_unacceptable']} allowed)")
+    if data["verdict"] == "PASS":
+        return f"{counts}. Every check that decides the verdict passes, so the verdict is PASS."
+    if failing:
+        names = "; ".join(f"“{c['name']}”" for c in failing)
+        return (f"{counts}. The verdict is FAIL because {'this check fails' if len(failing) == 1 else 'these checks fail'}: "
+                f"{names} — every check marked “decides verdict: yes” below must pass.")
+    if not_evaluated or data["verdict"] != "FAIL":
+        names = "; ".join(f"“{c['name']}”" for c in not_evaluated) or "a governing criterion"
+        return (f"{counts}. {names} {'was' if len(not_evaluated) <= 1 else 'were'} not evaluated, so the verdict is "
+                f"{data['verdict']}: a criterion that was not evaluated cannot pass.")
+    return f"{counts}. The verdict is FAIL: {data.get('verdict_reason') or 'see the checks below'}."
+
+
+def _quality_note(project, data: dict) -> str:
+    """Where the FEMA P695 quality ratings come from (the project's ``[analysis] quality`` or the default)."""
+    cm = data.get("collapse_margin") or {}
+    if not cm:
+        return ""
+    given = ((project.raw or {}).get("analysis") or {}).get("quality")
+    if given:
+        return "ratings from the project's [analysis] quality"
+    return ("default ratings B ('good', β = 0.20 each; FEMA P695 Tables 3-1, 3-2 and 5-3): the project gives no "
+            "[analysis] quality")
+
+
 def _order_checks(checks: list[dict], governing: str | None) -> list[dict]:
     """The governing check (decided by the library: ``CheckResult.governing_check``) first, then the
     rest by decreasing utilisation."""
@@ -104,10 +248,10 @@ def _capacity_text(system) -> str:
     if c.extension == "curved":
         return ("For a column with curved extensions the capacity 2B of Polyakov's rule is replaced by the "
                 "column-top displacement at the rotation capacity θc, u_B(θc) (Eqs 3.46/3.51 with Eq 3.83). "
-                "This generalisation is ours (docs/model.md §6), not Polyakov's or the thesis's.")
+                "This generalisation is rockdesign's (Appendix M3), not Polyakov's or the thesis's.")
     if c.extension == "flat":
         return ("With flat extensions the base width is 2B', and the capacity u_B(θc) = 2B' (θc = α'); this "
-                "extension of Polyakov's 2B is ours (docs/model.md §6).")
+                "extension of Polyakov's 2B is rockdesign's (Appendix M3).")
     return "Without extensions the capacity is Polyakov's 2B = u_B(θc = α)."
 
 
@@ -119,12 +263,15 @@ def build_context(result, *, figures: dict | None = None, verification: dict | N
     system = project.system
     c = system.column
     q_rows = []
+    given = inputs_as_given(project)
     for name, qj in data["quantities"].items():
         q = result.quantities[name]
         substituted = q.substituted if name != "lambda" else _lambda_source(project)
-        q_rows.append({"name": name, "symbol": q.symbol, "description": q.description, "formula": q.formula,
-                       "substituted": pretty_exponents(substituted), "value": qj["value"], "unit": qj["unit"],
-                       "equation": qj["equation"], "note": q.note})
+        q_rows.append({"name": name, "symbol": q.symbol, "description": q.description,
+                       "formula": _formula(name, q.formula, data["quantities"]),
+                       "substituted": pretty_exponents(as_given(substituted, given)), "value": qj["value"],
+                       "unit": qj["unit"], "equation": qj["equation"],
+                       "note": _quantity_note(name, q.note, data, project)})
     records = []
     notes = []
     by_id = {o.id: o for o in result.records}
@@ -183,6 +330,15 @@ def build_context(result, *, figures: dict | None = None, verification: dict | N
         "default_excitation": bool(excitation["default_used"]),
         "design_pga": (project.excitation_raw or {}).get("design_pga"),
         "model": data["model"],
+        "model_rows": _model_rows(data["model"]),
+        "verdict_link": _verdict_link(data, checks),
+        "quality_note": _quality_note(project, data),
+        "methods": PLANAR_METHODS,
+        "theta_c_is_alpha": abs(data["quantities"]["theta_c"]["value"] - data["quantities"]["alpha"]["value"])
+        <= 1e-12 * data["quantities"]["alpha"]["value"],
+        "uplift_ratio": data["quantities"]["uplift_acceleration"]["value"] / data["settings"]["g"],
+        "given": {"cap_beam_mass": given_value(project, "podium", "cap_beam_mass"),
+                  "superstructure_mass": given_value(project, "superstructure", "mass")},
         "sensitivity": data["sensitivity"],
         "settings": data["settings"],
         "verification": verification or {},

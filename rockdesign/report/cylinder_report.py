@@ -18,13 +18,15 @@ import jinja2
 
 from .. import __version__
 from ..checks.cylinder_check import CSV_COLUMNS, governing_ids
+from ..cylinder.engine import SPIN_TILT_MIN
 from ..cylinder.quantities import cylinder_quantities
 from ..paths import templates_dir
 from ..plots import save
-from .context import report_date, software_versions
+from .context import given_value, report_date, software_versions
 from .cylinder_figures import comparison_figure, cylinder_history_figure, wobbling_figure
 from .figures import svg
 from .formatting import DIGITS, fmt
+from .methods import CYLINDER_METHODS
 from .render import environment, stylesheet, write_report
 from .results import write_results_csv, write_results_json
 
@@ -67,6 +69,23 @@ def planar_answer(data: dict) -> str:
             f"The wobbling cylinder needs the 3D analysis.")
 
 
+def check_rows(checks: list[dict]) -> list[dict]:
+    """The checks as the report's table prints them: a check that decides the verdict passes or FAILS; an
+    informative one is "met"/"not met", and a question ("Does a planar analysis suffice?") is answered
+    yes/no with its ratio of overturning pairs (3D over planar) rather than a utilisation."""
+    rows = []
+    for c in checks:
+        if c["governs_verdict"]:
+            value, result = fmt(c["utilisation"]), "passed" if c["passed"] else "FAILED"
+        elif c["name"].startswith("Does a planar analysis suffice"):
+            value = f"{fmt(c['utilisation'])} (pairs overturning 3D/planar)"
+            result = "yes" if c["passed"] else "no"
+        else:
+            value, result = fmt(c["utilisation"]), "met" if c["passed"] else "not met"
+        rows.append(dict(c, value_text=value, result_text=result))
+    return rows
+
+
 def build_cylinder_context(result, *, figures: dict, date: str | None = None) -> dict:
     """The template's data: results.json (``data``) plus texts, figures and the input echo."""
     project, data = result.project, result.as_json()
@@ -79,7 +98,8 @@ def build_cylinder_context(result, *, figures: dict, date: str | None = None) ->
     return {
         "data": data, "summary": data["summary"], "checks": data["checks"], "verdict": data["verdict"],
         "title": "Calculation report — rocking and wobbling cylinder (3D)",
-        "project": {"name": project.name, "file": project.path, "sha256": project.sha256,
+        "project": {"name": project.name, "file": Path(project.path).name if project.path else "",
+                    "sha256": project.sha256,
                     "engineer": project.info.get("engineer"), "notes": project.info.get("notes"),
                     "source_text": project.source_text},
         "quantities": [dict(q.as_json(), name=name, symbol=q.symbol, description=q.description,
@@ -94,6 +114,8 @@ def build_cylinder_context(result, *, figures: dict, date: str | None = None) ->
                       for rid in governing_ids(data) if f"history:{rid}" in figures],
         "figures": figures, "date": date or report_date(), "tool_version": __version__,
         "software": software_versions(), "digits": DIGITS,
+        "given": {key: given_value(project, "cylinder", key) for key in ("height", "diameter", "mass", "density")},
+        "check_rows": check_rows(data["checks"]), "methods": CYLINDER_METHODS, "spin_tilt_min": SPIN_TILT_MIN,
     }
 
 

@@ -190,9 +190,13 @@ def _spring(ax, x: float, y0: float, y1: float, width: float, turns: int = 6):
     ax.plot(xs, ys, color=INK, lw=0.8, zorder=4)
 
 
-def podium_drawing(system):
+def podium_drawing(system, given: dict | None = None):
     """Elevation of a rocking podium: a few columns to scale (spacing schematic) under the cap beam,
-    and the superstructure as a mass on a spring (SDOF, not to scale)."""
+    and the superstructure as a mass on a spring (SDOF, not to scale).
+
+    ``given``: the project file's own texts of ``cap_beam_mass``, ``superstructure_mass``,
+    ``superstructure_period`` and ``superstructure_damping`` (labels echo inputs in their units)."""
+    given = {k: v for k, v in (given or {}).items() if v}
     c = system.column
     H2, B, Be = 2.0 * c.half_height, c.half_width, c.half_width_ext
     N = system.n_columns
@@ -221,7 +225,8 @@ def podium_drawing(system):
         ax.add_patch(Rectangle((x_left + 0.2 * spacing, H2), x_right - x_left - 0.4 * spacing, beam_h,
                                fc="#bfbfbf", ec=INK, lw=0.9, zorder=2))
         xm = 0.5 * (xs[0] + xs[-1])
-        ax.text(x_right - 0.25 * spacing, H2 + beam_h / 2, f"cap beam $m_B$ = {fmt(system.cap_beam_mass, 'kg')}",
+        beam_mass = given.get("cap_beam_mass") or fmt(system.cap_beam_mass, "kg")
+        ax.text(x_right - 0.25 * spacing, H2 + beam_h / 2, f"cap beam $m_B$ = {beam_mass}",
                 fontsize=7.5, ha="right", va="center", zorder=5)
         if N > shown:
             xb = 0.5 * (xs[-2] + xs[-1])
@@ -242,14 +247,16 @@ def podium_drawing(system):
             ax.add_patch(Rectangle((xm - mass_w / 2, top + stick), mass_w, mass_h, fc="#f2e6c9", ec=INK, lw=0.9,
                                    zorder=3))
             rigid = s.rigid
-            label = f"$m_T$ = {fmt(s.mass, 'kg')}"
+            label = f"$m_T$ = {given.get('superstructure_mass') or fmt(s.mass, 'kg')}"
             ax.text(xm, top + stick + mass_h / 2, label, fontsize=7.5, ha="center", va="center", zorder=5)
             if rigid:
                 spring_text = "rigid superstructure"
             else:
-                spring_text = (f"$T_s$ = {fmt(2 * math.pi / s.omega_s, 's')} ($\\omega_s$ = {fmt(s.omega_s, '1/s')})\n"
-                               f"$\\zeta_s$ = {fmt(s.damping)}"
-                               + (" (input $\\zeta_s/S_r$)" if s.damping_correction else ""))
+                period = given.get("superstructure_period") or fmt(2 * math.pi / s.omega_s, 's')
+                damping = given.get("superstructure_damping") or fmt(s.damping)
+                spring_text = (f"$T_s$ = {period} ($\\omega_s$ = {fmt(s.omega_s, '1/s')})\n"
+                               f"$\\zeta_s$ = {damping}"
+                               + (" (kept after uplift, Eq 4.27)" if s.damping_correction else ""))
             ax.text(xm + 0.15 * spacing, top + stick / 2, "superstructure SDOF\n(not to scale)\n" + spring_text,
                     fontsize=7, ha="left", va="center")
             y_hi = top + stick + mass_h
@@ -263,6 +270,7 @@ def podium_drawing(system):
         return fig
 
 
-def structure_drawing(system):
-    """The drawing that fits the system: :func:`podium_drawing` or :func:`column_drawing`."""
-    return podium_drawing(system) if system.kind == "podium" else column_drawing(system)
+def structure_drawing(system, given: dict | None = None):
+    """The drawing that fits the system: :func:`podium_drawing` (with the inputs as ``given``) or
+    :func:`column_drawing`."""
+    return podium_drawing(system, given) if system.kind == "podium" else column_drawing(system)

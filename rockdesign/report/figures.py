@@ -168,7 +168,7 @@ def polyakov_scatter_figure(result):
         ax.plot([0, 1], [0, 1], color="0.4", lw=0.8, ls="--")
         ax.axvline(1.0, color="0.2", lw=0.9)
         ax.axhline(1.0, color="0.2", lw=0.9)
-        places = {"a1": (0.97, 0.03, "right", "bottom"), "a2": (0.03, 0.97, "left", "top"),
+        places = {"a1": (0.97, 0.97, "right", "top"), "a2": (0.03, 0.97, "left", "top"),
                   "b": (0.5, 0.5 * (1 + y_top), "center", "center"), "c": (x_top - 0.03, 0.97, "right", "top"),
                   "d": (x_top - 0.03, 1.03, "right", "bottom")}
         for k, (lx, ly, ha, va) in places.items():
@@ -186,7 +186,9 @@ def polyakov_scatter_figure(result):
             if ot:
                 ax.plot(*zip(*ot), "^", ms=5.5, color=CLASS_COLOURS[k], mec="k", mew=0.4, zorder=4,
                         label=None if safe else f"{k}: {CLASS_MEANING[k]} ({counts[k]})")
-        ax.plot([], [], "^", ms=5.5, color="white", mec="k", mew=0.4, label=f"overturned (drawn at ≤ {fmt(y_top)})")
+        if any(o.run.overturned for o in result.records):   # a legend entry only for a marker on the plot
+            ax.plot([], [], "^", ms=5.5, color="white", mec="k", mew=0.4,
+                    label=f"overturned (drawn at ≤ {fmt(y_top)})")
         ax.set_xlim(0.0, x_top)
         ax.set_ylim(0.0, y_top)
         ax.set_xlabel(f"SD$_{{max}}$ / $u_B$(θc)  (ζ = {fmt(100 * result.rule.damping)} %)")
@@ -236,10 +238,10 @@ def margin_figure(result):
             if points:
                 ax.plot(*zip(*points), marker, ls="", **kw)
         ax.axvline(1.0, color="k", lw=1.0, ls="--")
-        ax.text(1.0, -0.7, " design level", fontsize=7, ha="left", va="bottom")
+        ax.text(1.0, n - 0.2, " design level", fontsize=7, ha="left", va="bottom", clip_on=False)
         ax.set_yticks(range(n))
         ax.set_yticklabels([o.id for o in reversed(recs)], fontsize=5.5 if n > 30 else 7)
-        ax.set_ylim(-0.8, n + 0.3)
+        ax.set_ylim(-0.8, n + 0.9)       # room above the top row for the "design level" label
         ax.set_xscale("log")
         lo = min([o.polyakov_scale for o in recs] + [m.overturn_scale for o in recs
                   if (m := o.margin) is not None and m.overturn_scale is not None] + [1.0])

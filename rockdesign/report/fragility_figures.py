@@ -8,6 +8,7 @@ from scipy.stats import norm
 
 from .. import mplfig as plt  # pyplot-free Figures: importing never switches the backend
 
+from ..checks.acceptance import first_overturn_scale  # noqa: E402
 from .formatting import fmt  # noqa: E402
 from ..plots import STYLE  # noqa: E402
 
@@ -54,6 +55,8 @@ def fragility_figure(result):
                     label=f"lognormal, stripe binomial MLE: θ = {fmt(st['median'], f['unit'])}, "
                           f"β = {fmt(st['beta'])}")
         ax.axvline(design, color="k", lw=1.0, ls=":")
+        _acceptance_marks(ax, grid, design, getattr(result, "collapse_margin", None),
+                          getattr(result, "acceptance", None))
         p_fit = f["p_overturn_design"]
         text = f"design {fmt(design, f['unit'])}"
         if p_fit is not None:
@@ -89,10 +92,27 @@ def fragility_figure(result):
         return fig
 
 
+def _acceptance_marks(ax, grid, design, cm, acc) -> None:
+    """The acceptance rule on the fragility panel: the collapse fragility of the margin (median Ŝ_CT,
+    dispersion β_TOT), its P(collapse) at the design level and the risk category's target probability."""
+    if not cm or not acc:
+        return
+    target = acc["target_p_collapse"]
+    ax.axhline(target, color="C3", lw=0.9, ls="-.",
+               label=f"target P(collapse | design) {fmt(100 * target)} % (risk category {acc['risk_category']})")
+    if not cm["CMR_is_lower_bound"]:
+        ax.plot(grid, norm.cdf(np.log(grid / cm["median_capacity"]) / cm["beta_tot"]), color="C3", lw=1.0,
+                label=f"collapse margin: median {fmt(cm['median_capacity'], cm['unit'])}, "
+                      f"β_TOT = {fmt(cm['beta_tot'])}")
+    ax.plot([design], [cm["p_collapse_design"]], "D", color="C3", ms=4.5,
+            label=f"P(collapse | design) = {fmt(100 * cm['p_collapse_design'])} %"
+                  + (" (upper bound)" if cm["CMR_is_lower_bound"] else "") + f", ACMR {fmt(cm['ACMR'])}")
+
+
 def _intensities(result, f) -> list[float]:
-    """IM of each design-level record, recovered from capacity/overturn factor (or the censoring)."""
+    """IM of each design-level record, recovered from capacity/first overturning factor (or the censoring)."""
     out = []
     for o, c in zip(result.records, f["capacities"]):
-        s = o.margin.overturn_scale if o.margin.overturn_scale is not None else o.margin.scanned_up_to
-        out.append(c["capacity"] / s)
+        s = first_overturn_scale(o)
+        out.append(c["capacity"] / (s if s is not None else o.margin.scanned_up_to))
     return out

@@ -23,6 +23,7 @@ import jinja2
 from ..paths import templates_dir
 from .context import build_context
 from .formatting import DIGITS, fmt, number
+from .methods import cite
 
 TEMPLATE = "report.html.j2"
 STYLESHEET = "report.css"
@@ -33,10 +34,11 @@ _SUBSCRIPT = re.compile(r"(?<![A-Za-z]{4})_([A-Za-z0-9α-ωΑ-Ω,]{1,5})(?![A-Za
 
 def symbols(text) -> str:
     """HTML for a text with thesis symbols: escaped, ``x_ab`` → x<sub>ab</sub> (``SD_max``, ``u_B(θc)``);
-    identifiers such as ``mass_distribution`` are left alone."""
+    identifiers such as ``mass_distribution`` are left alone; references to the developer documentation
+    become the report's appendix sections (:func:`~rockdesign.report.methods.cite`)."""
     if text is None:
         return ""
-    escaped = html_lib.escape(str(text), quote=False)
+    escaped = html_lib.escape(cite(str(text)), quote=False)
     return _SUBSCRIPT.sub(r"<sub>\1</sub>", escaped)
 
 
@@ -50,6 +52,7 @@ def environment(folder: Path | None = None) -> jinja2.Environment:
     env.filters["number"] = lambda value: "—" if isinstance(value, jinja2.Undefined) else number(value)
     env.filters["sym"] = lambda text: jinja2.utils.markupsafe.Markup(symbols(text))
     env.filters["svgimg"] = svg_image
+    env.filters["cite"] = lambda text: "" if isinstance(text, jinja2.Undefined) else cite(text)
     return env
 
 
@@ -68,13 +71,22 @@ def svg_image(svg_text) -> str:
     return jinja2.utils.markupsafe.Markup(f'<img class="figure" alt="figure" src="data:image/svg+xml;base64,{data}">')
 
 
+def _given_inputs(project) -> dict:
+    """The project file's texts of the inputs the structure drawing labels (units as given)."""
+    from .context import given_value
+    return {"cap_beam_mass": given_value(project, "podium", "cap_beam_mass"),
+            "superstructure_mass": given_value(project, "superstructure", "mass"),
+            "superstructure_period": given_value(project, "superstructure", "period"),
+            "superstructure_damping": given_value(project, "superstructure", "damping")}
+
+
 def render_figures(result) -> dict[str, str]:
     """Inline SVG of every report figure, keyed by name (``history:<record id>`` for time histories)."""
     from . import figures
     from .drawing import structure_drawing
     system = result.project.system
     out = {
-        "drawing": figures.svg(structure_drawing(system), "drawing"),
+        "drawing": figures.svg(structure_drawing(system, _given_inputs(result.project)), "drawing"),
         "pushover": figures.svg(figures.pushover_figure(system), "pushover"),
         "spectra": figures.svg(figures.spectra_figure(result), "spectra"),
         "scatter": figures.svg(figures.polyakov_scatter_figure(result), "scatter"),
@@ -84,6 +96,11 @@ def render_figures(result) -> dict[str, str]:
     if getattr(result, "fragility", None) and result.fragility.get("capacities"):
         from .fragility_figures import fragility_figure
         out["fragility"] = figures.svg(fragility_figure(result), "fragility")
+    from .demand_figures import demand_figure, demand_history_figure
+    for name, make in (("demand", demand_figure), ("demand_history", demand_history_figure)):
+        fig = make(result)
+        if fig is not None:
+            out[name] = figures.svg(fig, name)
     for k, rid in enumerate(result.histories):
         out[f"history:{rid}"] = figures.svg(figures.history_figure(result, rid), f"history{k}")
     return out

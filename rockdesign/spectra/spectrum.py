@@ -14,6 +14,7 @@ full-length run's.
 from __future__ import annotations
 
 import math
+import os
 import time
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -42,6 +43,89 @@ TARGET_CHUNKS = 48
 
 class SpectrumError(RockdesignError):
     """Invalid spectrum settings (pulse, model, tolerances, free-vibration time...)."""
+
+
+BYTES_PER_POINT = 8 * (3 * N_OUT + 12)
+"""Memory [B] per grid point: the chunk results, the assembled (ny, nx, N_OUT) array and a copy while
+it is assembled (float64), plus the derived grids of the analysis, the lines and the figures."""
+CPU_PER_ANALYSIS = 0.12e-3
+"""CPU seconds per analysis of the cheapest system (a block, exact EOM; docs/spectra.md's measurement):
+the time estimate is a lower bound (a 2DOF podium costs about 20 times more)."""
+MAX_HOURS = 24.0
+"""A grid estimated to take longer than this on this machine's cores is refused (split it, or run it on
+a dask cluster)."""
+
+
+def check_grid(x: Axis, y: Axis, n_spectra: int = 1, *, distributed: bool = False,
+               available: float | None = None) -> tuple[float, float]:
+    """(memory [B], time [s]) of ``n_spectra`` spectra on the x × y grid; raise :class:`SpectrumError` with
+    the estimates when the memory exceeds the ``available`` memory [B] (default: this machine's) or, on
+    this machine (not ``distributed``), the time exceeds :data:`MAX_HOURS`."""
+    points = x.n * y.n * n_spectra
+    memory = float(points) * BYTES_PER_POINT
+    cores = os.cpu_count() or 1
+    seconds = points * CPU_PER_ANALYSIS / cores
+    available = available_memory() if available is None else available
+    grid = f"{x.n:,} × {y.n:,}" + (f" × {n_spectra} spectra" if n_spectra > 1 else "") + f" = {points:,} analyses"
+    estimate = f"{grid}: about {_bytes(memory)} of memory and at least {_duration(seconds)} on {cores} core(s)"
+    if available is not None and memory > available:
+        raise SpectrumError("the spectrum grid does not fit in memory", key="--x/--y",
+                            expected=f"a grid that needs less than the {_bytes(available)} available "
+                            "(fewer points per axis)", found=estimate)
+    if not distributed and seconds > MAX_HOURS * 3600:
+        raise SpectrumError("the spectrum grid would take too long on this machine", key="--x/--y",
+                            expected=f"a grid of at most about {MAX_HOURS:g} h (fewer points, or --dask on "
+                            "a cluster)", found=estimate)
+    return memory, seconds
+
+
+def check_ordinates(ordinates, y: Axis, relative: bool) -> None:
+    """Refuse ``--equivalent-at`` ordinates that would be ignored or meaningless: without ``--relative``
+    (Eq 3.65 compares two systems), non-finite, or outside the y axis [lo, hi]."""
+    if not ordinates:
+        return
+    shown = ", ".join(f"{v:g}" for v in ordinates)
+    if not relative:
+        raise SpectrumError("--equivalent-at is used by a relative spectrum only (Eq 3.65 compares two systems)",
+                            key="--equivalent-at", expected="--relative OTHER.toml with it", found=shown)
+    for value in ordinates:
+        if not (math.isfinite(value) and y.lo <= value <= y.hi):
+            raise SpectrumError("ordinate outside the y axis", key="--equivalent-at",
+                                expected=f"a value of {y.name} within {y.lo:g}…{y.hi:g}", found=f"{value:g}")
+
+
+def available_memory() -> float | None:
+    """Memory [B] available to this process: Linux's MemAvailable (free + reclaimable cache), else the
+    free physical memory (sysconf); None where unknown."""
+    try:
+        with open("/proc/meminfo", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith("MemAvailable:"):
+                    return float(line.split()[1]) * 1024.0
+    except (OSError, ValueError, IndexError):
+        pass
+    try:
+        return float(os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_AVPHYS_PAGES"))
+    except (AttributeError, ValueError, OSError):
+        return None
+
+
+def _bytes(n: float) -> str:
+    for unit in ("B", "kB", "MB", "GB", "TB", "PB"):
+        if n < 1000 or unit == "PB":
+            return f"{n:.3g} {unit}"
+        n /= 1000.0
+    return f"{n:.3g} PB"
+
+
+def _duration(seconds: float) -> str:
+    if seconds < 120:
+        return f"{seconds:.3g} s"
+    if seconds < 7200:
+        return f"{seconds / 60:.3g} min"
+    if seconds < 2 * 86400:
+        return f"{seconds / 3600:.3g} h"
+    return f"{seconds / 86400:.3g} days"
 
 
 @dataclass(frozen=True)

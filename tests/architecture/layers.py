@@ -11,7 +11,7 @@ from pathlib import Path
 LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
     ("base", ("rockdesign", "rockdesign.errors", "rockdesign.units", "rockdesign.paths", "rockdesign.kernel_cache",
               "rockdesign.jsonable", "rockdesign.systems", "rockdesign.mplfig", "rockdesign.plots",
-              "rockdesign.progress", "rockdesign.outdir", "rockdesign.display", "rockdesign.execution")),
+              "rockdesign.progress", "rockdesign.console", "rockdesign.outdir", "rockdesign.display", "rockdesign.execution")),
     ("design", ("rockdesign.design", "rockdesign.validity", "rockdesign.cylinder.system",
                 "rockdesign.cylinder.quantities")),
     ("motions", ("rockdesign.motions",)),
@@ -20,7 +20,7 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
     ("analyses", ("rockdesign.spectra", "rockdesign.checks")),
     ("report", ("rockdesign.report",)),
     ("experiments", ("rockdesign.experiments",)),
-    ("library", ("rockdesign.library", "rockdesign.kinds")),
+    ("library", ("rockdesign.library", "rockdesign.kinds", "rockdesign.design_space")),
     ("bench", ("rockdesign.bench",)),
     ("cli", ("rockdesign.cli", "rockdesign.templates")),
 )

@@ -91,6 +91,13 @@ def test_check_pass_exit_code_and_outputs(tmp_path):
     for key in ("n_records", "n_overturned", "n_false_negative", "classes", "median_margin"):
         assert key in data["summary"]
     assert data["model"]["chosen"] == "rigid-superstructure/linear" or data["model"]["chosen"].startswith("rigid")
+    # superstructure demand (CONTRACT §6.2): a rigid superstructure has none; the cap beam is reported
+    sup = data["summary"]["superstructure"]
+    assert set(sup) >= {"n_records", "shear_coefficient", "drift", "force_ratio", "uplift_base_shear_coefficient",
+                        "note", "cap_beam"}
+    assert "declared rigid" in sup["note"] and sup["shear_coefficient"]["median"] is None
+    assert rec["superstructure"] is None and set(rec["cap_beam"]) == {"acceleration_max", "velocity_jump_max"}
+    assert sup["n_records"] == sum(not r["overturned"] for r in data["records"])
     # rerun: identical JSON
     again = runner.invoke(app, ["check", str(path), "-o", str(tmp_path / "out2"), "--no-pdf", "--json"])
     assert json.loads(again.stdout) == data
@@ -134,3 +141,34 @@ def test_check_on_dask_equals_local(tmp_path, dask_cluster):
     dask = runner.invoke(app, ["check", str(path), "-o", str(tmp_path / "b"), "--no-pdf", "--json", "--dask", dask_cluster.scheduler_address])
     assert local.exit_code in (0, 1) and dask.exit_code == local.exit_code, dask.output
     assert json.loads(dask.stdout) == json.loads(local.stdout)
+
+
+def test_superstructure_demand_from_2dof_when_overturning_uses_the_rigid_model():
+    """CONTRACT §6.2: with the rigid-superstructure model chosen, the demand comes from a 2DOF run of the same
+    records; the per-record keys are exact and the statistics run over the records that did not overturn."""
+    import math
+    from rockdesign.checks.demand import superstructure_demand
+    from rockdesign.checks.runner import run_jobs
+    from rockdesign.dynamics.model import ModelChoice
+    from rockdesign.library import parse_project
+    from rockdesign.checks.check import check_records
+    from pathlib import Path
+    p = parse_project((Path(__file__).resolve().parents[2] / "examples" / "podium_flat.toml").read_text())
+    motions = [r.motion for r in check_records(p).records[:6]]
+    kw = dict(rtol=1e-8, atol=1e-10, free_vibration=10.0, criterion="static", rest_velocity=5e-4)
+    rigid = ModelChoice("rigid-superstructure", "exact")
+    runs = run_jobs(p.system, rigid, motions, [1.0] * 6, **kw)
+    per, caps, summary, demand_runs = superstructure_demand(p.system, rigid, motions, runs, kw,
+                                                            G * math.tan(math.atan(0.15)))
+    assert caps == [None] * 6 and all(d is not None for d in per)
+    direct = run_jobs(p.system, ModelChoice("podium-2dof", "exact"), motions, [1.0] * 6, **kw)
+    for d, r in zip(per, direct):
+        assert set(d) == {"acceleration_max", "shear_coefficient_max", "drift_max", "fixed_base_acceleration_max",
+                          "force_ratio", "model"}
+        assert d["acceleration_max"] == r.superstructure_acceleration_max
+        assert d["force_ratio"] == pytest.approx(d["acceleration_max"] / d["fixed_base_acceleration_max"], rel=1e-12)
+    assert "rigid superstructure" in summary["note"]
+    assert summary["n_overturned_2dof"] == sum(r.overturned for r in direct)
+    ok = [i for i in range(6) if not direct[i].overturned and not runs[i].overturned]
+    assert summary["n_records"] == len(ok)
+    assert summary["shear_coefficient"]["max"] == pytest.approx(max(per[i]["shear_coefficient_max"] for i in ok))

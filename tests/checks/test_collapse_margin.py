@@ -10,8 +10,7 @@ import numpy as np
 import pytest
 from scipy.stats import norm
 
-from rockdesign.checks.collapse_margin import (acceptable_acmr, beta_total, collapse_margin,
-                                               collapse_margin_criterion, collapse_probability)
+from rockdesign.checks.collapse_margin import acceptable_acmr, beta_total, collapse_margin, collapse_probability
 from rockdesign.errors import ProjectError
 from rockdesign.kinds import parse_document as parse_project
 
@@ -72,17 +71,19 @@ def _fragility(median, design, censored=()):
             "capacities": [{"id": "x", "capacity": c, "censored": True} for c in censored]}
 
 
-def test_collapse_margin_values_and_criterion():
+def test_collapse_margin_values_at_each_target():
     m = collapse_margin(_fragility(4.8, 2.0), B)
     assert m["CMR"] == pytest.approx(2.4) and m["SSF"] == 1.0 and m["ACMR"] == pytest.approx(2.4)
-    assert m["beta_tot"] == 0.525 and m["passed"]
+    assert m["beta_tot"] == 0.525 and m["passed"] and m["target_p_collapse"] == 0.10
     assert m["p_collapse_design"] == pytest.approx(norm.cdf(-math.log(2.4) / 0.525))
     assert "conventional" in m["note"] and "adaptation" in m["note"]
-    item = collapse_margin_criterion(m)
-    assert set(item) == {"name", "utilisation", "passed", "governs_verdict", "detail"}
-    assert item["utilisation"] == pytest.approx(m["ACMR10"] / 2.4) and not item["governs_verdict"]
     low = collapse_margin(_fragility(3.6, 2.0), B)          # ACMR 1.8 < 1.96
-    assert not low["passed"] and not collapse_margin_criterion(low)["passed"]
+    assert low["passed"] is False
+    # risk categories III (5 %) and IV (2.5 %): ACMR_x = exp(−β Φ⁻¹(x)) = 2.37 and 2.80 with β_TOT 0.525
+    for x, need in ((0.05, 2.37), (0.025, 2.80)):
+        mx = collapse_margin(_fragility(4.8, 2.0), B, x)
+        assert mx["ACMR_target"] == pytest.approx(math.exp(-0.525 * norm.ppf(x))) == pytest.approx(need, abs=0.005)
+        assert mx["passed"] is (2.4 >= need)
 
 
 def test_without_a_fit_the_cmr_is_a_lower_bound():

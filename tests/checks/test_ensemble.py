@@ -58,7 +58,7 @@ def test_ensemble_on_the_zhang_makris_bands():
 
 
 PROJECT = stocky_podium_toml(("p695-ff/12a", "p695-ff/15b", "p695-ff/11a"), "0.3 g",
-                             'overturn_probability_limit = 0.8\nensemble_size = 3\n'
+                             'acceptance = "binomial"\noverturn_probability_limit = 0.8\nensemble_size = 3\n'
                              'quality = { design_requirements = "B", test_data = "C", modeling = "B" }')
 
 
@@ -88,8 +88,9 @@ def test_results_json_sections_and_report(tmp_path):
         assert isinstance(rec["outcome_robust"], bool)
     names = [c["name"] for c in data["checks"]]
     assert any(n.startswith("Collapse margin (FEMA P695 adaptation)") for n in names)
-    rha = next(c for c in data["checks"] if c["governs_verdict"])
-    assert "estimate used" in rha["detail"]
+    rha = next(c for c in data["checks"] if c["criterion"] == "overturning_probability")
+    assert rha["governs_verdict"] and "3 ground motions (3 records)" in rha["detail"]
+    assert data["acceptance"]["method"] == "binomial" and data["summary"]["n_ground_motions"] == 3
     html = (out / "report.html").read_text()
     assert "Overturning fragility, collapse margin and robustness to chaos" in html
     assert "written for conventional seismic-force-resisting systems" in html

@@ -1,5 +1,5 @@
-"""The order the batch kernel runs jobs in (checks.runner.balanced_order): blocks of equal counts and
-near-equal predicted cost, and results that do not depend on it."""
+"""The order the batch driver's threads take jobs in (checks.runner.balanced_order): longest predicted
+cost first, which balances the threads of the shared job counter, and results that do not depend on it."""
 from __future__ import annotations
 
 import itertools
@@ -12,43 +12,45 @@ from rockdesign.motions.motion import pulse_motion
 from support import G, block_from_p
 
 
-def _blocks(order, threads):
-    n = len(order)
-    size = [n // threads + (1 if b < n % threads else 0) for b in range(threads)]
-    out, start = [], 0
-    for s in size:
-        out.append(order[start:start + s])
-        start += s
-    return out
+def _makespan(order, costs, threads):
+    """When the last thread finishes if each thread takes the next job of ``order`` as it becomes free (the
+    batch driver's shared counter, rockdesign.dynamics.scheduling)."""
+    free = [0.0] * threads
+    for k in order:
+        t = min(range(threads), key=lambda i: (free[i], i))
+        free[t] += costs[k]
+    return max(free)
 
 
 def _best_two_way(costs):
-    """Brute force: the smallest possible larger half over all equal-count splits."""
+    """Brute force: the smallest possible larger half over all splits into two sets."""
     n = len(costs)
     best = math.inf
-    for first in itertools.combinations(range(n), n // 2 + n % 2):
-        a = sum(costs[k] for k in first)
-        best = min(best, max(a, sum(costs) - a))
+    for size in range(n + 1):
+        for first in itertools.combinations(range(n), size):
+            a = sum(costs[k] for k in first)
+            best = min(best, max(a, sum(costs) - a))
     return best
 
 
-def test_the_order_is_a_permutation_with_balanced_blocks():
+def test_the_order_is_a_permutation_that_balances_two_threads():
     rng = random.Random(5)
     for trial in range(40):
         n = rng.randint(2, 12)
         costs = [rng.choice([rng.uniform(0.5, 1.0), rng.uniform(5, 40)]) for _ in range(n)]
         order = balanced_order(costs, 2)
         assert sorted(order) == list(range(n))
-        heavier = max(sum(costs[k] for k in block) for block in _blocks(order, 2))
-        # greedy longest-first with equal counts: within 1/3 of the optimum (and usually at it)
-        assert heavier <= _best_two_way(costs) * 4 / 3 + 1e-12
+        # longest first, each job to the first free thread: within 4/3 of the optimum (Graham's bound
+        # 4/3 − 1/(3m) for m = 2 threads: 7/6)
+        assert _makespan(order, costs, 2) <= _best_two_way(costs) * 7 / 6 + 1e-12
     assert balanced_order([5.0, 1.0, 2.0], 1) == [0, 1, 2]
 
 
-def test_a_sorted_list_is_no_longer_split_into_short_and_long_halves():
-    costs = [1.0] * 8 + [10.0] * 8           # the kernel's two threads would get 8 and 80
-    blocks = _blocks(balanced_order(costs, 2), 2)
-    assert [sum(costs[k] for k in b) for b in blocks] == [44.0, 44.0]
+def test_a_long_job_is_not_left_for_last():
+    costs = [1.0] * 6 + [10.0]               # in their own order the long job starts when the short ones end
+    assert _makespan(list(range(7)), costs, 2) == 13.0
+    assert _makespan(balanced_order(costs, 2), costs, 2) == 10.0
+    assert balanced_order([2.0, 2.0, 3.0], 2) == [2, 0, 1]       # ties keep the job order
 
 
 def test_results_do_not_depend_on_the_predicted_costs():

@@ -1,5 +1,6 @@
 """Every command that runs numerical kernels compiles them on its first run *after* checking its input,
-and says so ("compiling numerical kernels, once per installation, ~N s"; issue: a first run that
+and says so ("compiling the numerical kernels of `check` (first use after installing or upgrading; …):
+expect N–M s at the current machine load"; issue: a first run that
 compiles says so).  Before, ``ensemble``, the cylinder's ``simulate``/``check``/``spectrum`` and
 ``records spectrum`` compiled for 30–70 s behind a bar that did not move, or in silence."""
 from __future__ import annotations
@@ -23,7 +24,7 @@ def prepared(monkeypatch):
     def prepare(command, say=None, *, background=False):
         asked.append(command)
         if say is not None:
-            say(compilation.MESSAGE.format(seconds=compilation.ESTIMATE_SECONDS[command]))
+            say(compilation.announcement(command))
         return 0.0
 
     monkeypatch.setattr(compilation, "prepare", prepare)
@@ -33,7 +34,7 @@ def prepared(monkeypatch):
 @pytest.mark.parametrize("command,args", [
     ("records", ["records", "spectrum", "p695-ff/11a", "--n-periods", "20"]),
     ("records", ["records", "synth", "--seed", "p695-ff/11a", "-n", "2", "-o", "{tmp}/synth"]),
-    ("ensemble", ["ensemble", PIER, "--suite", "thesis-table-4.1", "-o", "{tmp}/analyses.csv"]),
+    ("ensemble", ["ensemble", PIER, "--suite", "{tmp}/suite.toml", "-o", "{tmp}/analyses.csv"]),
     ("spectrum", ["spectrum", PIER, "--pulse", "ricker-anti", "--x", "omega_p/p:1:4:2", "--y", "ap/up:0:4:2",
                   "-o", "{tmp}/spectrum"]),
     ("cylinder", ["simulate", CYLINDER, "--motion", "record:p695-ff/11", "--t-end", "2"]),
@@ -42,10 +43,13 @@ def prepared(monkeypatch):
                            "-o", "{tmp}/cylinder-spectrum"]),
 ])
 def test_each_command_announces_its_own_kernels(command, args, prepared, tmp_path):
+    # (an ensemble with a record that is not available is refused before compiling: two built-in records)
+    (tmp_path / "suite.toml").write_text('name = "two"\n[[records]]\nid = "p695-ff/3a"\n[[records]]\n'
+                                         'id = "p695-ff/4a"\n')
     result = CliRunner().invoke(app, [a.format(tmp=tmp_path) for a in args])
     assert result.exit_code == 0, result.output
     assert prepared == [command]
-    assert "compiling numerical kernels, once per installation" in result.stderr
+    assert f"compiling the numerical kernels of `{command}`" in " ".join(result.stderr.split())
     assert command in compilation.KERNELS
 
 

@@ -59,17 +59,20 @@ def test_the_real_calls_use_the_warm_up_machine_code():
         assert _signatures(command) == before, command
 
 
-def test_announcement_when_the_cache_is_empty(monkeypatch):
+def test_announcement_when_the_cache_is_empty(monkeypatch, tmp_path):
     said, warmed = [], []
+    monkeypatch.setattr(compilation, "MEASURED", tmp_path / "compile-seconds.json")
+    monkeypatch.setattr(compilation, "_load_factor", lambda: 1.0)
     monkeypatch.delenv("ROCKDESIGN_NO_WARMUP", raising=False)
     monkeypatch.setattr(compilation, "is_cached", lambda d: False)
     monkeypatch.setattr(compilation, "_start_helper", lambda command: None)    # one core
     monkeypatch.setattr(compilation, "_warm", lambda command, parts=compilation.PARTS: warmed.append(command))
+    low, high = compilation.estimate("check")
     compilation.prepare("check", say=said.append)
     assert warmed == ["check"]
-    assert said[0] == compilation.MESSAGE.format(seconds=compilation.ESTIMATE_SECONDS["check"])
-    assert "once per installation" in said[0]
-    assert said[1].startswith("compiled 5 kernels in")
+    assert said[0] == compilation.MESSAGE.format(command="check", low=low, high=high)
+    assert "first use after installing or upgrading" in said[0] and "once per installation" not in said[0]
+    assert said[1].startswith("compiled 6 kernels in")
     # unknown commands and the opt-out compile nothing
     assert compilation.prepare("init", say=said.append) == 0.0
     monkeypatch.setenv("ROCKDESIGN_NO_WARMUP", "1")
@@ -122,7 +125,7 @@ def test_background_compilation_is_waited_for_before_the_engine_runs(monkeypatch
     assert log == ["half", "go", ("side",)] and compilation.compilation_pending()
     assert len(said) == 1                   # the announcement; "compiled ..." comes when the helper is done
     assert compilation.finish_compilation() >= 0.0
-    assert log[-1] == "wait" and said[-1].startswith("compiled 5 kernels in")
+    assert log[-1] == "wait" and said[-1].startswith("compiled 6 kernels in")
     assert not compilation.compilation_pending() and compilation.finish_compilation() == 0.0
     # a helper nobody waited for (the command failed before its analyses) is stopped at exit
     compilation.prepare("check", background=True)
@@ -172,3 +175,20 @@ def test_a_stale_plan_entry_costs_time_not_the_command():
     from rockdesign.dynamics.compile_plan import compile_entries
     compile_entries([("rockdesign.dynamics.engine", "_step_to", "(float64,)", 0.1),      # other arguments
                      ("rockdesign.dynamics.no_such_module", "kernel", "()", 0.1)])       # renamed
+
+
+def test_estimate_scales_with_the_load_and_with_measurements(monkeypatch, tmp_path):
+    """The announced range is the idle-machine time (a measurement on this machine when there is one)
+    times load/cores: at load 7 on 2 cores a 30-s compilation is announced as 105–178 s, not ~30 s."""
+    monkeypatch.setattr(compilation, "MEASURED", tmp_path / "compile-seconds.json")
+    monkeypatch.setattr(compilation, "_load_factor", lambda: 1.0)
+    assert compilation.estimate("check") == (30, 51)
+    monkeypatch.setattr(compilation, "_load_factor", lambda: 3.5)
+    assert compilation.estimate("check") == (105, 178)
+    # a compilation measured here (124 s at load factor 2) sets the idle time of that command (62 s) …
+    compilation._remember("check", 124.0, 2.0)
+    assert compilation.estimate("check") == (217, 369)
+    # … and scales the other commands' estimates by the same machine ratio (62/30)
+    monkeypatch.setattr(compilation, "_load_factor", lambda: 1.0)
+    low, high = compilation.estimate("cylinder")
+    assert low == round(30 * 62 / 30) and high == round(1.7 * 62)

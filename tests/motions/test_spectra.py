@@ -86,10 +86,16 @@ def test_pseudo_quantities_and_linearity():
 
 
 def _eqsig_case(motion_accel, dt, periods, zeta):
+    """Relative SD and PSV differences from eqsig where T ≥ 10 Δt.  eqsig takes the peak at the samples
+    only; where T < 10 Δt rockdesign sub-steps (the PEER convention, tests/validation), so its peak
+    includes eqsig's samples and is never lower."""
     eqsig_sdof = pytest.importorskip("eqsig.sdof")
     sd_ref, psv_ref, _ = eqsig_sdof.pseudo_response_spectra(motion_accel, dt, periods, zeta)
     sd, psv, _ = response_spectrum(motion_accel, dt, periods, zeta, include_tail=False)
-    return np.max(np.abs(sd / sd_ref - 1)), np.max(np.abs(psv / psv_ref - 1))
+    long = periods >= 10 * dt
+    assert long.sum() >= 0.7 * periods.size
+    assert np.all(sd[~long] >= sd_ref[~long] * (1 - 1e-6)), sd[~long] / sd_ref[~long] - 1
+    return np.max(np.abs(sd[long] / sd_ref[long] - 1)), np.max(np.abs(psv[long] / psv_ref[long] - 1))
 
 
 @pytest.mark.parametrize("zeta", [0.02, 0.05])

@@ -1,0 +1,213 @@
+"""Design variants: ``--vary TABLE.KEY=FROM:TO:N`` parsed, and the project with those values (SPEC §15).
+
+A variable names a numeric key of the project file with its table (``podium.width``,
+``superstructure.period``, ``podium.columns``, ``cylinder.diameter`` …).  FROM and TO carry the key's
+units (``0.36m``, ``6 s``; a dimensionless key takes plain numbers); N values are spaced evenly from
+FROM to TO.  Each variant is the project's TOML document with the values written in, validated by the
+normal project loader — an impossible variant (a curvature the extension does not allow, a width
+wider than the extension) is an *invalid* cell with the loader's message, never a crash.
+"""
+from __future__ import annotations
+
+import copy
+import itertools
+import math
+import re
+from dataclasses import dataclass
+
+from ..errors import ProjectError, RockdesignError
+
+ALTERNATIVES = {"radius": "curvature", "curvature": "radius", "height": "half_height", "half_height": "height",
+                "width": "slenderness", "slenderness": "width", "period": "frequency", "frequency": "period"}
+"""Keys of the project file that say the same thing two ways (CONTRACT §1): varying one replaces the other
+(the replacement is listed in design.json's ``notes``)."""
+
+MAX_VALUES = 41
+"""Values per variable (a chart of 41 × 41 = 1681 checks is already a cluster's afternoon)."""
+
+_SPEC = re.compile(r"^\s*([A-Za-z_]+)\.([A-Za-z_]+)\s*=\s*([^:]+):([^:]+):\s*(\d+)\s*$")
+
+
+@dataclass(frozen=True)
+class Variable:
+    """One varied key: ``key`` "table.name", its ``values`` in the user's ``unit`` ("" when dimensionless),
+    the same values in SI (``si``), and ``integer`` (the key takes whole numbers, e.g. ``columns``)."""
+
+    key: str
+    unit: str
+    values: tuple[float, ...]
+    si: tuple[float, ...]
+    integer: bool = False
+
+    @property
+    def table(self) -> str:
+        return self.key.split(".")[0]
+
+    @property
+    def name(self) -> str:
+        return self.key.split(".")[1]
+
+    def toml_value(self, k: int):
+        """The k-th value as the project file writes it ("0.42 m", 8, 0.125)."""
+        v = self.values[k]
+        if self.integer:
+            return int(round(v))
+        return f"{v:.10g} {self.unit}" if self.unit else float(v)
+
+    def label(self, k: int) -> str:
+        """The k-th value for tables and charts ("0.42 m")."""
+        v = self.values[k]
+        return (f"{int(round(v))}" if self.integer else f"{v:.4g}") + (f" {self.unit}" if self.unit else "")
+
+    def as_json(self) -> dict:
+        return {"key": self.key, "unit": self.unit or "1", "values": list(self.values), "values_si": list(self.si)}
+
+
+def _quantity(text: str, option: str, spec: str):
+    from ..units import registry
+    try:
+        q = registry()(text.strip().replace(" ", ""))
+    except Exception as exc:     # pint raises several unrelated types for unreadable text
+        raise RockdesignError("cannot read the value", key=option, expected="FROM:TO:N with FROM and TO in the "
+                              "key's units, e.g. podium.width=0.36m:0.60m:7", found=f"{spec!r} ({exc})") from None
+    if not hasattr(q, "magnitude"):
+        q = registry().Quantity(float(q), "")
+    return q
+
+
+def parse_vary(spec: str, raw: dict, *, option: str = "--vary") -> Variable:
+    """Read one ``--vary TABLE.KEY=FROM:TO:N`` against the project's TOML document ``raw``.
+
+    Raises:
+        RockdesignError: an unreadable spec, a table the project has not, a key that is not numeric,
+            FROM and TO of different or wrong dimensions, N < 1, or a non-integer value of an integer key.
+    """
+    m = _SPEC.match(spec)
+    if not m:
+        raise RockdesignError("cannot read the variable", key=option,
+                              expected="TABLE.KEY=FROM:TO:N, e.g. podium.width=0.36m:0.60m:7 or podium.columns=6:10:3",
+                              found=repr(spec))
+    table, name, lo_text, hi_text, n_text = m.groups()
+    key = f"{table}.{name}"
+    n = int(n_text)
+    if not 1 <= n <= MAX_VALUES:
+        raise RockdesignError("number of values out of range", key=option, expected=f"N from 1 to {MAX_VALUES}",
+                              found=f"{key}: N = {n}")
+    if not isinstance(raw.get(table), dict):
+        raise RockdesignError("the project has no such table", key=option,
+                              expected="a table of the project file: " + ", ".join(
+                                  f"[{t}]" for t, v in raw.items() if isinstance(v, dict)), found=f"[{table}] in {key}")
+    current = raw[table].get(name, raw[table].get(ALTERNATIVES.get(name, ""), None))
+    if isinstance(current, (bool, dict, list)) or (isinstance(current, str) and not re.match(r"^\s*[-+.\d]", current)):
+        raise RockdesignError("not a numeric key", key=option, expected="a key whose value is a number or a quantity",
+                              found=f"{key} = {current!r}")
+    lo, hi = _quantity(lo_text, option, spec), _quantity(hi_text, option, spec)
+    if lo.dimensionless and not hi.dimensionless and str(lo.units) in ("", "dimensionless"):
+        lo = lo * hi.units      # FROM without unit takes TO's unit
+    unit = f"{hi.units:~}" if not hi.dimensionless else ""
+    if (lo.dimensionality != hi.dimensionality):
+        raise RockdesignError("FROM and TO have different dimensions", key=option,
+                              expected="FROM and TO in units of the same kind", found=f"{lo} and {hi}")
+    lo_v = float(lo.to(hi.units).magnitude)
+    hi_v = float(hi.magnitude)
+    values = [lo_v] if n == 1 else [float(f"{lo_v + (hi_v - lo_v) * k / (n - 1):.12g}") for k in range(n)]
+    integer = isinstance(current, int)
+    if integer:
+        if unit or any(abs(v - round(v)) > 1e-9 for v in values):
+            raise RockdesignError("the key takes whole numbers", key=option,
+                                  expected=f"{key}=FROM:TO:N with whole-number steps, e.g. {name}=6:10:3",
+                                  found=spec)
+        values = [float(round(v)) for v in values]
+    if not all(math.isfinite(v) for v in values):
+        raise RockdesignError("values must be finite", key=option, expected="finite FROM and TO", found=spec)
+    if len(set(values)) != len(values):
+        raise RockdesignError("repeated values", key=option, expected="N distinct values", found=spec)
+    si = [float(registry_si(v, unit)) for v in values]
+    return Variable(key, unit, tuple(values), tuple(si), integer)
+
+
+def registry_si(value: float, unit: str) -> float:
+    """``value`` in ``unit`` as an SI magnitude (plain numbers stay as they are)."""
+    if not unit:
+        return value
+    from ..units import registry
+    return float(registry().Quantity(value, unit).to_base_units().magnitude)
+
+
+@dataclass
+class Variant:
+    """One cell of the grid: the indices into each variable's values, the TOML document and the
+    validated project (or the loader's message when the variant is impossible)."""
+
+    index: tuple[int, ...]
+    raw: dict
+    project: object | None
+    invalid: str | None
+    notes: tuple[str, ...] = ()
+
+
+def variant_document(raw: dict, variables, index) -> tuple[dict, list[str]]:
+    """The project's TOML document with the variables' values at ``index`` written in (a deep copy) and
+    the replacements it made ("podium.radius replaces podium.curvature")."""
+    doc = copy.deepcopy(raw)
+    notes = []
+    for var, k in zip(variables, index):
+        t = doc[var.table]
+        other = ALTERNATIVES.get(var.name)
+        if other and other in t:
+            del t[other]
+            notes.append(f"{var.key} replaces {var.table}.{other}")
+        t[var.name] = var.toml_value(k)
+    return doc, notes
+
+
+def variants(raw: dict, variables, *, file: str) -> list[Variant]:
+    """Every variant of the grid (row-major over the variables), each validated by the project loader."""
+    from ..project import parse_project
+    out = []
+    for index in itertools.product(*(range(len(v.values)) for v in variables)):
+        doc, notes = variant_document(raw, variables, index)
+        label = ", ".join(f"{v.key} = {v.label(k)}" for v, k in zip(variables, index))
+        try:
+            proj = parse_project(doc, file=f"{file} [{label}]", text=variant_toml(doc))
+            out.append(Variant(index, doc, proj, None, tuple(notes)))
+        except ProjectError as exc:
+            if exc.key in {v.key for v in variables} and exc.detail.startswith("expects"):
+                raise RockdesignError(f"the values do not fit the key: {exc.detail}", key="--vary",
+                                      expected=exc.expected or "values in the key's units",
+                                      found=label) from None
+            out.append(Variant(index, doc, None, str(exc), tuple(notes)))
+    return out
+
+
+def variant_toml(doc: dict) -> str:
+    """A project's TOML document as the text of a project file (top-level tables as ``[table]``, nested
+    tables inline): what the variant's own project file holds, so that ``rockdesign check`` of that
+    file analyses the same variant."""
+    lines = []
+    for table, body in doc.items():
+        if not isinstance(body, dict):
+            lines.insert(0, f"{_bare(table)} = {_value(body)}")
+            continue
+        lines += ["", f"[{_bare(table)}]"] + [f"{_bare(k)} = {_value(v)}" for k, v in body.items()]
+    return "\n".join(lines).lstrip("\n") + "\n"
+
+
+def _bare(key: str) -> str:
+    return key if re.fullmatch(r"[A-Za-z0-9_-]+", key) else _value(key)
+
+
+def _value(v) -> str:
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, int):
+        return str(v)
+    if isinstance(v, float):
+        return repr(v) if math.isfinite(v) else ("nan" if math.isnan(v) else ("inf" if v > 0 else "-inf"))
+    if isinstance(v, str):
+        return '"' + v.replace("\\", "\\\\").replace('"', '\\"').replace("\n", "\\n") + '"'
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(_value(x) for x in v) + "]"
+    if isinstance(v, dict):
+        return "{ " + ", ".join(f"{_bare(k)} = {_value(x)}" for k, x in v.items()) + " }"
+    raise TypeError(f"cannot write {type(v).__name__} to TOML")

@@ -1,0 +1,66 @@
+"""The design report of ``rockdesign design``: inputs, charts, the table of variants and the recommended
+design's full check summary → ``design.html`` and ``design.pdf`` (template ``templates/design.html.j2``);
+the figures are also written as SVG files beside them."""
+from __future__ import annotations
+
+import datetime as _dt
+import io
+import os
+from pathlib import Path
+
+from .design_figures import cell_reason, design_figures
+from .render import environment, html_to_pdf, stylesheet
+
+TEMPLATE = "design.html.j2"
+
+CAPTIONS = {
+    "verdict": "Pass/fail region: the verdict of the check (ASCE 7-22 §16.4 count per ground motion and FEMA P695 "
+               "collapse margin at the risk category's target) for every variant, with the governing reason.",
+    "acmr": "Adjusted collapse margin ratio ACMR of the variants whose margin was analysed (cells the count rule "
+            "already fails at the design level need no margin scan and are left blank).",
+    "shear": "Superstructure shear coefficient |f_s|/g, 84th percentile over the records that did not overturn "
+             "(2DOF podium, SPEC §13) — the force the building above is designed for.",
+    "rotation": "Median θ_max/θc of the suite at the design level (Eq 3.56: θc the rotation capacity).",
+    "thesis_plane": "The variants in the plane of the thesis's two curved-base design parameters: the uplift "
+                    "base-shear coefficient tan α (Eq 3.34) and the rotation capacity θc (Eq 3.56).",
+}
+
+
+def _svg(fig) -> str:
+    buf = io.StringIO()
+    fig.savefig(buf, format="svg")
+    return buf.getvalue()
+
+
+def write_design_report(result, data: dict, out_dir: Path, *, pdf: bool = True, recommended_check=None) -> dict:
+    """Write ``design.html``, ``design.pdf`` (``pdf``) and the figures ``design_<name>.svg`` into ``out_dir``;
+    ``recommended_check``: the full :class:`~rockdesign.checks.check.CheckResult` of the recommended variant
+    (its summary goes into the report).  Returns the paths written."""
+    out_dir = Path(out_dir)
+    figs = {k: f for k, f in design_figures(data).items() if f is not None}
+    svgs = {k: _svg(f) for k, f in figs.items()}
+    written = {}
+    for k, text in svgs.items():
+        path = out_dir / f"design_{k}.svg"
+        path.write_text(text, encoding="utf-8")
+        written[k] = path
+    epoch = os.environ.get("SOURCE_DATE_EPOCH")
+    date = (_dt.datetime.fromtimestamp(int(epoch), _dt.timezone.utc) if epoch else _dt.datetime.now(_dt.timezone.utc))
+    rows = [{**c, "short_reason": cell_reason(c)} for c in data["cells"]]
+    check = None
+    if recommended_check is not None:
+        r = recommended_check
+        check = {"verdict": r.verdict, "reason": r.verdict_reason,
+                 "checks": [c for c in r.checks if c.get("governs_verdict") or c.get("role") == "robustness"],
+                 "acceptance": r.acceptance or {},
+                 "superstructure": (r.statistics.get("superstructure") or {})}
+    env = environment()
+    html = env.get_template(TEMPLATE).render(
+        css=stylesheet(), data=data, rows=rows, figures=svgs, captions=CAPTIONS, check=check,
+        project=result.project, date=date.strftime("%Y-%m-%d"))
+    path = out_dir / "design.html"
+    path.write_text(html, encoding="utf-8")
+    written["html"] = path
+    if pdf:
+        written["pdf"] = html_to_pdf(html, out_dir / "design.pdf")
+    return written

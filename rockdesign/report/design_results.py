@@ -1,0 +1,71 @@
+"""design.json and design.csv of ``rockdesign design`` (CONTRACT §6.3; SI units, keys stable)."""
+from __future__ import annotations
+
+import csv
+import json
+import math
+from pathlib import Path
+
+CSV_COLUMNS = ("verdict", "acmr", "acmr_required", "p_collapse_design", "n_unacceptable", "allowed_unacceptable",
+               "n_ground_motions", "superstructure_shear_p84", "superstructure_drift_p84",
+               "median_theta_max_over_theta_c", "uplift_acceleration", "uplift_shear_coefficient", "theta_c",
+               "decided_at_design_level", "analyses", "analyses_saved", "reason")
+CSV_UNITS = {"superstructure_drift_p84": "m", "uplift_acceleration": "m/s^2", "theta_c": "rad", "p_collapse_design": "-",
+             "acmr": "-", "acmr_required": "-", "superstructure_shear_p84": "-", "uplift_shear_coefficient": "-",
+             "median_theta_max_over_theta_c": "-"}
+
+
+def design_json(project, grid, recommendation, *, settings: dict | None = None) -> dict:
+    """design.json: the project, the variables, one entry per cell, the recommended design, the analyses
+    run and the (lower bound of the) analyses the shared work and early stopping saved."""
+    return _finite({
+        "project": {"name": project.name, "file": project.path, "sha256": project.sha256, "kind": project.system.kind},
+        "variables": [v.as_json() for v in grid.variables],
+        "cells": grid.cells,
+        "recommended": recommendation,
+        "analyses_run": grid.analyses_run,
+        "analyses_saved": grid.analyses_saved,
+        "analyses_saved_is_lower_bound": True,
+        "variants_resumed": grid.resumed,
+        "settings": settings or {},
+        "units": {"values": "SI (m, kg, s)", "uplift_acceleration": "m/s^2", "theta_c": "rad",
+                  "superstructure_drift_p84": "m", "column_material": "kg"},
+    })
+
+
+def _finite(x):
+    """JSON has no ∞ or NaN: such numbers become null."""
+    if isinstance(x, float):
+        return x if math.isfinite(x) else None
+    if isinstance(x, dict):
+        return {k: _finite(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [_finite(v) for v in x]
+    return x
+
+
+def write_design_json(data: dict, path: Path) -> Path:
+    path.write_text(json.dumps(data, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
+    return path
+
+
+def write_design_csv(data: dict, path: Path) -> Path:
+    """design.csv: one row per cell, the variables' SI values first; units in the header ("theta_c [rad]")."""
+    keys = [v["key"] for v in data["variables"]]
+    units = {v["key"]: _si_unit(v["unit"]) for v in data["variables"]}
+    with path.open("w", newline="", encoding="utf-8") as fh:
+        w = csv.writer(fh)
+        w.writerow([f"{k} [{units[k]}]" for k in keys]
+                   + [f"{c} [{CSV_UNITS[c]}]" if c in CSV_UNITS else c for c in CSV_COLUMNS])
+        for cell in data["cells"]:
+            w.writerow([cell["values"][k] for k in keys] + ["" if cell.get(c) is None else cell.get(c)
+                                                           for c in CSV_COLUMNS])
+    return path
+
+
+def _si_unit(unit: str) -> str:
+    if unit in ("", "1"):
+        return "-"
+    from ..units import registry
+    q = registry().Quantity(1.0, unit).to_base_units()
+    return f"{q.units:~}".replace(" ", "") or "-"

@@ -1,0 +1,155 @@
+"""The design grid against ``rockdesign check``: each cell's verdict is the check's verdict of that
+variant's own project file; the shared-work runner stops a decided variant early and resumes."""
+from __future__ import annotations
+
+import json
+import tomllib
+
+import pytest
+
+import rockdesign as rd
+from rockdesign.design_space.grid import recommended
+from rockdesign.design_space.run import design
+from rockdesign.design_space.variants import parse_vary, variant_document, variant_toml
+
+RECORDS = ", ".join(f'"p695-ff/{k}a"' for k in range(1, 12))   # 11 ground motions (one component each)
+
+SMALL = f"""\
+[project]
+name = "stocky podium, 11 ground motions"
+
+[podium]
+columns = 20
+cap_beam_mass = "200 t"
+height = "2.5 m"
+width = "0.6 m"
+mass = "2.7 t"
+mass_distribution = 0.3333
+
+[superstructure]
+mass = "600 t"
+period = "rigid"
+
+[excitation]
+records = [{RECORDS}]
+scale = {{ method = "pga", target = "0.4 g" }}
+
+[analysis]
+overturn = "static"
+"""
+VARY = ["podium.width=0.35m:0.65m:2"]
+
+
+@pytest.fixture(scope="module")
+def small(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("design")
+    path = folder / "small.toml"
+    path.write_text(SMALL, encoding="utf-8")
+    return folder, path
+
+
+@pytest.fixture(scope="module")
+def grid(small):
+    folder, path = small
+    return design(path, VARY, store=folder / "variants")
+
+
+def test_each_cell_verdict_equals_the_check_of_its_project_file(small, grid):
+    folder, path = small
+    raw = tomllib.loads(SMALL)
+    variables = [parse_vary(v, raw) for v in VARY]
+    verdicts = []
+    for cell in grid.grid.cells:
+        doc, _ = variant_document(raw, variables, tuple(cell["index"]))
+        file = folder / f"variant_{'_'.join(map(str, cell['index']))}.toml"
+        file.write_text(variant_toml(doc), encoding="utf-8")
+        full = rd.check(rd.load_project(file))
+        assert cell["verdict"] == full.verdict, (cell["labels"], cell["reason"], full.verdict_reason)
+        assert cell["n_unacceptable"] == full.acceptance["n_unacceptable"]
+        if not cell["decided_at_design_level"]:      # the margin was analysed: the same numbers
+            assert cell["acmr"] == pytest.approx(full.acceptance["acmr"], rel=1e-12)
+        verdicts.append(full.verdict)
+    assert sorted(verdicts) == ["FAIL", "PASS"]      # the grid spans the boundary (the test can fail)
+
+
+def test_a_decided_variant_skips_its_margin_scans(grid):
+    cells = {c["verdict"]: c for c in grid.grid.cells}
+    fail, ok = cells["FAIL"], cells["PASS"]
+    assert fail["decided_at_design_level"] and fail["n_unacceptable"] > fail["allowed_unacceptable"]
+    assert fail["acmr"] is None and fail["analyses"] < ok["analyses"]
+    # 11 records analysed once at the design level (+ the model check on ≤ 4 governing records)
+    assert 11 <= fail["analyses"] <= 11 + 4 + 11
+    # saved at least: c_r ± (2 per record), 8 ensemble runs per record, one scan round per record
+    assert fail["analyses_saved"] >= 11 * (2 + 8) + 11
+    assert grid.grid.analyses_run == sum(c["analyses"] for c in grid.grid.cells)
+
+
+def test_recommended_is_the_passing_cell_and_the_run_resumes(small, grid):
+    folder, path = small
+    rec = grid.recommended
+    passing = [c for c in grid.grid.cells if c["verdict"] == "PASS"]
+    assert rec is not None and rec["index"] == passing[0]["index"]
+    again = design(path, VARY, store=folder / "variants")       # finished variants are not re-run
+    assert again.grid.resumed == 2 and again.grid.analyses_run == 0
+    assert [c["verdict"] for c in again.grid.cells] == [c["verdict"] for c in grid.grid.cells]
+    assert json.dumps(again.as_json()["cells"][0]["values"]) == json.dumps(grid.as_json()["cells"][0]["values"])
+
+
+def test_recommendation_prefers_low_shear_then_less_material():
+    cells = [
+        {"verdict": "PASS", "superstructure_shear_p84": 0.30, "column_material": 1.0, "index": [0], "values": {},
+         "labels": {}, "acmr": 2.5, "acmr_required": 1.96, "n_unacceptable": 0, "n_ground_motions": 22,
+         "allowed_unacceptable": 1},
+        {"verdict": "PASS", "superstructure_shear_p84": 0.2001, "column_material": 5.0, "index": [1], "values": {},
+         "labels": {}, "acmr": 2.0, "acmr_required": 1.96, "n_unacceptable": 1, "n_ground_motions": 22,
+         "allowed_unacceptable": 1},
+        {"verdict": "PASS", "superstructure_shear_p84": 0.2002, "column_material": 4.0, "index": [2], "values": {},
+         "labels": {}, "acmr": 2.1, "acmr_required": 1.96, "n_unacceptable": 0, "n_ground_motions": 22,
+         "allowed_unacceptable": 1},
+        {"verdict": "FAIL", "superstructure_shear_p84": 0.01, "column_material": 0.1, "index": [3], "values": {},
+         "labels": {}},
+    ]
+    rec = recommended(cells)
+    assert rec["index"] == [2]              # 0.2001 ≈ 0.2002 to 3 digits: the smaller column wins
+    assert "ACMR 2.1 ≥ 1.96" in rec["reason"]
+    assert recommended([cells[3]]) is None
+
+
+@pytest.mark.slow
+def test_grid_on_dask_equals_local_and_resumes_after_an_interruption(small, grid, dask_cluster, tmp_path):
+    """``--dask ADDRESS``: the same cells as the local grid; an interrupted run (one variant stored)
+    re-runs only the other."""
+    from typer.testing import CliRunner
+
+    from rockdesign.cli import app
+    folder, path = small
+    out = tmp_path / "d"
+    first = design(path, VARY[:1], store=out / "variants")          # both variants stored ...
+    stored = sorted((out / "variants").glob("*.json"))
+    stored[0].unlink()                                             # ... one lost: the run was interrupted
+    res = CliRunner().invoke(app, ["design", str(path), "--vary", VARY[0], "-o", str(out), "--no-pdf", "--json",
+                                   "--dask", dask_cluster.scheduler_address])
+    assert res.exit_code == 0, res.output
+    data = json.loads(res.stdout)
+    assert data["variants_resumed"] == 1
+    keep = ("verdict", "n_unacceptable", "acmr", "median_theta_max_over_theta_c")
+    assert [{k: c[k] for k in keep} for c in data["cells"]] == [{k: c[k] for k in keep} for c in grid.grid.cells]
+    assert [c["verdict"] for c in first.grid.cells] == [c["verdict"] for c in grid.grid.cells]
+
+
+def test_design_report_and_files(grid, tmp_path):
+    from rockdesign.report.design_report import write_design_report
+    from rockdesign.report.design_results import write_design_csv, write_design_json
+    data = grid.as_json()
+    assert set(data) >= {"project", "variables", "cells", "recommended", "analyses_run", "analyses_saved"}
+    assert all(set(c) >= {"values", "verdict", "reason", "acmr", "p_collapse_design", "n_unacceptable",
+                          "superstructure_shear_p84", "median_theta_max_over_theta_c", "analyses"}
+               for c in data["cells"])
+    write_design_json(data, tmp_path / "design.json")
+    rows = write_design_csv(data, tmp_path / "design.csv").read_text(encoding="utf-8").splitlines()
+    assert len(rows) == 1 + len(data["cells"]) and rows[0].startswith("podium.width [m],verdict,")
+    written = write_design_report(grid, data, tmp_path, pdf=False)
+    html = written["html"].read_text(encoding="utf-8")
+    assert "Recommended design" in html and "podium.width = 0.65 m" in html
+    assert {"verdict", "acmr", "rotation", "thesis_plane"} <= set(written)   # rigid superstructure: no shear chart
+    assert "FAIL" in html and "unacc." in html
