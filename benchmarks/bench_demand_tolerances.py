@@ -29,7 +29,7 @@ from rockdesign.checks.demand import DEMAND_RTOL, fixed_base_damping, record_dem
 from rockdesign.checks.runner import run_jobs  # noqa: E402
 from rockdesign.dynamics.model import ModelChoice  # noqa: E402
 from rockdesign.jsonable import json_ready  # noqa: E402
-from rockdesign.project import load_project  # noqa: E402
+from rockdesign.library import load_project  # noqa: E402
 
 RTOLS = (1e-7, 1e-8, 1e-9, 1e-10, 1e-11)
 SECTION = "## Superstructure demand"

@@ -134,7 +134,7 @@ def check_summary(data: dict, out_dir, console: Console) -> None:
             res = "not evaluated"
         elif role in ("governs", "robustness"):
             res = ("PASS" if c["passed"] else "FAIL") + (" (robustness)" if role == "robustness" else "")
-        elif c["name"].rstrip().endswith("?"):     # a question ("Does a planar analysis suffice?"): yes or no
+        elif "?" in c["name"]:     # a question ("Does a planar analysis suffice?"): answered yes or no
             res = ("yes" if c["passed"] else "no") + " (info)"
         else:       # informs, does not decide: not a failure of the design
             res = ("met" if c["passed"] else "not met") + " (info)"
@@ -158,8 +158,9 @@ def check_summary(data: dict, out_dir, console: Console) -> None:
                   + (f" (+{s.get('n_failed')} failed)" if s.get("n_failed") else "")
                   + (f", missing: {len(exc.get('missing', []))}" if exc.get("missing") else "")
                   + (f" from {s['n_ground_motions']} ground motions" if s.get("n_ground_motions") else "")
-                  + f", overturned: {s['n_overturned']} ({s['overturn_criterion']} criterion), false negatives "
-                  f"(class b): {s['n_false_negative']}, {prob}", highlight=False)
+                  + f", overturned: {s['n_overturned']} ({s['overturn_criterion']} criterion)"
+                  + (f", false negatives (class b): {s['n_false_negative']}" if "n_false_negative" in s else "")
+                  + f", {prob}", highlight=False)
     if exc.get("intensity_analysed"):
         console.print(f"intensity analysed: {escape(exc['intensity_analysed'])}", highlight=False)
     colour = "green" if data["verdict"] == "PASS" and data.get("verdict_robust", True) else (

@@ -38,7 +38,7 @@ from ..motions.motion import record_motion
 from ..motions.pairs import suite_pairs
 from ..motions.spectra import sd_max_of_samples
 from ..systems import Column, RockingSystem
-from .acceptance import minimum_records
+from .acceptance import AcceptanceRule, acceptance_rule, acceptance_summary, minimum_records
 from .criteria import CheckContext, decide, evaluate_criteria
 from .cylinder_criteria import CYLINDER_CRITERIA
 from .cylinder_margins import pair_margins
@@ -191,6 +191,7 @@ class CylinderCheckResult:
     verdict_robust: bool
     governing_check: str | None
     ensemble: dict | None
+    acceptance: dict | None = None
     histories: dict = dataclasses.field(default_factory=dict)
 
     @property
@@ -227,7 +228,8 @@ class CylinderCheckResult:
                 "checks": self.checks, "verdict": self.verdict, "verdict_reason": self.verdict_reason,
                 "verdict_robust": self.verdict_robust,
                 "failed_records": [{"id": o.id, "status": o.run.engine_status} for o in self.failed_records],
-                "fragility": None, "collapse_margin": None, "ensemble": self.ensemble}
+                "fragility": None, "collapse_margin": None, "ensemble": self.ensemble,
+                "acceptance": self.acceptance}
 
 
 SENSITIVITY = {"variation": None, "runs": {}, "verdict_flips": 0,
@@ -290,6 +292,16 @@ def _ensembles(cyl, pairs, factors, nominal: list[PairRun], a, progress) -> dict
             "n_not_robust": int((~robust).sum())}
 
 
+def cylinder_rule(analysis) -> AcceptanceRule:
+    """The rule that decides a cylinder's verdict, in the terms of results.json's ``acceptance`` (CONTRACT
+    §6.1): the one-sided 95 % binomial bound of P(overturn) over the record pairs — each pair one ground
+    motion — within ``overturn_probability_limit``; no collapse margin (the 3D check has no fragility fit).
+    The risk category's count (ASCE 7-22 §16.4.1.1) is not the cylinder's rule yet."""
+    base = acceptance_rule(analysis)
+    return AcceptanceRule("binomial", base.risk_category, base.target, base.allowed,
+                          analysis.overturn_probability_limit, collapse_margin_available=False)
+
+
 def run_cylinder_check(project, progress=None, margins: bool = True) -> CylinderCheckResult:
     """The cylinder check (see module docstring): typed outcomes, the criteria and the one verdict.
     ``margins``: scan each pair below the design level for overturning (the incremental criterion)."""
@@ -327,16 +339,18 @@ def run_cylinder_check(project, progress=None, margins: bool = True) -> Cylinder
                                  if o.margin is not None and o.margin.overturn_scale is not None), default=None)
     summary["n_margin_below_design"] = sum(1 for o in records if o.margin is not None
                                            and o.margin.overturn_scale is not None and o.margin.overturn_scale < 1.0)
+    rule = cylinder_rule(a)
     context = CheckContext(records, a, {}, {}, margins_run=margins,
-                           extra={"ensemble": ens, "cylinder": cyl, "summary": summary})
+                           extra={"ensemble": ens, "cylinder": cyl, "summary": summary}, rule=rule)
     items, skipped = evaluate_criteria(context, CYLINDER_CRITERIA)
     decision = decide(items, skipped)
+    acceptance = acceptance_summary(rule, items, decision, context.valid, None)
     checks = [i.as_json() for i in items]
     checks.sort(key=lambda c: (not c["governs_verdict"], -c["utilisation"]))
     ensemble_json = None if ens is None else {
         k: ens[k] for k in ("size", "seed", "amplitude_variation", "tolerance_factor", "p_overturn", "n_not_robust")}
     return CylinderCheckResult(project, records, summary, checks, decision.verdict, decision.reason,
-                               decision.robust, decision.governing, ensemble_json)
+                               decision.robust, decision.governing, ensemble_json, acceptance)
 
 
 MAX_HISTORIES = 8

@@ -103,6 +103,9 @@ class CylinderIncrementalMargin(Criterion):
             reason = f"overturning at {f:.2g}× design ({rid}" + (f" and {k - 1} more)" if k > 1 else ")")
         elif below:
             reason = f"{k} of {n} records overturn at or below the design level"
+        elif not failed_scan:   # none overturns, but the suite is too small for the bound
+            reason = (f"none of {n} records overturns up to the design level, but {n} records cannot show "
+                      f"the limit (bound {upper:.3g} > {_pct(limit)})")
         else:
             reason = "incremental analyses failed below the design level (" + ", ".join(
                 f"{i} at {f:.3g}×" for f, i in failed_scan) + ")"

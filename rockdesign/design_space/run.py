@@ -8,7 +8,8 @@ from pathlib import Path
 
 from ..errors import ProjectError, RockdesignError
 from ..kinds import kind_of
-from ..project import load_project
+from ..kinds import parse_document
+from ..library import load_project
 from .grid import GridRun, check_exit_code, recommended, run_grid
 from .variants import parse_vary, variants
 
@@ -70,13 +71,12 @@ def recommended_check(result: DesignResult, *, records_dir: str | None = None):
     """The full ``rockdesign check`` (every stage) of the recommended variant: its summary goes into the
     design report, and its verdict must be PASS like its cell's."""
     from ..checks.check import run_check
-    from ..project import parse_project
     from .variants import variant_document, variant_toml
     idx = tuple(result.recommended["index"])
     base = result.project
     raw = tomllib.loads(base.source_text) if base.source_text else base.raw
     doc, _ = variant_document(raw, result.grid.variables, idx)
-    proj = parse_project(doc, file=f"{result.project.path} [recommended]", text=variant_toml(doc))
+    proj = parse_document(doc, file=f"{result.project.path} [recommended]", text=variant_toml(doc))
     return run_check(proj, records_dir=records_dir)
 
 

@@ -163,13 +163,13 @@ def variant_document(raw: dict, variables, index) -> tuple[dict, list[str]]:
 
 def variants(raw: dict, variables, *, file: str) -> list[Variant]:
     """Every variant of the grid (row-major over the variables), each validated by the project loader."""
-    from ..project import parse_project
+    from ..kinds import parse_document
     out = []
     for index in itertools.product(*(range(len(v.values)) for v in variables)):
         doc, notes = variant_document(raw, variables, index)
         label = ", ".join(f"{v.key} = {v.label(k)}" for v, k in zip(variables, index))
         try:
-            proj = parse_project(doc, file=f"{file} [{label}]", text=variant_toml(doc))
+            proj = parse_document(doc, file=f"{file} [{label}]", text=variant_toml(doc))
             out.append(Variant(index, doc, proj, None, tuple(notes)))
         except ProjectError as exc:
             if exc.key in {v.key for v in variables} and exc.detail.startswith("expects"):

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..cylinder.engine import SPIN_TILT_MIN
 from ..cylinder.quantities import wobbling_curve
 from ..plots import STYLE, plt
 
@@ -19,7 +20,6 @@ def cylinder_history_figure(response, g: float, title: str = "", pair=None):
     θ/α (with θ_ot/α and the quasi-impacts), the spin φ̇ [rad/s] where θ ≥ SPIN_TILT_MIN·α (near θ = 0 the
     contact point whirls round the rim and φ̇ is unbounded), the contact force N/(mg) (spikes clipped at
     :data:`CONTACT_FORCE_TOP`); and the plan view of the path of the centre of mass [m] (Figs 5.9–5.15)."""
-    from .engine import SPIN_TILT_MIN
     r = response
     with plt.rc_context(STYLE):
         fig = plt.figure(figsize=(10.0, 7.0))

@@ -24,7 +24,8 @@ from rockdesign.cli import app
 from rockdesign.errors import ProjectError
 from rockdesign.motions.grouping import count_ground_motions, earthquake_id, ground_motion_id
 from rockdesign.motions.suites import load_suite
-from rockdesign.project import AnalysisSettings, parse_project
+from rockdesign.kinds import parse_document as parse_project
+from rockdesign.project import AnalysisSettings
 from support import stocky_podium_toml
 
 runner = CliRunner()

@@ -9,6 +9,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
+import rockdesign
 from rockdesign.cli import app
 from rockdesign.paths import REPO_ROOT
 
@@ -222,6 +223,7 @@ def test_a_failed_spectrum_leaves_no_empty_folder(tmp_path, monkeypatch):
     def fail(*args, **kwargs):
         raise RockdesignError("the cluster went away", key="--dask")
     monkeypatch.setattr(spectrum, "compute_spectrum", fail)
+    monkeypatch.setattr(rockdesign, "compute_spectrum", fail)      # (the command reaches it through rockdesign)
     monkeypatch.setattr("rockdesign.cli.inputs.compile_kernels", lambda *a, **k: 0.0)
     out = tmp_path / "deep" / "s"
     r = invoke("spectrum", PIER, "--pulse", "sine", "--x", "omega_p/p:1:2:2", "--y", "ap/up:1:2:2", "-o", out)

@@ -8,7 +8,7 @@ import pytest
 
 from rockdesign.design_space.variants import parse_vary, variant_document, variant_toml, variants
 from rockdesign.errors import RockdesignError
-from rockdesign.project import parse_project
+from rockdesign.kinds import parse_document as parse_project
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 

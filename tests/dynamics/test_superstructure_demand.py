@@ -102,7 +102,7 @@ def _scipy_demand(system, motion, rtol):
 @pytest.fixture(scope="module")
 def podium():
     from rockdesign.checks.check import check_records
-    from rockdesign.project import load_project
+    from rockdesign.library import load_project
     from pathlib import Path
     p = load_project(str(Path(__file__).resolve().parents[2] / "examples" / "podium_flat.toml"))
     return p, [r.motion for r in check_records(p).records]

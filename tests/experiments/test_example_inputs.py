@@ -8,7 +8,7 @@ from rockdesign.experiments.calibrate import calibrate
 from rockdesign.experiments.free_vibration import read_tilt_csv
 from rockdesign.experiments.validate import read_results_csv, validate
 from rockdesign.paths import REPO_ROOT
-from rockdesign.project import load_project
+from rockdesign.library import load_project
 
 EXAMPLES = REPO_ROOT / "examples"
 
