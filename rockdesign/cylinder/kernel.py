@@ -33,7 +33,8 @@ import numpy as np
 from numba import njit
 from scipy.integrate._ivp import dop853_coefficients as _dop
 
-from ..motions.excitation import EXC_NONE, EXC_SAMPLES, ground_acceleration, next_breakpoint
+from ..motions.excitation import EXC_SAMPLES, next_breakpoint
+from .uplift import uplift_time
 from .eom import contact_force_ratio, ground_xy, rhs, rhs_ground, rocking_energy
 
 A = np.ascontiguousarray(_dop.A)
@@ -182,58 +183,6 @@ def _root(F, y, i, level, xa, xb):
 
 
 @njit(cache=True)
-def _uplift_time(t, t_stop, up, kind, params, sx, sy, dirx, diry):
-    """First time in [t, t_stop) at which √(ü_gx² + ü_gy²) ≥ up (Eq 5.24), or +inf."""
-    if kind == EXC_NONE:
-        return math.inf
-    if kind == EXC_SAMPLES:
-        dt = params[1]
-        npts = sx.shape[0]
-        i0 = int(math.floor(t / dt + 1e-9))
-        for i in range(max(i0, 0), npts - 1):
-            ta = i * dt
-            if ta + dt <= t:
-                continue
-            if ta >= t_stop:
-                return math.inf
-            ax0 = params[0] * sx[i] * dirx
-            ay0 = params[0] * sy[i] * diry
-            dx = params[0] * sx[i + 1] * dirx - ax0
-            dy = params[0] * sy[i + 1] * diry - ay0
-            # |a0 + s d|² = up², s ∈ [s0, 1]
-            s0 = max(0.0, (t - ta) / dt)
-            qa = dx * dx + dy * dy
-            qb = 2.0 * (ax0 * dx + ay0 * dy)
-            qc = ax0 * ax0 + ay0 * ay0 - up * up
-            if qc + s0 * (qb + s0 * qa) >= 0.0:
-                return ta + s0 * dt
-            if qa > 0.0:
-                disc = qb * qb - 4.0 * qa * qc
-                if disc >= 0.0:
-                    r = (-qb + math.sqrt(disc)) / (2.0 * qa)      # the rising root
-                    if s0 <= r <= 1.0:
-                        return ta + r * dt
-        return math.inf
-    # analytic pulse along (dirx, diry): scan and bisect
-    hs = params[1] / 2000.0
-    ta = t
-    while ta < t_stop:
-        tb = min(ta + hs, t_stop)
-        ga = abs(ground_acceleration(tb, kind, params, sx))
-        if ga >= up:
-            lo, hi = ta, tb
-            for _ in range(80):
-                mid = 0.5 * (lo + hi)
-                if abs(ground_acceleration(mid, kind, params, sx)) >= up:
-                    hi = mid
-                else:
-                    lo = mid
-            return hi
-        ta = tb
-    return math.inf
-
-
-@njit(cache=True)
 def _push(buf, count, row):
     if count >= buf.shape[0]:
         new = np.empty((2 * buf.shape[0], buf.shape[1]))
@@ -305,7 +254,7 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
     hist, nh = _record(hist, nh, t, y, f, par, row)
     while t < t_end:
         if resting:
-            tu = _uplift_time(t, min(t_end, t_exc_end), up * (1.0 + 1e-12), kind, params, sx, sy, dirx, diry)
+            tu = uplift_time(t, min(t_end, t_exc_end), up * (1.0 + 1e-12), kind, params, sx, sy, dirx, diry)
             if out_dt > 0.0:                      # grid rows while at rest
                 t_hi = min(tu, t_end)
                 while k_out * out_dt < t_hi - 1e-12 * max(1.0, t_hi):

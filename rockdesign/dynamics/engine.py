@@ -28,23 +28,26 @@ from numba import njit
 
 from ..motions.excitation import (EXC_SAMPLES, excitation_end, ground_acceleration, ground_acceleration_right,
                                   next_breakpoint)
-from .eom import (rest_acceleration, rhs_given_acceleration, P_GAMMA, P_RADIUS, P_R, P_TWO_DOF, uplift_condition)
-from .rest_step import exact_rest_available, fill_rest_outputs, rest_state, rest_substeps, rest_uplift_scan
-from .events import next_threshold_crossing, root_on_dense
-from .transitions import (change_phase, event_levels, new_summary, crossing_event, energy_bound, enter_overturn, enter_uplift, impact, phase_of,
-                          store_event, top_displacement)
+from .eom import (rhs_given_acceleration, P_GAMMA, P_RADIUS, P_R, P_TWO_DOF, uplift_condition)
+from .rest_step import exact_rest_available
+from .events import next_threshold_crossing
+from .transitions import (change_phase, event_levels, new_summary, energy_bound, enter_overturn, enter_uplift, impact, phase_of,
+                          top_displacement)
 from .demand import track_demand, track_impact_jump
 from .dop853 import ERROR_EXPONENT_853, FSAL_ROW_853, N_STAGES_EXTENDED, dop853_dense, dop853_error_norm, dop853_step
 from .rk import (ERROR_EXPONENT, MAX_FACTOR, MIN_FACTOR, SAFETY, dense_coefficients, dense_value,
                  dp5_step, error_norm, initial_step)
 
+from .quiet_steps import quiet_rest, quiet_step, rest_uplift_coefficients
+from .rest_phase import exact_rest_step, scan_podium_uplift
+from .rocking_scan import scan_rocking_step
 from .layout import (DOP853_BELOW_RTOL, D_EVENTS, D_NFEV, D_REFINE, D_REJECTED, D_STATUS,
-                     D_STEPS, EV_EXCEEDED, EV_OVERTURN, EV_PHASE_ROCKING, EV_PHASE_ROLLING, METHOD_AUTO,
+                     D_STEPS, EV_OVERTURN, EV_PHASE_ROCKING, EV_PHASE_ROLLING, METHOD_AUTO,
                      METHOD_DOP853, METHOD_DP5, N_DIAG, O_ATOL, O_ENERGY_STOP,
                      O_H_MAX, O_MAX_EVENTS, O_MAX_STEPS, O_METHOD, O_RTOL, O_SCAN, O_STOP_EXCEEDED,
                      O_T_END, ST_ENERGY_BOUND, ST_OK, ST_OVERTURNED, ST_STEP_COLLAPSE, ST_STOPPED_EXCEEDED, ST_TOO_MANY_EVENTS,
-                     ST_TOO_MANY_STEPS, S_DRIFT_MAX, S_EXCEEDED, S_IMPACTS_BEFORE_EXCEEDED, S_THETA_MAX,
-                     S_T_END, S_T_EXCEEDED, S_T_THETA_MAX, S_T_UPLIFT, S_UB_MAX,
+                     ST_TOO_MANY_STEPS, S_DRIFT_MAX, S_EXCEEDED, S_THETA_MAX,
+                     S_T_END, S_T_THETA_MAX, S_T_UPLIFT, S_UB_MAX,
                      S_UPLIFTS, S_UPLIFT_TIME)
 
 
@@ -177,307 +180,6 @@ def _refine_event(high, t, y, f0, x_e, h, level, sgn, K, y_e, ytmp, rocking, sid
     return t + he
 
 
-QUIET_MARGIN = 0.05
-"""A step is *quiet* (no dense output needed) when the quintic Hermite interpolant of its end values
-keeps |dθ/dx| above this fraction of the larger end rate at every scan point (see :func:`_quiet_step`)."""
-
-
-@njit(cache=True)
-def _hermite_ends(y, y_new, f0, f1, h, i, sign):
-    """End data (p0, d0, c0, p1, d1, c1) of component ``i`` (its rate is ``i + 1``) over a step of ``h`` [s],
-    times ``sign``: values, x-derivatives and second x-derivatives (x = (t − t0)/h), from the states
-    and their derivatives f at both ends."""
-    return (sign * y[i], sign * y[i + 1] * h, sign * f0[i + 1] * h * h,
-            sign * y_new[i], sign * y_new[i + 1] * h, sign * f1[i + 1] * h * h)
-
-
-@njit(cache=True)
-def _hermite_rate(x, p0, d0, c0, p1, d1, c1):
-    """d/dx of the quintic Hermite interpolant on [0, 1] with values p, first derivatives d and second
-    derivatives c (all with respect to x) at the ends."""
-    x2 = x * x
-    x3 = x2 * x
-    x4 = x3 * x
-    return ((p1 - p0) * (30.0 * x2 - 60.0 * x3 + 30.0 * x4) + d0 * (1.0 - 18.0 * x2 + 32.0 * x3 - 15.0 * x4)
-            + c0 * 0.5 * (2.0 * x - 9.0 * x2 + 12.0 * x3 - 5.0 * x4) + d1 * (-12.0 * x2 + 28.0 * x3 - 15.0 * x4)
-            + c1 * 0.5 * (3.0 * x2 - 8.0 * x3 + 5.0 * x4))
-
-
-@njit(cache=True)
-def _hermite_value(x, p0, d0, c0, p1, d1, c1):
-    """The quintic Hermite interpolant on [0, 1] (ends: values p, x-derivatives d, second derivatives c)."""
-    x2 = x * x
-    x3 = x2 * x
-    x4 = x3 * x
-    x5 = x4 * x
-    return (p0 * (1.0 - 10.0 * x3 + 15.0 * x4 - 6.0 * x5) + d0 * (x - 6.0 * x3 + 8.0 * x4 - 3.0 * x5)
-            + c0 * 0.5 * (x2 - 3.0 * x3 + 3.0 * x4 - x5) + p1 * (10.0 * x3 - 15.0 * x4 + 6.0 * x5)
-            + d1 * (-4.0 * x3 + 7.0 * x4 - 3.0 * x5) + c1 * 0.5 * (x3 - 2.0 * x4 + x5))
-
-
-@njit(cache=True)
-def _quiet_step(h, y, y_new, f0, f1, m_scan, side, phase, curved, beta, theta_ot, theta_c, exceeded, two_dof,
-                drift_slope, drift_max, sp):
-    """True when an accepted rocking step needs no dense output: the scan of :func:`_scan_rocking_step`
-    would find nothing but the peak candidate at the step's end.
-
-    The test uses only the step's end values and derivatives (θ, θ̇, θ̈ and u_T, u̇_T, ü_T from the
-    FSAL stage — no function evaluation): their quintic Hermite interpolant (5th order) must keep θ̇
-    of one sign with a margin of :data:`QUIET_MARGIN` at the scan points (so the 7th-order dense
-    output, which differs from it by far less, has no extremum there either), sθ must cross no event
-    level or θc between the ends (θ is then monotone, so the ends decide), and — for the 2DOF podium —
-    the drift |u_T − u_B(θ)| on the interpolants must stay below the drift maximum at the scan points
-    (margin 1e-6 of it, thousands of times the interpolants' difference from the dense output).  Any
-    doubt returns False and the step is scanned as before: results are unchanged, and DOP853 saves
-    its 3 extra evaluations of the 7th-order interpolant on most steps.
-    """
-    s0, d0, c0, s1, d1, c1 = _hermite_ends(y, y_new, f0, f1, h, 0, side)
-    margin = QUIET_MARGIN * max(abs(d0), abs(d1))
-    if margin == 0.0 or d0 * d1 <= 0.0 or min(abs(d0), abs(d1)) < margin:
-        return False
-    for k in range(1, m_scan):
-        r = _hermite_rate(k / m_scan, s0, d0, c0, s1, d1, c1)
-        if r * d0 <= 0.0 or abs(r) < margin:
-            return False
-    kind, _ = crossing_event(s0, s1, curved, phase, beta, theta_ot)
-    if kind != 0:
-        return False
-    if s1 > s0 and not exceeded and s0 < theta_c <= s1:
-        return False
-    if two_dof:
-        # the drift |u_T − u_B(θ)| must not reach the maximum at the scan points (checked on the
-        # interpolants, with a margin far above their difference from the dense output) nor at the end
-        tol = 1e-6 * drift_max
-        s_abs = max(abs(s0), abs(s1))
-        u0, v0, a0, u1, v1, a1 = _hermite_ends(y, y_new, f0, f1, h, 2, 1.0)
-        for k in range(1, m_scan + 1):
-            x = k / m_scan
-            u = u1 if k == m_scan else _hermite_value(x, u0, v0, a0, u1, v1, a1)
-            if abs(u) + drift_slope * s_abs + tol <= drift_max:
-                continue
-            sk = s1 if k == m_scan else _hermite_value(x, s0, d0, c0, s1, d1, c1)
-            if abs(u - side * top_displacement(sk, sp)) + tol > drift_max:
-                return False
-    return True
-
-
-@njit(cache=True)
-def _rest_uplift_coefficients(sp):
-    """(2 × 4) coefficients (c₀, c_ag, c_u, c_u̇) of the uplift criterion at rest on the sides +1 (row 0)
-    and −1 (row 1): :func:`~.eom.uplift_condition` is affine in (ü_g, u_T, u̇_T) at θ = θ̇ = 0 (Eq 4.7),
-    so s·θ̈ = c₀ + c_ag ü_g + c_u u_T + c_u̇ u̇_T.  Used only to decide that a step is quiet (a filter
-    with a margin, :func:`_quiet_rest`); uplift itself is located with ``uplift_condition``."""
-    c = np.zeros((2, 4))
-    for k in range(2):
-        s = 1.0 - 2.0 * k
-        d = uplift_condition(s, 0.0, 0.0, 0.0, sp)
-        c[k, 0] = d
-        c[k, 1] = uplift_condition(s, 1.0, 0.0, 0.0, sp) - d
-        c[k, 2] = uplift_condition(s, 0.0, 1.0, 0.0, sp) - d
-        c[k, 3] = uplift_condition(s, 0.0, 0.0, 1.0, sp) - d
-    return c
-
-
-@njit(cache=True)
-def _quiet_rest(t, h, y, y_new, f0, f1, m_scan, hyst, kind, xp, samples, coef):
-    """True when an accepted step of the resting 2DOF podium needs no dense output: the uplift criterion
-    (Eq 4.7, either side; affine, ``coef`` from :func:`_rest_uplift_coefficients`) stays below the
-    hysteresis by a margin of 1e-6 of its size (plus 1e-12 of its terms, for round-off) at the scan
-    points of :func:`_scan_podium_uplift`, with u_T, u̇_T from the quintic Hermite interpolant of the
-    step's end values (no function evaluation) and ü_g exact.  False in any doubt (the step is then
-    scanned)."""
-    u0, v0, a0, u1, v1, a1 = _hermite_ends(y, y_new, f0, f1, h, 2, 1.0)
-    for k in range(1, m_scan + 1):
-        x = k / m_scan
-        if k == m_scan:
-            ut = y_new[2]
-            utd = y_new[3]
-        else:
-            ut = _hermite_value(x, u0, v0, a0, u1, v1, a1)
-            utd = _hermite_rate(x, u0, v0, a0, u1, v1, a1) / h
-        ag = ground_acceleration(t + x * h, kind, xp, samples)
-        tp = coef[0, 1] * ag + coef[0, 2] * ut + coef[0, 3] * utd
-        tm = coef[1, 1] * ag + coef[1, 2] * ut + coef[1, 3] * utd
-        cp = coef[0, 0] + tp - hyst
-        cm = coef[1, 0] + tm - hyst
-        tol = 1e-6 * (abs(cp) + abs(cm)) + 1e-12 * (abs(coef[0, 0]) + abs(coef[1, 0]) + abs(tp) + abs(tm) + hyst)
-        if cp >= -tol or cm >= -tol:
-            return False
-    return True
-
-
-@njit(cache=True)
-def _exact_rest_step(t, h, t_end, y, y_new, f0, f1, m_scan, hyst, kind, xp, samples, sp, rest_coef, t_out, out_y,
-                     i_out, summary, ev_t, ev_kind, ev_y, diag):
-    """One exact step of the resting 2DOF podium under a record (:mod:`.rest_step`, Eq 4.3): to the next
-    sample (split so that ω_s h ≤ 0.4), outputs written from the exact solution, Eq 4.7 watched on it.
-
-    Moves ``y`` and returns (t, h, i_out, side): side = ±1 when the podium uplifted at the returned t
-    (``y`` is then the state at uplift and the event is stored), 0.0 otherwise.  A separate kernel, not
-    inlined into :func:`integrate`: numba's compile time grows with the integrator's size."""
-    tb = min(next_breakpoint(t, kind, xp, samples), t_end)
-    span = tb - t
-    if span <= 1e-15 * max(1.0, abs(t)):
-        return tb, h, i_out, 0.0     # sliver before a breakpoint: the state moves by round-off
-    h = span / rest_substeps(span, sp)
-    t_new = t + h
-    if t_new > tb - 1e-13 * max(1.0, abs(tb)):
-        t_new = tb
-        h = tb - t
-    a0 = ground_acceleration_right(t, kind, xp, samples)
-    a1 = ground_acceleration(t_new, kind, xp, samples)
-    u1, v1 = rest_state(y[2], y[3], a0, a1, h, sp)
-    y_new[0] = 0.0
-    y_new[1] = 0.0
-    y_new[2] = u1
-    y_new[3] = v1
-    f0[2] = y[3]
-    f0[3] = rest_acceleration(y[2], y[3], a0, sp)
-    f1[2] = v1
-    f1[3] = rest_acceleration(u1, v1, a1, sp)
-    diag[D_STEPS] += 1
-    if _quiet_rest(t, h, y, y_new, f0, f1, m_scan, hyst, kind, xp, samples, rest_coef):
-        ev_x = -1.0
-        ev_side = 0.0
-    else:
-        ev_x, ev_side = rest_uplift_scan(t, h, y, a0, a1, m_scan, hyst, sp)
-    if ev_x >= 0.0:
-        he = ev_x * h
-        ue, ve = rest_state(y[2], y[3], a0, a0 + ev_x * (a1 - a0), he, sp)
-        t_e = t + he
-        i_out = fill_rest_outputs(t_out, out_y, i_out, t_e, t, h, y, a0, a1, sp)
-        y[2] = ue
-        y[3] = ve
-        enter_uplift(y, t_e, summary, ev_t, ev_kind, ev_y, diag)
-        return t_e, h, i_out, ev_side
-    i_out = fill_rest_outputs(t_out, out_y, i_out, t_new, t, h, y, a0, a1, sp)
-    for i in range(4):
-        y[i] = y_new[i]
-    return t_new, h, i_out, 0.0
-
-
-@njit(cache=True)
-def _scan_podium_uplift(t, h, y, y_new, Q, m_scan, hyst, kind, xp, samples, sp):
-    """Scan an accepted step of the fixed-base 2DOF podium (at rest, Eq 4.3) for uplift (Eq 4.7 above
-    the hysteresis, either side) at ``m_scan`` points of the dense output, and bisect the first one.
-    Returns (its position x ∈ [0, 1] in the step, or −1.0 for none; the side it uplifts to)."""
-    ev_x = -1.0
-    ev_side = 0.0
-    x_prev = 0.0
-    for k in range(1, m_scan + 1):
-        x = k / m_scan
-        tx = t + x * h
-        ag = ground_acceleration(tx, kind, xp, samples)
-        ut = y_new[2] if k == m_scan else dense_value(y, Q, h, x, 2)
-        utd = y_new[3] if k == m_scan else dense_value(y, Q, h, x, 3)
-        cp = uplift_condition(1.0, ag, ut, utd, sp) - hyst
-        cm = uplift_condition(-1.0, ag, ut, utd, sp) - hyst
-        if cp >= 0.0 or cm >= 0.0:
-            s_up = 1.0 if cp >= 0.0 else -1.0
-            xa = x_prev
-            xb = x
-            for _ in range(100):  # bisection on the dense output
-                xm = 0.5 * (xa + xb)
-                agm = ground_acceleration(t + xm * h, kind, xp, samples)
-                cm_ = uplift_condition(s_up, agm, dense_value(y, Q, h, xm, 2),
-                                       dense_value(y, Q, h, xm, 3), sp) - hyst
-                if cm_ >= 0.0:
-                    xb = xm
-                else:
-                    xa = xm
-                if xb - xa < 1e-15:
-                    break
-            ev_x = xb
-            ev_side = s_up
-            break
-        x_prev = x
-    return ev_x, ev_side
-
-
-@njit(cache=True)
-def _scan_rocking_step(t, h, y, y_new, Q, ytmp, m_scan, side, phase, curved, beta, theta_ot, theta_c, two_dof,
-                       drift_slope, impacts, stop_exceeded, c_theta, c_rate, summary, ev_t, ev_kind, ev_y, diag, sp):
-    """Scan an accepted rocking step's dense output at ``m_scan`` points for the first event.
-
-    Each sub-interval splits at an extremum of sθ (where θ̇ changes sign) into monotone pieces, each
-    classified by :func:`~.transitions.crossing_event`; the first exceedance of θc is recorded on the
-    way (terminal only with ``stop_exceeded``), and the peak |θ| and the superstructure drift are
-    updated.  Returns (event kind, its position x ∈ [0, 1] in the step, its level [rad]); kind 0: none,
-    −1: stop at θc.
-    """
-    ev_type = 0
-    ev_x = 2.0
-    ev_level = 0.0
-    x_a = 0.0
-    sa = side * y[0]
-    va = side * y[1]
-    for k in range(1, m_scan + 1):
-        x_b = k / m_scan
-        if k == m_scan:
-            sb = side * y_new[0]
-            vb = side * y_new[1]
-        else:
-            sb = side * dense_value(y, Q, h, x_b, 0)
-            vb = side * dense_value(y, Q, h, x_b, 1)
-        # split at an extremum of sθ (θ̇ changes sign)
-        n_piece = 1
-        x_mid = x_b
-        s_mid = sb
-        if (va > 0.0 and vb < 0.0) or (va < 0.0 and vb > 0.0):
-            x_mid = root_on_dense(y, Q, h, c_rate, side, 0.0, x_a, x_b)
-            s_mid = side * dense_value(y, Q, h, x_mid, 0)
-            n_piece = 2
-        px0 = x_a
-        ps0 = sa
-        for piece in range(n_piece):
-            if piece == 0:
-                px1 = x_mid
-                ps1 = s_mid
-            else:
-                px0 = x_mid
-                ps0 = s_mid
-                px1 = x_b
-                ps1 = sb
-            ev_type, ev_level = crossing_event(ps0, ps1, curved, phase, beta, theta_ot)
-            if ps1 > ps0:
-                # rising: the exceedance of θc (non-terminal unless stop_exceeded) may come first
-                if summary[S_EXCEEDED] == 0.0 and ps0 < theta_c <= ps1:
-                    xc = root_on_dense(y, Q, h, c_theta, side, theta_c, px0, px1)
-                    if ev_type == 0 or xc <= root_on_dense(y, Q, h, c_theta, side, ev_level, px0, px1):
-                        summary[S_EXCEEDED] = 1.0
-                        summary[S_T_EXCEEDED] = t + xc * h
-                        summary[S_IMPACTS_BEFORE_EXCEEDED] = impacts
-                        for i in range(4):
-                            ytmp[i] = dense_value(y, Q, h, xc, i)
-                        store_event(ev_t, ev_kind, ev_y, diag, EV_EXCEEDED, t + xc * h, ytmp)
-                        if stop_exceeded:
-                            ev_type = -1
-                            ev_x = xc
-                            break
-            if ev_type > 0:
-                if ps0 == ev_level:
-                    ev_x = px0
-                else:
-                    ev_x = root_on_dense(y, Q, h, c_theta, side, ev_level, px0, px1)
-                break
-            # peak candidate at the end of a piece
-            if ps1 > summary[S_THETA_MAX]:
-                summary[S_THETA_MAX] = ps1
-                summary[S_T_THETA_MAX] = t + px1 * h
-        if ev_type != 0:
-            break
-        if two_dof:
-            ut_b = y_new[2] if k == m_scan else dense_value(y, Q, h, x_b, 2)
-            if abs(ut_b) + drift_slope * abs(sb) > summary[S_DRIFT_MAX]:
-                rel = abs(ut_b - side * top_displacement(sb, sp))
-                if rel > summary[S_DRIFT_MAX]:
-                    summary[S_DRIFT_MAX] = rel
-        x_a = x_b
-        sa = sb
-        va = vb
-    return ev_type, ev_x, ev_level
-
-
 @njit(cache=True)
 def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, ev_t, ev_kind, ev_y):
     """Run one time-history analysis.
@@ -537,7 +239,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
     work = np.zeros(8)
 
     thr_lo, thr_hi = _rigid_uplift_thresholds(hyst, sp)
-    rest_coef = _rest_uplift_coefficients(sp)
+    rest_coef = rest_uplift_coefficients(sp)
     # a resting podium under a record is stepped exactly (rest_step.py), not by Runge–Kutta
     rest_exact = exact_rest_available(sp, kind == EXC_SAMPLES)
 
@@ -593,7 +295,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
             continue
         # ---------------------------------------------------------------- podium at rest: exact steps
         if not rocking and rest_exact:
-            t, h, i_out, s_up = _exact_rest_step(t, h, t_end, y, y_new, f0, ftmp, m_scan, hyst, kind, xp, samples,
+            t, h, i_out, s_up = exact_rest_step(t, h, t_end, y, y_new, f0, ftmp, m_scan, hyst, kind, xp, samples,
                                                  sp, rest_coef, t_out, out_y, i_out, summary, ev_t, ev_kind, ev_y,
                                                  diag)
             track_demand(t, y, 0.0, rocking, side, phase, 0.0, sp, summary)
@@ -644,14 +346,14 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
         t_new = t + h
         if t_new > tb - 1e-13 * max(1.0, abs(tb)) and tb < math.inf:
             t_new = tb
-        # a quiet step needs no dense output (no output time inside it; see _quiet_step, _quiet_rest)
+        # a quiet step needs no dense output (no output time inside it; see quiet_step, quiet_rest)
         if i_out < n_out and t_out[i_out] < t_new:
             quiet = False
         elif rocking:
-            quiet = _quiet_step(h, y, y_new, f0, K[fsal], m_scan, side, phase, curved, beta, theta_ot, theta_c,
+            quiet = quiet_step(h, y, y_new, f0, K[fsal], m_scan, side, phase, curved, beta, theta_ot, theta_c,
                                 summary[S_EXCEEDED] != 0.0, two_dof, drift_slope, summary[S_DRIFT_MAX], sp)
         else:
-            quiet = _quiet_rest(t, h, y, y_new, f0, K[fsal], m_scan, hyst, kind, xp, samples, rest_coef)
+            quiet = quiet_rest(t, h, y, y_new, f0, K[fsal], m_scan, hyst, kind, xp, samples, rest_coef)
         if quiet:
             # nothing inside the step: its end is the only peak candidate
             if rocking and side * y_new[0] > summary[S_THETA_MAX]:
@@ -665,7 +367,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
 
         # ------------------------------------------------------------ rest of a 2DOF podium
         if not rocking:
-            ev_x, ev_side = (-1.0, 0.0) if quiet else _scan_podium_uplift(t, h, y, y_new, Q, m_scan, hyst, kind, xp,
+            ev_x, ev_side = (-1.0, 0.0) if quiet else scan_podium_uplift(t, h, y, y_new, Q, m_scan, hyst, kind, xp,
                                                                            samples, sp)
             if ev_x >= 0.0:
                 he = ev_x * h
@@ -686,7 +388,7 @@ def integrate(sp, kind, xp, samples, y_init, side_init, t0, opts, t_out, out_y, 
             ev_level = 0.0
         else:
             # -------------------------------------------------------- rocking: scan for events
-            ev_type, ev_x, ev_level = _scan_rocking_step(t, h, y, y_new, Q, ytmp, m_scan, side, phase, curved, beta,
+            ev_type, ev_x, ev_level = scan_rocking_step(t, h, y, y_new, Q, ytmp, m_scan, side, phase, curved, beta,
                                                          theta_ot, theta_c, two_dof, drift_slope, impacts,
                                                          stop_exceeded, c_theta, c_rate, summary, ev_t, ev_kind,
                                                          ev_y, diag, sp)

@@ -26,7 +26,7 @@ to cancellation as 1/(ω_s τ)² for very short steps (a step that ends at an ev
 
 REST_STEP_PHASE = 0.4
 """Longest exact rest step, in radians of ω_s: steps split the sample interval so that ω_s h ≤ 0.4.
-The quiet-step filter (engine._quiet_rest) reads u_T from the quintic Hermite interpolant of the
+The quiet-step filter (quiet_steps.quiet_rest) reads u_T from the quintic Hermite interpolant of the
 step's ends, whose error is at most (ω_s h)⁶/46080 ≈ 1e-7 of the amplitude: below its 1e-6 margin."""
 
 
@@ -69,7 +69,7 @@ def rest_uplift_scan(t, h, y, a0, a1, m_scan, hyst, sp):
     points of the exact solution and the first crossing is bisected on it to 1e-15 of the step.
     Returns (its position x ∈ (0, 1], or −1.0 for none; the side it uplifts to).
 
-    The same scan as ``engine._scan_podium_uplift`` on the Runge–Kutta dense output (pulses); kept as
+    The same scan as ``rest_phase.scan_podium_uplift`` on the Runge–Kutta dense output (pulses); kept as
     two loops because numba has no cheap way to pass the state evaluator as an argument."""
     x_prev = 0.0
     for k in range(1, m_scan + 1):

@@ -1,4 +1,4 @@
-"""Quiet steps (engine._quiet_step, _quiet_rest): accepted steps whose dense output is skipped.
+"""Quiet steps (quiet_steps.quiet_step, _quiet_rest): accepted steps whose dense output is skipped.
 
 The pinned outputs (tests/golden) prove that skipping changes no result on the examples (only the count
 of function evaluations fell); these tests check the screening itself: the quintic Hermite interpolant is
@@ -12,12 +12,12 @@ import math
 import numpy as np
 import pytest
 
-from rockdesign.dynamics import engine
+from rockdesign.dynamics import quiet_steps
 from rockdesign.dynamics.simulate import simulate
 from rockdesign.motions.motion import pulse_motion
 from support import block_from_p
 
-quiet = engine._quiet_step.py_func
+quiet = quiet_steps.quiet_step.py_func
 H = 0.01
 K_DIP = 1.16 / H ** 2
 
@@ -28,8 +28,8 @@ def test_hermite_interpolant_is_exact_on_quintics():
     d, dd = p.deriv(), p.deriv(2)
     ends = (p(0.0), d(0.0), dd(0.0), p(1.0), d(1.0), dd(1.0))
     for x in np.linspace(0.0, 1.0, 11):
-        assert engine._hermite_value.py_func(x, *ends) == pytest.approx(p(x), abs=1e-13)
-        assert engine._hermite_rate.py_func(x, *ends) == pytest.approx(d(x), abs=1e-12)
+        assert quiet_steps.hermite_value.py_func(x, *ends) == pytest.approx(p(x), abs=1e-13)
+        assert quiet_steps.hermite_rate.py_func(x, *ends) == pytest.approx(d(x), abs=1e-12)
 
 
 def _step(theta, h=0.01):
