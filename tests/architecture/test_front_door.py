@@ -15,10 +15,7 @@ REGISTRY = "rockdesign.kinds"
 
 MAX_LINES = 500
 
-TO_BE_SPLIT = {
-    "rockdesign/dynamics/engine.py",      # split after the superstructure-demand outputs land in the engine
-    "rockdesign/cylinder/kernel.py",      # (a numba kernel; split with the engine)
-}
+TO_BE_SPLIT: set[str] = set()
 """Modules over 500 lines that are to be split: the integrator removes each entry as it is split."""
 
 CLI_MAY_IMPORT = ("rockdesign", "rockdesign.library", "rockdesign.errors", "rockdesign.console", "rockdesign.display",
