@@ -104,7 +104,10 @@ class AcceptanceRule:
                               available)
 
     def as_json(self) -> dict:
-        return {"method": self.method, "method_label": METHOD_LABELS[self.method], "risk_category": self.risk_category,
+        label = METHOD_LABELS[self.method]
+        if self.method == "asce7" and not self.collapse_margin_available:
+            label = "ASCE 7-22 §16.4 count of unacceptable ground motions (no collapse margin for this system)"
+        return {"method": self.method, "method_label": label, "risk_category": self.risk_category,
                 "target_p_collapse": self.target, "allowed_unacceptable": self.allowed,
                 "binomial_limit": self.binomial_limit, "min_ground_motions": self.minimum_ground_motions}
 

@@ -12,7 +12,7 @@ Table 5.4's scaling):
 * Polyakov's rule 2 per component, SD_max/2B, is reported as information only.
 
 Each pair is one typed :class:`PairOutcome` (one ground motion: ``ground_motion`` is the pair id).  The
-verdict is :func:`~rockdesign.checks.criteria.decide` over the criteria of :data:`CYLINDER_CRITERIA`
+verdict is :func:`~rockdesign.checks.criteria.decide` over the criteria of :func:`cylinder_criteria`
 (:mod:`rockdesign.checks.cylinder_criteria`): every analysis completed, and the one-sided 95 % upper
 bound of the 3D P(overturn) (Clopper–Pearson) within ``[analysis] overturn_probability_limit``, at the
 design level and at every intensity below it (each pair scanned, :mod:`rockdesign.checks.cylinder_margins`;
@@ -38,9 +38,9 @@ from ..motions.motion import record_motion
 from ..motions.pairs import suite_pairs
 from ..motions.spectra import sd_max_of_samples
 from ..systems import Column, RockingSystem
-from .acceptance import AcceptanceRule, acceptance_rule, acceptance_summary, minimum_records
+from .acceptance import AcceptanceRule, acceptance_rule, acceptance_summary, minimum_records, require_suite_size
 from .criteria import CheckContext, decide, evaluate_criteria
-from .cylinder_criteria import CYLINDER_CRITERIA
+from .cylinder_criteria import cylinder_criteria
 from .cylinder_margins import pair_margins
 from .ensemble import AMPLITUDE_VARIATION, TOLERANCE_FACTOR, perturbations
 from .margins import Margin
@@ -293,13 +293,11 @@ def _ensembles(cyl, pairs, factors, nominal: list[PairRun], a, progress) -> dict
 
 
 def cylinder_rule(analysis) -> AcceptanceRule:
-    """The rule that decides a cylinder's verdict, in the terms of results.json's ``acceptance`` (CONTRACT
-    §6.1): the one-sided 95 % binomial bound of P(overturn) over the record pairs — each pair one ground
-    motion — within ``overturn_probability_limit``; no collapse margin (the 3D check has no fragility fit).
-    The risk category's count (ASCE 7-22 §16.4.1.1) is not the cylinder's rule yet."""
-    base = acceptance_rule(analysis)
-    return AcceptanceRule("binomial", base.risk_category, base.target, base.allowed,
-                          analysis.overturn_probability_limit, collapse_margin_available=False)
+    """The rule that decides a cylinder's verdict (CONTRACT §6.1): the project's acceptance rule
+    (``[analysis] risk_category``, ``acceptance``) over the record pairs, each pair one ground motion,
+    without a collapse margin (the 3D check has no fragility fit): under ``asce7`` the ASCE 7-22
+    §16.4.1.1 count decides, at the design level and on each pair's first overturning intensity."""
+    return acceptance_rule(analysis).with_collapse_margin(False)
 
 
 def run_cylinder_check(project, progress=None, margins: bool = True) -> CylinderCheckResult:
@@ -307,6 +305,10 @@ def run_cylinder_check(project, progress=None, margins: bool = True) -> Cylinder
     ``margins``: scan each pair below the design level for overturning (the incremental criterion)."""
     cyl, a, e = project.system, project.analysis, project.excitation
     pairs = [(s, p) for s in e.suites for p in suite_pairs(s, gravity=cyl.g)]
+    rule = cylinder_rule(a)
+    # the acceptance rule's suite size, before any analysis (a record pair is one ground motion)
+    require_suite_size(rule, len(pairs), len(pairs), e.suites, file=getattr(project, "path", None),
+                       key="excitation")
     block = planar_block(cyl)
     records, factors = [], []
     for i, (suite, pair) in enumerate(pairs):
@@ -339,11 +341,10 @@ def run_cylinder_check(project, progress=None, margins: bool = True) -> Cylinder
                                  if o.margin is not None and o.margin.overturn_scale is not None), default=None)
     summary["n_margin_below_design"] = sum(1 for o in records if o.margin is not None
                                            and o.margin.overturn_scale is not None and o.margin.overturn_scale < 1.0)
-    rule = cylinder_rule(a)
     context = CheckContext(records, a, {}, {}, margins_run=margins,
                            extra={"ensemble": ens, "cylinder": cyl, "summary": summary}, rule=rule)
-    items, skipped = evaluate_criteria(context, CYLINDER_CRITERIA)
-    decision = decide(items, skipped)
+    items, skipped = evaluate_criteria(context, cylinder_criteria(rule))
+    decision = decide(items, skipped, rule)
     acceptance = acceptance_summary(rule, items, decision, context.valid, None)
     checks = [i.as_json() for i in items]
     checks.sort(key=lambda c: (not c["governs_verdict"], -c["utilisation"]))

@@ -1,8 +1,13 @@
 """The criteria of a cylinder's check (thesis Ch. 5), in the terms of :mod:`rockdesign.checks.criteria`.
 
-The governing criteria are every analysis completed, the one-sided 95 % bound of P(overturn) over the
-record pairs (each pair one ground motion) within the limit, and the same bound over the pairs that
-overturn at some intensity up to the design level — read from the typed pair outcomes of
+Each record pair is one ground motion.  Under the default acceptance (``asce7``) the governing
+criteria are every analysis completed, the ASCE 7-22 §16.4.1.1 count of unacceptable ground motions
+(pairs that overturn at the design level) within the risk category's allowance, and the same count
+over the pairs that overturn at *some* intensity up to the design level (their first overturning
+factor ≤ 1: a non-monotonic band below the design level counts) — the 3D check has no fragility fit,
+so the count rules decide alone.  Under ``acceptance = "binomial"`` the one-sided 95 % bound of
+P(overturn) over the pairs governs instead (the count is then information).  All read from the typed
+pair outcomes of
 :mod:`rockdesign.checks.cylinder_check`; the cylinder adds its overturning criterion's words (θ reaching
 θ_ot), its perturbation ensemble (no c_r: the 3D model has no impact law) and two informative checks
 (does a planar analysis suffice; Polyakov's rule 2 per component).
@@ -12,7 +17,7 @@ from __future__ import annotations
 import math
 import statistics
 
-from .acceptance import minimum_records, probability_bound
+from .acceptance import count_rule, minimum_records, probability_bound, unacceptable_ground_motions
 from .criterion_base import GOVERNS, INFORMATIVE, ROBUSTNESS, Criterion
 from .criteria import AnalysesCompleted
 
@@ -31,7 +36,7 @@ class CylinderOverturning(Criterion):
               "Clopper & Pearson (1934) exact binomial bound")
 
     def evaluate(self, ctx):
-        limit = ctx.analysis.overturn_probability_limit
+        limit = ctx.rule.binomial_limit if ctx.rule is not None else ctx.analysis.overturn_probability_limit
         valid = ctx.valid
         n, k = len(valid), sum(o.run.overturned for o in valid)
         upper = probability_bound(k, n)
@@ -55,6 +60,99 @@ class CylinderOverturning(Criterion):
                 parts.append(f"{n} record pairs cannot show P(overturn) ≤ {_pct(limit)} at 95 % confidence "
                              f"(the bound {upper:.3g}; {need})")
             reason = "; ".join(parts)
+        return self.item(util, passed, detail, reason, name=name)
+
+
+class CylinderUnacceptable(Criterion):
+    """ASCE 7-22 §16.4.1.1 for record pairs: at most the risk category's allowance of pairs (ground
+    motions) overturn at the design level (one for I/II, none for III/IV)."""
+
+    key = "unacceptable_responses"
+    role = GOVERNS
+    source = ("ASCE 7-22 §16.4.1.1 (unacceptable responses; overturning — θ reaching θ_ot — is the "
+              "unacceptable response of a rocking cylinder) and §16.2 (a record pair is one ground motion)")
+
+    def evaluate(self, ctx):
+        rule, valid = ctx.rule, ctx.valid
+        overturned = {o.id for o in valid if o.run.overturned}
+        k = len(unacceptable_ground_motions(valid, overturned))
+        n = len(valid)
+        allowed = rule.allowed
+        util = k / allowed if allowed else (0.0 if k == 0 else 1.0 + k)
+        passed = k <= allowed
+        tilt = ctx.extra["cylinder"].overturn_tilt
+        name = (f"RHA (3D): unacceptable ground motions ≤ {allowed} (ASCE 7-22 §16.4.1.1, risk category "
+                f"{rule.risk_category}; θ reaching θ_ot = {tilt:g}α counts as overturning)")
+        ids = ", ".join(o.id for o in valid if o.run.overturned)
+        detail = (f"{k} of {n} record pairs (ground motions) overturn at the design level"
+                  + (f": {ids}" if k else "") + f"; {allowed} allowed")
+        reason = f"{k} of {n} ground motions unacceptable ({allowed} allowed)" + (f": {ids}" if k and not passed else "")
+        return self.item(util, passed, detail, reason, name=name)
+
+
+class CylinderOverturningInformative(Criterion):
+    """The one-sided 95 % binomial bound of P(overturn) over the record pairs, as information (it governs
+    only under ``acceptance = "binomial"``)."""
+
+    key = "binomial_bound"
+    role = INFORMATIVE
+    source = "Clopper & Pearson (1934) exact binomial bound over the record pairs (each one ground motion)"
+
+    def evaluate(self, ctx):
+        limit = ctx.rule.binomial_limit
+        valid = ctx.valid
+        n, k = len(valid), sum(o.run.overturned for o in valid)
+        upper = probability_bound(k, n)
+        n_min = minimum_records(limit)
+        name = f"RHA (3D): P(overturn) ≤ {_pct(limit)} at 95 % confidence over the record pairs (information)"
+        detail = (f"{k} of {n} record pairs overturn; one-sided 95 % upper bound {upper:.3g}"
+                  + (f" (a bound ≤ {_pct(limit)} needs ≥ {n_min} pairs)" if n_min else ""))
+        return self.item(upper / limit if limit > 0 else math.inf, upper <= limit, detail,
+                         f"binomial bound {upper:.3g}", name=name)
+
+
+class CylinderIncrementalCount(Criterion):
+    """ASCE 7-22 §16.4.1.1 applied to the first overturning intensity: at most the allowance of pairs
+    overturn at some intensity up to the design level (responses are not monotonic)."""
+
+    key = "incremental_margin"
+    role = GOVERNS
+    source = ("thesis Sec 2.2 (Zhang & Makris 2001: safe, overturn, safe again as the amplitude grows); "
+              "ASCE 7-22 §16.4.1.1 applied to each pair's first overturning intensity")
+
+    def applies(self, ctx):
+        return ctx.margins_run
+
+    def evaluate(self, ctx):
+        rule, valid = ctx.rule, ctx.valid
+        below, failed_scan = [], []
+        for o in valid:
+            m = o.margin
+            if m is not None and getattr(m, "failed_scales", None) and min(m.failed_scales) <= 1.0:
+                failed_scan.append((min(m.failed_scales), o.id))
+            if m is not None and m.overturn_scale is not None and m.overturn_scale <= 1.0:
+                below.append((m.overturn_scale, o.id))
+            elif o.run.overturned:
+                below.append((1.0, o.id))
+        below.sort()
+        holds, k, n, util = count_rule(rule, valid, {i for _, i in below})
+        passed = holds and not failed_scan
+        name = (f"RHA incremental (3D): ground motions overturning at some intensity ≤ design ≤ {rule.allowed} "
+                f"(ASCE 7-22 §16.4.1.1 on the first overturning intensity)")
+        listing = ", ".join(f"{i} at {f:.3g}×" for f, i in below)
+        detail = (f"{k} of {n} record pairs overturn at some intensity up to the design level"
+                  + (f" ({listing})" if below else "") + f"; {rule.allowed} allowed")
+        if failed_scan:
+            detail += "; incremental analyses failed: " + ", ".join(f"{i} at {f:.3g}×" for f, i in failed_scan)
+        if passed:
+            reason = f"{k} of {n} ground motions overturn at some intensity up to the design level ({rule.allowed} allowed)"
+        elif failed_scan and holds:
+            reason = "incremental analyses failed below the design level (" + ", ".join(
+                f"{i} at {f:.3g}×" for f, i in failed_scan) + ")"
+        else:
+            f, rid = below[0]
+            reason = (f"{k} of {n} ground motions overturn at some intensity up to the design level "
+                      f"({rule.allowed} allowed), the first at {f:.2g}× design ({rid})")
         return self.item(util, passed, detail, reason, name=name)
 
 
@@ -123,7 +221,7 @@ class CylinderEnsembleRobustness(Criterion):
     optional = True     # ensemble_size = 0 is the user's explicit choice (results.json "ensemble": null)
     source = ("thesis Ch. 7 (rocking is chaotic; the statistics, not single histories, are predictable); "
               "docs/fragility.md (perturbation ensembles)")
-    name = "Robustness: P(overturn) criterion in the perturbation ensembles (3D)"
+    name = "Robustness: design-level rule in the perturbation ensembles (3D)"
 
     def applies(self, ctx):
         ens = ctx.extra.get("ensemble")
@@ -131,22 +229,27 @@ class CylinderEnsembleRobustness(Criterion):
 
     def evaluate(self, ctx):
         ens = ctx.extra["ensemble"]
-        limit = ctx.analysis.overturn_probability_limit
+        limit = ctx.rule.binomial_limit if ctx.rule is not None else ctx.analysis.overturn_probability_limit
         ok = [o.run.status == "completed" for o in ctx.outcomes]
         n = sum(ok)
         perturbations, worst, counts = [], 0.0, []
         for m, row in enumerate(ens["overturned"]):
             k = int(sum(bool(x) for x, good in zip(row, ok) if good))
-            upper = probability_bound(k, n)
-            worst = max(worst, upper / limit if limit > 0 else math.inf)
+            if ctx.rule is not None and ctx.rule.method == "asce7":   # the count rule of each draw
+                allowed = ctx.rule.allowed
+                util, holds = (k / allowed if allowed else (0.0 if k == 0 else 1.0 + k)), k <= allowed
+            else:
+                upper = probability_bound(k, n)
+                util, holds = (upper / limit if limit > 0 else math.inf), upper <= limit
+            worst = max(worst, util)
             counts.append(k)
-            perturbations.append((f"perturbed suite run {m + 1}", upper <= limit))
+            perturbations.append((f"perturbed suite run {m + 1}", holds))
         n_fail = sum(not h for _, h in perturbations)
         size = len(perturbations)
         flips = int(sum(not r for r, good in zip(ens["robust"], ok) if good))
         detail = (f"{size} perturbed runs of the whole suite: overturning pairs per run "
                   f"{', '.join(str(k) for k in counts)} of {n}; pairs whose outcome flips: {flips}")
-        reason = (f"P(overturn) criterion holds in all {size} perturbed suite runs" if not n_fail else
+        reason = (f"the design-level rule holds in all {size} perturbed suite runs" if not n_fail else
                   f"fails in {n_fail} of {size} perturbed suite runs (amplitude ± 0.1 %, rtol/10)")
         return self.item(worst, n_fail == 0, detail, reason, perturbations=tuple(perturbations))
 
@@ -189,4 +292,15 @@ class PolyakovPerComponent(Criterion):
 
 CYLINDER_CRITERIA: list[type[Criterion]] = [AnalysesCompleted, CylinderOverturning, CylinderIncrementalMargin,
                                             CylinderEnsembleRobustness, PlanarSuffices, PolyakovPerComponent]
-"""The criteria of a cylinder's check in evaluation order (:func:`~rockdesign.checks.criteria.evaluate_criteria`)."""
+"""The criteria of a cylinder's check under ``acceptance = "binomial"``, in evaluation order
+(:func:`~rockdesign.checks.criteria.evaluate_criteria`)."""
+
+CYLINDER_CRITERIA_ASCE7: list[type[Criterion]] = [AnalysesCompleted, CylinderUnacceptable, CylinderIncrementalCount,
+                                                  CylinderEnsembleRobustness, CylinderOverturningInformative,
+                                                  PlanarSuffices, PolyakovPerComponent]
+"""The criteria of a cylinder's check under the default ``acceptance = "asce7"`` (the count rules decide)."""
+
+
+def cylinder_criteria(rule) -> list[type[Criterion]]:
+    """The cylinder's criteria for an acceptance rule (:func:`~rockdesign.checks.acceptance.acceptance_rule`)."""
+    return CYLINDER_CRITERIA_ASCE7 if rule.method == "asce7" else CYLINDER_CRITERIA

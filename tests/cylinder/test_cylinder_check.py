@@ -44,9 +44,12 @@ def test_statistics_are_clopper_pearson_over_22_pairs(result):
     assert s["p_overturn_ci90"] == pytest.approx([ci.low, ci.high], abs=1e-12)
     assert all(r["resultant_pga"] == pytest.approx(0.3 * 9.81, rel=1e-12) for r in result["records"])
     assert s["difference_p_overturn"] == pytest.approx(s["p_overturn"] - s["planar"]["p_overturn"])
-    # the verdict is criteria.decide's: every analysis completed and the probability bound, as for a planar check
+    # the verdict is criteria.decide's: every analysis completed and the ASCE 7-22 §16.4.1.1 count over the
+    # pairs (each one ground motion), at the design level and on the first overturning intensity
     gov = {c["criterion"]: c for c in result["checks"] if c["governs_verdict"]}
-    assert set(gov) == {"analyses_completed", "overturning_probability", "incremental_margin"}
+    assert set(gov) == {"analyses_completed", "unacceptable_responses", "incremental_margin"}
+    assert result["acceptance"]["method"] == "asce7" and result["acceptance"]["n_ground_motions"] == 22
+    assert result["acceptance"]["n_unacceptable"] == k
     assert result["verdict"] == ("PASS" if all(c["passed"] for c in gov.values()) else "FAIL")
     assert result["verdict_reason"].startswith(result["verdict"])
 
@@ -84,7 +87,7 @@ def test_margins_below_the_design_level_are_real(result):
         assert run.overturned, r["id"]
     assert all(r["overturn_scale"] is not None for r in result["records"] if r["overturned"])
     inc = next(c for c in result["checks"] if c["criterion"] == "incremental_margin")
-    assert inc["detail"].startswith(f"{len(rows)} of 22 records overturn at some intensity")
+    assert inc["detail"].startswith(f"{len(rows)} of 22 record pairs overturn at some intensity")
 
 
 @pytest.mark.parametrize("excitation, key", [

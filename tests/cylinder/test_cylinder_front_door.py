@@ -23,7 +23,6 @@ mass = "2 t"
 scale = { method = "factor", value = 0.001 }
 [analysis]
 ensemble_size = 1
-overturn_probability_limit = 0.2
 """
 
 
@@ -38,11 +37,38 @@ def test_a_design_so_safe_nothing_rocks_is_checked(safe_check):
     data = safe_check.as_json()
     assert all(r["uplift_time"] is None and r["theta_max_over_alpha"] == 0.0 for r in data["records"])
     assert data["summary"]["median_theta_ratio_3d_over_planar"] is None
+    # a stocky cylinder that nothing overturns PASSes on the 22-pair suite: ASCE 7-22 §16.4.1.1 counts
+    # ground motions (0 of 22, 1 allowed); the binomial bound 1 − 0.05^(1/22) = 0.127 > 10 % is information
     assert data["verdict"] == "PASS" and data["verdict_robust"] is True
+    assert data["verdict_reason"].startswith("PASS (ASCE 7-22 §16.4, risk category II): 0 of 22 ground motions "
+                                             "unacceptable (1 allowed)")
     bound = 1.0 - 0.05 ** (1.0 / 22)
-    governing = next(c for c in data["checks"] if c["criterion"] == "overturning_probability")
-    assert governing["utilisation"] == pytest.approx(bound / 0.2, rel=1e-9)
-    assert data["verdict_reason"].startswith("PASS: ")
+    info = next(c for c in data["checks"] if c["criterion"] == "binomial_bound")
+    assert not info["governs_verdict"] and info["utilisation"] == pytest.approx(bound / 0.1, rel=1e-9)
+    assert data["acceptance"]["n_ground_motions"] == 22 and data["acceptance"]["passed"] is True
+
+
+def test_a_stocky_cylinder_passes_from_the_command_line(tmp_path):
+    """Exit 0 on the default 22-pair suite (CONTRACT §6.1)."""
+    from typer.testing import CliRunner
+    from rockdesign.cli import app
+    (tmp_path / "safe.toml").write_text(SAFE)
+    r = CliRunner().invoke(app, ["check", str(tmp_path / "safe.toml"), "-o", str(tmp_path / "out"), "--no-pdf",
+                                 "--json"])
+    assert r.exit_code == 0, r.output
+    assert json.loads(r.stdout)["verdict"] == "PASS"
+
+
+def test_a_cylinder_suite_below_eleven_ground_motions_is_refused_up_front(monkeypatch):
+    """ASCE 7-22 needs 11 ground motions: a 3-pair suite is refused before any analysis (exit 2)."""
+    from rockdesign.errors import ProjectError
+    from rockdesign.motions import pairs
+    monkeypatch.setitem(pairs.PAIR_SUITES, "test-three-pairs-refused", ("p695-ff", range(1, 4)))
+    project = rd.parse_project(SAFE.replace("[excitation]\n", '[excitation]\nsuites = ["test-three-pairs-refused"]\n'),
+                               name="three.toml")
+    with pytest.raises(ProjectError) as err:
+        rd.check(project)
+    assert "11" in str(err.value) and "3" in str(err.value)
 
 
 def test_the_cylinder_results_have_the_sections_and_keys_of_a_planar_check(safe_check):
@@ -54,7 +80,7 @@ def test_the_cylinder_results_have_the_sections_and_keys_of_a_planar_check(safe_
     assert {"verdict_reason", "verdict_robust", "failed_records", "sensitivity", "excitation"} <= set(data)
     # each record pair is one ground motion (the acceptance criteria group outcomes by it)
     assert all(r["ground_motion"] == r["id"] for r in data["records"])
-    assert {"ensemble_robustness", "overturning_probability", "analyses_completed"} <= {
+    assert {"ensemble_robustness", "unacceptable_responses", "binomial_bound", "analyses_completed"} <= {
         c["criterion"] for c in data["checks"]}
 
 

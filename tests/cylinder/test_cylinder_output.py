@@ -17,7 +17,8 @@ from rockdesign.library import check_output_folder
 runner = CliRunner()
 SUITE = "test-two-pairs"
 TOML = ('[project]\nname = "folder cylinder"\n[cylinder]\nheight = "3 m"\nslenderness = 0.2\nmass = "2 t"\n'
-        f'[excitation]\nsuites = ["{SUITE}"]\nscale = {{ method = "resultant_pga", target = "0.3 g" }}\n')
+        f'[excitation]\nsuites = ["{SUITE}"]\nscale = {{ method = "resultant_pga", target = "0.3 g" }}\n'
+        '[analysis]\nacceptance = "binomial"\noverturn_probability_limit = 0.8   # a small test suite: the binomial rule needs 2 pairs at 80 %\n')
 
 
 @pytest.fixture
@@ -102,8 +103,14 @@ def test_init_cylinder_writes_a_template_that_parses_and_checks(tmp_path, monkey
     assert cyl.mass == pytest.approx(2600.0 * 3.141592653589793 * 0.3 ** 2 * 3.0)
     assert cyl.overturn_tilt == 1.5 and project.analysis.overturn_probability_limit == 0.1
     assert runner.invoke(app, ["init", "cylinder", str(path)]).exit_code == 2   # never overwrites
-    # the template's suite, shortened to two pairs for the test, runs through check
+    # the template's suite, shortened to two pairs: ASCE 7-22 needs 11 ground motions, refused up front
     monkeypatch.setitem(pairs.PAIR_SUITES, "p695-farfield-pairs", ("p695-ff", range(1, 3)))
+    r = runner.invoke(app, ["check", str(path), "-o", str(tmp_path / "out2"), "--no-pdf"])
+    assert r.exit_code == 2 and "11" in r.output and "Traceback" not in r.output
+    assert not (tmp_path / "out2").exists()
+    # with the binomial rule at 80 % two pairs are enough, and the template runs through check
+    path.write_text(path.read_text().replace('acceptance = "asce7"', 'acceptance = "binomial"', 1)
+                    .replace("overturn_probability_limit = 0.1", "overturn_probability_limit = 0.8"))
     r = runner.invoke(app, ["check", str(path), "-o", str(tmp_path / "out"), "--no-pdf", "--json"])
     data = json.loads(r.stdout)
     assert r.exit_code == (0 if data["verdict"] == "PASS" else 1)

@@ -22,7 +22,8 @@ runner = CliRunner()
 SUITE = "test-three-pairs"
 TOML = ('[project]\nname = "report cylinder"\nengineer = "T. Tester"\n[cylinder]\nheight = "3 m"\n'
         'slenderness = 0.2\nmass = "2 t"\n'
-        f'[excitation]\nsuites = ["{SUITE}"]\nscale = {{ method = "resultant_pga", target = "0.3 g" }}\n')
+        f'[excitation]\nsuites = ["{SUITE}"]\nscale = {{ method = "resultant_pga", target = "0.3 g" }}\n'
+        '[analysis]\nacceptance = "binomial"\noverturn_probability_limit = 0.8   # a small test suite: the binomial rule needs 2 pairs at 80 %\n')
 
 
 @pytest.fixture(scope="module")
