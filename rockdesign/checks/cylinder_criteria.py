@@ -17,7 +17,8 @@ from __future__ import annotations
 import math
 import statistics
 
-from .acceptance import count_rule, minimum_records, probability_bound, unacceptable_ground_motions
+from .acceptance import (count_rule, first_overturn_scale, minimum_records, probability_bound,
+                         unacceptable_ground_motions)
 from .criterion_base import GOVERNS, INFORMATIVE, ROBUSTNESS, Criterion
 from .criteria import AnalysesCompleted
 
@@ -125,16 +126,10 @@ class CylinderIncrementalCount(Criterion):
 
     def evaluate(self, ctx):
         rule, valid = ctx.rule, ctx.valid
-        below, failed_scan = [], []
-        for o in valid:
-            m = o.margin
-            if m is not None and getattr(m, "failed_scales", None) and min(m.failed_scales) <= 1.0:
-                failed_scan.append((min(m.failed_scales), o.id))
-            if m is not None and m.overturn_scale is not None and m.overturn_scale <= 1.0:
-                below.append((m.overturn_scale, o.id))
-            elif o.run.overturned:
-                below.append((1.0, o.id))
-        below.sort()
+        below = sorted((f, o.id) for o in valid if (f := first_overturn_scale(o)) is not None and f <= 1.0)
+        failed_scan = [(min(o.margin.failed_scales), o.id) for o in valid
+                       if o.margin is not None and getattr(o.margin, "failed_scales", None)
+                       and min(o.margin.failed_scales) <= 1.0]
         holds, k, n, util = count_rule(rule, valid, {i for _, i in below})
         passed = holds and not failed_scan
         name = (f"RHA incremental (3D): ground motions overturning at some intensity ≤ design ≤ {rule.allowed} "
