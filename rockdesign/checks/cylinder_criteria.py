@@ -21,6 +21,7 @@ from .acceptance import (count_rule, first_overturn_scale, minimum_records, prob
                          unacceptable_ground_motions)
 from .criterion_base import GOVERNS, INFORMATIVE, ROBUSTNESS, Criterion
 from .criteria import AnalysesCompleted
+from .overturning_criteria import GoverningIncrementalMargin
 
 
 def _pct(x: float) -> str:
@@ -127,84 +128,19 @@ class CylinderIncrementalCount(Criterion):
     def evaluate(self, ctx):
         rule, valid = ctx.rule, ctx.valid
         below = sorted((f, o.id) for o in valid if (f := first_overturn_scale(o)) is not None and f <= 1.0)
-        failed_scan = [(min(o.margin.failed_scales), o.id) for o in valid
-                       if o.margin is not None and getattr(o.margin, "failed_scales", None)
-                       and min(o.margin.failed_scales) <= 1.0]
-        holds, k, n, util = count_rule(rule, valid, {i for _, i in below})
-        passed = holds and not failed_scan
+        passed, k, n, util = count_rule(rule, valid, {i for _, i in below})   # failed scans: AnalysesCompleted
         name = (f"RHA incremental (3D): ground motions overturning at some intensity ≤ design ≤ {rule.allowed} "
                 f"(ASCE 7-22 §16.4.1.1 on the first overturning intensity)")
         listing = ", ".join(f"{i} at {f:.3g}×" for f, i in below)
         detail = (f"{k} of {n} record pairs overturn at some intensity up to the design level"
                   + (f" ({listing})" if below else "") + f"; {rule.allowed} allowed")
-        if failed_scan:
-            detail += "; incremental analyses failed: " + ", ".join(f"{i} at {f:.3g}×" for f, i in failed_scan)
         if passed:
             reason = f"{k} of {n} ground motions overturn at some intensity up to the design level ({rule.allowed} allowed)"
-        elif failed_scan and holds:
-            reason = "incremental analyses failed below the design level (" + ", ".join(
-                f"{i} at {f:.3g}×" for f, i in failed_scan) + ")"
         else:
             f, rid = below[0]
             reason = (f"{k} of {n} ground motions overturn at some intensity up to the design level "
                       f"({rule.allowed} allowed), the first at {f:.2g}× design ({rid})")
         return self.item(util, passed, detail, reason, name=name)
-
-
-class CylinderIncrementalMargin(Criterion):
-    """No more pairs overturning at any intensity up to the design level than the suite bound allows
-    (responses are not monotonic)."""
-
-    key = "incremental_margin"
-    role = GOVERNS
-    name = "RHA incremental: P(overturn at some intensity ≤ design) within the limit"
-    source = ("thesis Sec 2.2 (Zhang & Makris 2001: safe, overturn, safe again as the amplitude grows); "
-              "incremental dynamic analysis (Vamvatsikos & Cornell 2002)")
-
-    def applies(self, ctx):
-        return ctx.margins_run
-
-    def evaluate(self, ctx):
-        limit = ctx.analysis.overturn_probability_limit
-        valid = ctx.valid
-        below = []      # (factor, id) of pairs overturning at some factor ≤ 1
-        failed_scan = []
-        for o in valid:
-            m = o.margin
-            if m is None:
-                continue
-            if getattr(m, "failed_scales", None) and min(m.failed_scales) <= 1.0:
-                failed_scan.append((min(m.failed_scales), o.id))
-            if m.overturn_scale is not None and m.overturn_scale <= 1.0:
-                below.append((m.overturn_scale, o.id))
-            elif o.run.overturned:
-                below.append((1.0, o.id))
-        below.sort()
-        n, k = len(valid), len(below)
-        upper = probability_bound(k, n)
-        util = upper / limit if limit > 0 else math.inf
-        passed = upper <= limit and not failed_scan
-        listing = ", ".join(f"{i} at {f:.3g}×" for f, i in below)
-        detail = (f"{k} of {n} records overturn at some intensity up to the design level"
-                  + (f" ({listing})" if below else "") + f"; one-sided 95 % bound {upper:.3g}")
-        if failed_scan:
-            detail += "; incremental analyses failed: " + ", ".join(f"{i} at {f:.3g}×" for f, i in failed_scan)
-        if passed:
-            reason = f"no intensity up to the design level overturns more than the suite bound allows ({k} of {n})"
-        elif below and below[0][0] < 1.0:
-            f, rid = below[0]
-            reason = f"overturning at {f:.2g}× design ({rid}" + (f" and {k - 1} more)" if k > 1 else ")")
-        elif below:
-            reason = f"{k} of {n} records overturn at or below the design level"
-        elif not failed_scan:   # none overturns, but the suite is too small for the bound
-            reason = (f"none of {n} records overturns up to the design level, but {n} records cannot show "
-                      f"the limit (bound {upper:.3g} > {_pct(limit)})")
-        else:
-            reason = "incremental analyses failed below the design level (" + ", ".join(
-                f"{i} at {f:.3g}×" for f, i in failed_scan) + ")"
-        if failed_scan and below:
-            reason += "; incremental analyses failed for " + ", ".join(i for _, i in failed_scan)
-        return self.item(util, passed, detail, reason)
 
 
 class CylinderEnsembleRobustness(Criterion):
@@ -285,7 +221,7 @@ class PolyakovPerComponent(Criterion):
                          f"median SD_max/2B = {median:.3g}")
 
 
-CYLINDER_CRITERIA: list[type[Criterion]] = [AnalysesCompleted, CylinderOverturning, CylinderIncrementalMargin,
+CYLINDER_CRITERIA: list[type[Criterion]] = [AnalysesCompleted, CylinderOverturning, GoverningIncrementalMargin,
                                             CylinderEnsembleRobustness, PlanarSuffices, PolyakovPerComponent]
 """The criteria of a cylinder's check under ``acceptance = "binomial"``, in evaluation order
 (:func:`~rockdesign.checks.criteria.evaluate_criteria`)."""

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import math
 
-from .acceptance import (count_rule, ground_motions_in_order, minimum_records, pct, probability_bound,
+from .acceptance import (first_overturn_scale, count_rule, ground_motions_in_order, minimum_records, pct, probability_bound,
                          unacceptable_ground_motions)
 from .collapse_margin import acceptable_acmr, collapse_probability
 from .criterion_base import GOVERNS, INFORMATIVE, ROBUSTNESS, Criterion, analysis_failed
@@ -187,14 +187,7 @@ class IncrementalMargin(Criterion):
     def evaluate(self, ctx):
         limit = ctx.rule.binomial_limit
         valid = ctx.valid
-        first = {}
-        for o in valid:
-            m = o.margin
-            s = m.overturn_scale if m is not None else None
-            if o.run.overturned and (s is None or s > 1.0):
-                s = 1.0
-            if s is not None and s <= 1.0:
-                first[o.id] = s
+        first = {o.id: f for o in valid if (f := first_overturn_scale(o)) is not None and f <= 1.0}
         bad = unacceptable_ground_motions(valid, set(first))
         n, k = len(ground_motions_in_order(valid)), len(bad)
         upper = probability_bound(k, n)
@@ -202,8 +195,9 @@ class IncrementalMargin(Criterion):
         ordered = sorted((s, i) for i, s in first.items())
         listing = ", ".join(f"{i} at {s:.3g}×" for s, i in ordered)
         detail = (f"{k} of {n} ground motions overturn at some intensity up to the design level"
-                  + (f" ({listing})" if ordered else "") + f"; one-sided 95 % bound {upper:.3g} vs {pct(limit)}; "
-                  "the collapse margin's fragility uses these first overturning intensities")
+                  + (f" ({listing})" if ordered else "") + f"; one-sided 95 % bound {upper:.3g} vs {pct(limit)}"
+                  + ("; the collapse margin's fragility uses these first overturning intensities"
+                     if ctx.rule.collapse_margin_available else ""))
         if ordered and ordered[0][0] < 1.0:
             s, rid = ordered[0]
             reason = f"overturning at {s:.2g}× design ({rid}" + (f" and {len(ordered) - 1} more)"

@@ -116,7 +116,7 @@ def _remember(command: str, seconds: float, factor: float) -> None:
     try:
         MEASURED.parent.mkdir(parents=True, exist_ok=True)
         MEASURED.write_text(json.dumps(data, indent=1, sort_keys=True), encoding="utf-8")
-    except OSError:
+    except OSError:     # a read-only install: the next announcement falls back to the built-in estimate
         pass
 
 

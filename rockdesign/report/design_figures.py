@@ -142,7 +142,7 @@ def field_figure(data: dict, key: str, title: str, cmap: str = "viridis", levels
                     cs = ax.contour(np.arange(nx), np.arange(ny), np.ma.masked_invalid(z.T), levels=levels or 5,
                                     colors="k", linewidths=0.7)
                     ax.clabel(cs, fontsize=6, fmt="%.3g")
-                except (ValueError, TypeError):
+                except (ValueError, TypeError):     # too few distinct finite values for contour lines
                     pass
             ax.set_xticks(range(nx))
             ax.set_xticklabels([f"{v:.4g}" for v in vars_[0]["values"]])
