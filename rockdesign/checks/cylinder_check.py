@@ -38,12 +38,14 @@ from ..motions.motion import record_motion
 from ..motions.pairs import suite_pairs
 from ..motions.spectra import sd_max_of_samples
 from ..systems import Column, RockingSystem
-from .acceptance import AcceptanceRule, acceptance_rule, acceptance_summary, minimum_records, require_suite_size
+from .acceptance import (AcceptanceRule, acceptance_rule, acceptance_summary, count_rule, minimum_records,
+                         require_suite_size)
 from .criteria import CheckContext, decide, evaluate_criteria
 from .cylinder_criteria import cylinder_criteria
 from .cylinder_margins import pair_margins
 from .ensemble import AMPLITUDE_VARIATION, TOLERANCE_FACTOR, perturbations
 from .margins import Margin
+from .runner import AnalysisCount
 from .statistics import overturning_probability
 
 GOVERNING_PAIRS = 2
@@ -121,11 +123,16 @@ class PairOutcome:
         return max(self.polyakov_ratio_x, self.polyakov_ratio_y)
 
     @property
-    def planar_theta_max_over_alpha(self) -> float:
+    def planar_theta_max_over_alpha(self) -> float | None:
+        """θ_max/α of the worse planar component [-] (None: the planar runs were skipped, design grid)."""
+        if self.planar_x is None:
+            return None
         return max(self.planar_x["theta_max_over_alpha"], self.planar_y["theta_max_over_alpha"])
 
     @property
-    def planar_overturned(self) -> bool:
+    def planar_overturned(self) -> bool | None:
+        if self.planar_x is None:
+            return None
         return self.planar_x["overturned"] or self.planar_y["overturned"]
 
     def as_json(self) -> dict:
@@ -153,6 +160,7 @@ class PairOutcome:
 def _run_3d(cyl, pair, a, *, rtol=None, atol=None) -> PairRun:
     r = simulate_cylinder(cyl, pair, free_vibration=a.free_vibration, rtol=rtol or a.rtol, atol=atol or a.atol,
                           rest_velocity=a.rest_velocity)
+    AnalysisCount.total += 1
     return PairRun(r.theta_max / cyl.alpha, r.theta_max / cyl.theta_overturn, r.overturned, r.overturn_mode,
                    r.quasi_impacts, r.uplift_time, r.status,
                    r.min_contact_force_over_weight if cyl.damped else None)
@@ -162,6 +170,7 @@ def _planar_component(block, samples, dt, a) -> dict:
     motion = record_motion("component", samples, dt)
     r = simulate(block, motion, model="exact", rtol=a.rtol, atol=a.atol, t_end=motion.duration + a.free_vibration,
                  overturn="static", rest_velocity=a.rest_velocity)
+    AnalysisCount.total += 1
     return {"theta_max_over_alpha": r.theta_max_over_alpha, "overturned": bool(r.overturned), "impacts": r.impacts}
 
 
@@ -193,6 +202,7 @@ class CylinderCheckResult:
     ensemble: dict | None
     acceptance: dict | None = None
     histories: dict = dataclasses.field(default_factory=dict)
+    decided_at_design_level: bool | None = None   # verdict_only (design grid): the incremental scan was not needed
 
     @property
     def statistics(self) -> dict:
@@ -239,33 +249,38 @@ SENSITIVITY = {"variation": None, "runs": {}, "verdict_flips": 0,
 """results.json ``sensitivity`` of a cylinder check (the section of a planar check, saying why it is empty)."""
 
 
-def _summary(records: list[PairOutcome], e, ensemble: dict | None) -> dict:
+def _summary(records: list[PairOutcome], e, ensemble: dict | None, planar_run: bool = True) -> dict:
     valid = [o for o in records if o.run.status == "completed"]
     n = len(valid)
     k3 = sum(o.run.overturned for o in valid)
-    kp = sum(o.planar_overturned for o in valid)
     p3, lo3, hi3 = overturning_probability(k3, n, 0.90)
-    pp, lop, hip = overturning_probability(kp, n, 0.90)
-    unconservative = [o.id for o in valid if o.run.overturned and not o.planar_overturned]
-    survived = [o for o in valid if not o.run.overturned and not o.planar_overturned]
-    return {
+    out = {
         "n_records": n, "n_overturned": k3, "p_overturn": p3, "p_overturn_ci90": [lo3, hi3],
         "median_theta_max_over_alpha": _median(o.run.theta_max_over_alpha for o in valid),
         "total_quasi_impacts": sum(o.run.quasi_impacts for o in valid),
-        "planar": {"n_overturned": kp, "p_overturn": pp, "p_overturn_ci90": [lop, hip],
-                   "median_theta_max_over_alpha": _median(o.planar_theta_max_over_alpha for o in valid),
-                   "criterion": "θ_max ≥ α along either component (Housner block of equal inertia, c_r Eq 5.41)"},
-        "difference_p_overturn": p3 - pp,
-        "n_planar_unconservative": len(unconservative), "planar_unconservative_records": unconservative,
-        "median_theta_ratio_3d_over_planar": _median(
-            o.run.theta_max_over_alpha / o.planar_theta_max_over_alpha for o in survived
-            if o.planar_theta_max_over_alpha > 0),
+        "planar": None, "difference_p_overturn": None, "n_planar_unconservative": None,
+        "planar_unconservative_records": None, "median_theta_ratio_3d_over_planar": None,
         "max_polyakov_ratio": max((o.polyakov_ratio for o in valid), default=None),
         "scaling": e.as_json(),
         "overturn_criterion": "θ reaching θ_ot",
         "n_failed": len(records) - n,
         "p_overturn_ensemble": None if ensemble is None else ensemble["p_overturn"],
     }
+    if planar_run:        # (the design grid skips the planar runs: information only)
+        kp = sum(o.planar_overturned for o in valid)
+        pp, lop, hip = overturning_probability(kp, n, 0.90)
+        unconservative = [o.id for o in valid if o.run.overturned and not o.planar_overturned]
+        survived = [o for o in valid if not o.run.overturned and not o.planar_overturned]
+        out.update({
+            "planar": {"n_overturned": kp, "p_overturn": pp, "p_overturn_ci90": [lop, hip],
+                       "median_theta_max_over_alpha": _median(o.planar_theta_max_over_alpha for o in valid),
+                       "criterion": "θ_max ≥ α along either component (Housner block of equal inertia, c_r Eq 5.41)"},
+            "difference_p_overturn": p3 - pp,
+            "n_planar_unconservative": len(unconservative), "planar_unconservative_records": unconservative,
+            "median_theta_ratio_3d_over_planar": _median(
+                o.run.theta_max_over_alpha / o.planar_theta_max_over_alpha for o in survived
+                if o.planar_theta_max_over_alpha > 0)})
+    return out
 
 
 def _ensembles(cyl, pairs, factors, nominal: list[PairRun], a, progress) -> dict | None:
@@ -300,42 +315,96 @@ def cylinder_rule(analysis) -> AcceptanceRule:
     return acceptance_rule(analysis).with_collapse_margin(False)
 
 
-def run_cylinder_check(project, progress=None, margins: bool = True) -> CylinderCheckResult:
-    """The cylinder check (see module docstring): typed outcomes, the criteria and the one verdict.
-    ``margins``: scan each pair below the design level for overturning (the incremental criterion)."""
+@dataclasses.dataclass(frozen=True)
+class SuitePairs:
+    """The record pairs of a cylinder's excitation as its check analyses them (the ``records`` hook of
+    :func:`run_cylinder_check`): read and scaled once, e.g. for every variant of a design grid that shares
+    the excitation (:func:`suite_pairs_key`).
+
+    Units: ``factors`` [-] (on each pair as recorded), ``accel`` the scaled components [m/s²],
+    ``sd_max`` SD_max [m] of each scaled component (the ``[analysis]`` damping and band).
+    """
+
+    pairs: tuple            # ((suite, MotionPair as recorded), ...)
+    factors: tuple[float, ...]
+    accel: tuple            # ((x, y) scaled samples, ...)
+    sd_max: tuple           # ((SD_max x, SD_max y), ...)
+
+
+def suite_pairs_key(project) -> str:
+    """Which projects share their :class:`SuitePairs`: the same typed excitation (suites, scaling rule and
+    target), g and SD_max settings — a variant that changes the geometry keeps them, unless the default
+    excitation (1.5 g tan α, Table 5.4) ties the target to its slenderness."""
+    a = project.analysis
+    return repr((project.excitation, project.system.g, a.sdmax_damping, tuple(a.sdmax_band)))
+
+
+def suite_pair_records(project) -> SuitePairs:
+    """The :class:`SuitePairs` of a cylinder project (the suites of ``[excitation]``, scaled as it says)."""
     cyl, a, e = project.system, project.analysis, project.excitation
-    pairs = [(s, p) for s in e.suites for p in suite_pairs(s, gravity=cyl.g)]
+    pairs = tuple((s, p) for s in e.suites for p in suite_pairs(s, gravity=cyl.g))
+    factors = tuple(e.factor(p.resultant_pga) for _, p in pairs)
+    accel = tuple((f * p.x, f * p.y) for (_, p), f in zip(pairs, factors))
+    sd = tuple(tuple(sd_max_of_samples(c, p.dt, a.sdmax_damping, a.sdmax_band)[0] for c in xy)
+               for (_, p), xy in zip(pairs, accel))
+    return SuitePairs(pairs, factors, accel, sd)
+
+
+def decided_at_design_level(rule, outcomes: list[PairOutcome]) -> bool:
+    """True when the design-level runs alone already make the verdict FAIL (SPEC §15): an analysis
+    failed, or the design-level rule fails (the §16.4.1.1 count, or the binomial bound); the incremental
+    scan can only add a failing criterion, never remove one."""
+    if any(o.run.status != "completed" for o in outcomes):
+        return True
+    return not count_rule(rule, outcomes, {o.id for o in outcomes if o.run.overturned})[0]
+
+
+def run_cylinder_check(project, progress=None, margins: bool = True, *, records: SuitePairs | None = None,
+                       verdict_only: bool = False) -> CylinderCheckResult:
+    """The cylinder check (see module docstring): typed outcomes, the criteria and the one verdict.
+    ``margins``: scan each pair below the design level for overturning (the incremental criterion).
+
+    Hooks of the design grid (:mod:`rockdesign.design_space.grid`): ``records`` — the
+    :class:`SuitePairs` of :func:`suite_pair_records`, read and scaled once for many variants;
+    ``verdict_only`` — compute only what the verdict's word and the design table need: no planar runs
+    along the components and no perturbation ensemble (informative and robustness criteria), and no
+    incremental scan when the design-level runs already decide FAIL (:func:`decided_at_design_level`).
+    """
+    cyl, a, e = project.system, project.analysis, project.excitation
+    sp = suite_pair_records(project) if records is None else records
+    pairs = sp.pairs
     rule = cylinder_rule(a)
     # the acceptance rule's suite size, before any analysis (a record pair is one ground motion)
     require_suite_size(rule, len(pairs), len(pairs), e.suites, file=getattr(project, "path", None),
                        key="excitation")
     block = planar_block(cyl)
-    records, factors = [], []
-    for i, (suite, pair) in enumerate(pairs):
-        factor = e.factor(pair.resultant_pga)
+    records_out = []
+    for i, ((suite, pair), factor) in enumerate(zip(pairs, sp.factors)):
         scaled = pair.scaled(factor)
-        planar, ratios = {}, {}
-        for comp, samples in (("x", pair.x), ("y", pair.y)):
-            accel = factor * samples
-            sd, _ = sd_max_of_samples(accel, pair.dt, a.sdmax_damping, a.sdmax_band)
-            ratios[comp] = sd / (2.0 * cyl.base_radius)
-            planar[comp] = _planar_component(block, accel, pair.dt, a)
-        records.append(PairOutcome(pair.meta.get("id", pair.name), suite, pair.meta, factor, scaled.resultant_pga,
-                                   _run_3d(cyl, scaled, a), planar["x"], planar["y"], ratios["x"], ratios["y"],
-                                   cyl.damped))
-        factors.append(factor)
+        planar = {"x": None, "y": None}
+        if not verdict_only:
+            for comp, accel in zip(("x", "y"), sp.accel[i]):
+                planar[comp] = _planar_component(block, accel, pair.dt, a)
+        ratios = [sd / (2.0 * cyl.base_radius) for sd in sp.sd_max[i]]
+        records_out.append(PairOutcome(pair.meta.get("id", pair.name), suite, pair.meta, factor, scaled.resultant_pga,
+                                       _run_3d(cyl, scaled, a), planar["x"], planar["y"], ratios[0], ratios[1],
+                                       cyl.damped))
         if progress is not None:
-            progress("cylinder and planar analyses", i + 1, len(pairs))
+            progress("cylinder and planar analyses" if not verdict_only else "cylinder analyses", i + 1, len(pairs))
+    records = records_out
+    decided = verdict_only and decided_at_design_level(rule, records)
+    margins = margins and not decided
     if margins:
-        found = pair_margins(cyl, [p.scaled(f) for (_, p), f in zip(pairs, factors)], [o.run for o in records], a,
+        found = pair_margins(cyl, [p.scaled(f) for (_, p), f in zip(pairs, sp.factors)], [o.run for o in records], a,
                              lambda pair, rtol: _run_3d(cyl, pair, a, rtol=rtol), progress)
         for o, m in zip(records, found):
             o.margin = m
-    ens = _ensembles(cyl, [p for _, p in pairs], factors, [o.run for o in records], a, progress)
+    ens = None if verdict_only else _ensembles(cyl, [p for _, p in pairs], sp.factors, [o.run for o in records], a,
+                                               progress)
     if ens is not None:
         for i, o in enumerate(records):
             o.ensemble_fraction, o.outcome_robust = float(ens["fractions"][i]), bool(ens["robust"][i])
-    summary = _summary(records, e, ens)
+    summary = _summary(records, e, ens, planar_run=not verdict_only)
     summary["min_records_for_bound"] = minimum_records(a.overturn_probability_limit)
     summary["min_margin"] = min((o.margin.overturn_scale for o in records
                                  if o.margin is not None and o.margin.overturn_scale is not None), default=None)
@@ -351,7 +420,8 @@ def run_cylinder_check(project, progress=None, margins: bool = True) -> Cylinder
     ensemble_json = None if ens is None else {
         k: ens[k] for k in ("size", "seed", "amplitude_variation", "tolerance_factor", "p_overturn", "n_not_robust")}
     return CylinderCheckResult(project, records, summary, checks, decision.verdict, decision.reason,
-                               decision.robust, decision.governing, ensemble_json, acceptance)
+                               decision.robust, decision.governing, ensemble_json, acceptance,
+                               decided_at_design_level=decided if verdict_only else None)
 
 
 MAX_HISTORIES = 8

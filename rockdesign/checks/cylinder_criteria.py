@@ -193,6 +193,9 @@ class PlanarSuffices(Criterion):
     name = "Does a planar analysis suffice? (Housner along each component)"
     source = "thesis Sec 5.6 (the wobbling cylinder against the planar rocking block)"
 
+    def applies(self, ctx):
+        return ctx.extra["summary"]["planar"] is not None    # (the design grid skips the planar runs)
+
     def evaluate(self, ctx):
         s = ctx.extra["summary"]
         n, k3, kp = s["n_records"], s["n_overturned"], s["planar"]["n_overturned"]

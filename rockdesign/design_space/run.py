@@ -33,22 +33,22 @@ class DesignResult:
 
 
 def design(project_path, vary: list[str], *, records_dir: str | None = None, executor=None, store: Path | None = None,
-           progress=None, stage_progress=None) -> DesignResult:
+           progress=None, stage_progress=None, option_keys: dict | None = None) -> DesignResult:
     """Check every variant of ``vary`` (one or two ``TABLE.KEY=FROM:TO:N``) of the project file at
-    ``project_path``; ``store``: folder of per-variant results (resume); ``progress(done, total, cell)``.
+    ``project_path``; ``store``: folder of per-variant results (resume); ``progress(done, total, cell)``;
+    ``option_keys``: the command-line names of ``records_dir``/``executor`` for error messages.
 
     Raises:
-        RockdesignError: an unreadable project or ``--vary``, a cylinder project (its check has no grid
-            hooks yet), or an excitation no variant can run.
+        RockdesignError: an unreadable project or ``--vary``, an option the project's kind has no use for
+            (a cylinder's pairs are built in and analysed in this process: no ``records_dir``/``executor``),
+            or an excitation no variant can run.
     """
     base = load_project(project_path)
     if not vary or len(vary) > 2:
         raise RockdesignError("one or two variables", key="--vary", expected="--vary once or twice",
                               found=f"{len(vary)} time(s)")
-    if not kind_of(base).design_charts:
-        raise RockdesignError("design charts of the 3D cylinder are not available", key="project",
-                              expected="a [column] or [podium] project", found="[cylinder]",
-                              hint="run rockdesign check on each cylinder variant")
+    kind = kind_of(base)
+    kind.check_options(base, records_dir=records_dir, executor=executor, keys=option_keys or {})
     raw = tomllib.loads(base.source_text) if base.source_text else base.raw
     variables = [parse_vary(v, raw) for v in vary]
     if len(variables) == 2 and variables[0].key == variables[1].key:
@@ -60,24 +60,25 @@ def design(project_path, vary: list[str], *, records_dir: str | None = None, exe
                            expected="[excitation] with design_pga", found="no [excitation] table")
     grid = run_grid(cells, variables, records_dir=records_dir, executor=executor, store=store, progress=progress,
                     stage_progress=stage_progress)
-    settings = {"early_stopping": "margin scans and demand skipped where the design-level suite already fails "
-                                  "the acceptance rule's count; c_r sensitivity, ensembles and report histories "
-                                  "skipped everywhere (they never change the verdict's word)",
+    settings = {"early_stopping": kind.design_skipped, "verdict_rule": kind.design_rule,
                 "executor": "dask" if executor is not None else "local"}
-    return DesignResult(base, grid, recommended(grid.cells), settings)
+    return DesignResult(base, grid, recommended(grid.cells, kind.design_material), settings)
 
 
 def recommended_check(result: DesignResult, *, records_dir: str | None = None):
     """The full ``rockdesign check`` (every stage) of the recommended variant: its summary goes into the
     design report, and its verdict must be PASS like its cell's."""
-    from ..checks.check import run_check
     from .variants import variant_document, variant_toml
     idx = tuple(result.recommended["index"])
     base = result.project
     raw = tomllib.loads(base.source_text) if base.source_text else base.raw
     doc, _ = variant_document(raw, result.grid.variables, idx)
     proj = parse_document(doc, file=f"{result.project.path} [recommended]", text=variant_toml(doc))
-    return run_check(proj, records_dir=records_dir)
+    return kind_of(proj).check(proj, progress=None, records_dir=records_dir, margins=True, executor=None)
+
+
+OPTION_KEYS = {"records_dir": "--records-dir", "executor": "--dask"}
+"""The command-line options of :func:`design`'s parameters (errors of ``rockdesign design`` name these)."""
 
 
 def design_command(project, vary, out, *, as_json: bool, no_pdf: bool, records_dir, dask, console, stdout) -> int:
@@ -88,8 +89,10 @@ def design_command(project, vary, out, *, as_json: bool, no_pdf: bool, records_d
     if target.exists() and not target.is_dir():
         raise RockdesignError("not a folder", key="-o/--out", expected="a folder (created if missing)",
                               found=f"a file {target}")
-    load_project(project)            # input errors before compiling anything
-    prepare("check", console.print)
+    base = load_project(project)     # input errors before compiling anything
+    kind = kind_of(base)
+    kind.check_options(base, records_dir=records_dir, executor=dask, keys=OPTION_KEYS)
+    prepare(kind.check_kernels, console.print)
     executor = None
     if dask:
         from ..execution.executor import make_executor
@@ -109,7 +112,7 @@ def design_command(project, vary, out, *, as_json: bool, no_pdf: bool, records_d
         with bar:
             task = bar.add_task("design variants", total=None)
             result = design(project, vary, records_dir=records_dir, executor=executor, store=target / "variants",
-                            progress=on_variant)
+                            progress=on_variant, option_keys=OPTION_KEYS)
     finally:
         if executor is not None:
             executor.close()

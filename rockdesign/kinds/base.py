@@ -30,10 +30,13 @@ class StructureKind(abc.ABC):
     """What the kind's rocking spectrum runs over: "pulse" (planar: a pulse family, thesis Ch. 3) or
     "record pair" (cylinder: one record pair over R and PGA, Figs 5.16–5.17)."""
     report_files: frozenset[str] = frozenset()
-    design_charts: bool = True
-    """``rockdesign design`` can chart the kind's check over project keys (it needs the check's grid hooks:
-    ``records=``, ``verdict_only=``, :func:`rockdesign.checks.check.suite_records`)."""
     """Files a check writes into its output folder besides :data:`~rockdesign.outdir.RUN_FILES`."""
+    design_rule: str = ""
+    """What decides the verdict of a design-grid cell (``rockdesign design``: the report's words)."""
+    design_skipped: str = ""
+    """What the design grid skips of a variant's check (design.json ``settings.early_stopping``)."""
+    design_material: tuple[str, str] = ("column material", "no elastic superstructure demand")
+    """The recommended design without a superstructure force to rank by: (what is least, why)."""
 
     # --- the project file -------------------------------------------------------------------
     @abc.abstractmethod
@@ -100,3 +103,22 @@ class StructureKind(abc.ABC):
     @abc.abstractmethod
     def write_report(self, result, folder: Path, *, pdf: bool, html: bool, pdf_worker) -> None:
         """results.json, results.csv, the figures and report.pdf/html of a check into ``folder`` (staging)."""
+
+    # --- the design grid (rockdesign design, SPEC §15) --------------------------------------
+    @abc.abstractmethod
+    def grid_records_key(self, project) -> str:
+        """Which variants share the records read and scaled by :meth:`grid_records` (equal keys share)."""
+
+    @abc.abstractmethod
+    def grid_records(self, project, records_dir):
+        """The records of the project's excitation, read and scaled once for every variant sharing them."""
+
+    @abc.abstractmethod
+    def grid_check(self, project, *, records, records_dir, executor, progress):
+        """The check of one variant (its verdict is :meth:`check`'s), computing only what the verdict's word
+        and the design table need (``verdict_only``) on the shared ``records``."""
+
+    @abc.abstractmethod
+    def grid_cell(self, result, analyses: int) -> dict:
+        """The check's numbers of a design-grid cell (design.json ``cells``, SI): verdict, reason, governing,
+        acceptance numbers, ``decided_at_design_level``, ``analyses`` (run) and ``analyses_saved``."""

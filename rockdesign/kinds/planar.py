@@ -17,7 +17,7 @@ from ..project import parse_planar_project
 from ..report.figures import pushover_figure
 from ..report import render
 from ..report.results import write_results_csv, write_results_json
-from . import planar_simulation
+from . import planar_grid, planar_simulation
 from .base import StructureKind
 
 
@@ -28,6 +28,8 @@ class Planar(StructureKind):
     systems = ("column", "podium")
     simulate_kernels = "simulate"
     check_kernels = "check"
+    design_rule = planar_grid.RULE
+    design_skipped = planar_grid.SKIPPED
 
     def claims(self, raw):
         return True            # the default kind: its parser names what is missing ([column] or [podium])
@@ -88,3 +90,16 @@ class Planar(StructureKind):
         write_results_csv(data, folder / "results.csv")
         if pdf or html:
             render.write_report(result, folder, pdf=pdf, html=html, pdf_worker=pdf_worker)
+
+    def grid_records_key(self, project):
+        return planar_grid.records_key(project)
+
+    def grid_records(self, project, records_dir):
+        return planar_grid.grid_records(project, records_dir)
+
+    def grid_check(self, project, *, records, records_dir, executor, progress):
+        return planar_grid.grid_check(project, records=records, records_dir=records_dir, executor=executor,
+                                      progress=progress)
+
+    def grid_cell(self, result, analyses):
+        return planar_grid.grid_cell(result, analyses)

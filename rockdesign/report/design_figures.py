@@ -1,5 +1,6 @@
 """Figures of a design chart (SPEC §15): the pass/fail region with the governing reason per cell, the
-collapse margin and the superstructure's shear coefficient over the one or two varied keys, and the
+collapse margin, a cylinder's overturning count or P(overturn) bound and the superstructure's shear
+coefficient over the one or two varied keys, and the
 variants in the plane of the thesis's two curved-base design parameters (uplift force tan α, Eq 3.34,
 and rotation capacity θc, Eq 3.56)."""
 from __future__ import annotations
@@ -13,8 +14,11 @@ COLORS = {"PASS": "#4daf4a", "FAIL": "#e41a1c", "INVALID": "#bdbdbd", "ERROR": "
 
 
 def cell_reason(cell: dict) -> str:
-    """The governing reason of a cell in a few characters: "invalid", "failed", "k/n > a" (count rule),
-    "ACMR" (collapse margin short), or for a PASS the governing criterion's margin."""
+    """The governing reason of a cell in a few characters: "invalid", "failed", "3 unacc." (count rule),
+    "ACMR 1.7" (collapse margin short), "2 incr." (pairs overturning at some intensity up to the design
+    level, a cylinder's incremental count), "P ≤ 0.97" (the binomial bound of a cylinder under
+    ``acceptance = "binomial"``; "P incr." when the incremental bound fails), or for a PASS the governing
+    criterion's margin ("ACMR ×1.5", "0/1 unacc.", "P ≤ 0.78")."""
     v = cell["verdict"]
     if v == "INVALID":
         return "invalid"
@@ -22,14 +26,22 @@ def cell_reason(cell: dict) -> str:
         return "failed"
     k, a = cell.get("n_unacceptable"), cell.get("allowed_unacceptable")
     acmr, need = cell.get("acmr"), cell.get("acmr_required")
+    bound = cell.get("p_overturn_bound") if cell.get("acceptance") == "binomial" else None
+    if bound is not None:                      # the binomial rule decides (a cylinder under acceptance = "binomial")
+        return f"P ≤ {bound:.2g}" if v == "PASS" or bound > cell["binomial_limit"] else "P incr."
+    incremental = cell.get("n_incremental_unacceptable")
     if v == "FAIL":
         if k is not None and a is not None and k > a:
             return f"{k} unacc."
         if acmr is not None and need is not None and acmr < need:
             return f"ACMR {acmr:.2g}"
+        if incremental is not None and a is not None and incremental > a:
+            return f"{incremental} incr."
         return "fail"
     if acmr is not None and need:
         return f"ACMR ×{acmr / need:.2g}"
+    if k is not None and a is not None:
+        return f"{k}/{a} unacc."
     return "pass"
 
 
@@ -179,15 +191,34 @@ def thesis_plane_figure(data: dict):
         return fig
 
 
+def overturning_figure(data: dict):
+    """The overturning numbers of cells that carry them (a cylinder's record pairs, thesis Sec 5.5.1): under
+    ``acceptance = "binomial"`` the one-sided 95 % bound of P(overturn) with the limit as reference and
+    contour (the pass/fail boundary of the design level), otherwise the pairs that overturn at the design
+    level with the allowance (ASCE 7-22 §16.4.1.1); None when no cell has them."""
+    cells = [c for c in data["cells"] if c.get("p_overturn_bound") is not None]
+    if not cells:
+        return None
+    if all(c.get("acceptance") == "binomial" for c in cells):
+        limits = sorted({c["binomial_limit"] for c in cells})
+        return field_figure(data, "p_overturn_bound", "P(overturn), one-sided 95 % bound [-]", "magma_r",
+                            levels=limits, reference=[(v, f"limit {v:.3g}") for v in limits])
+    allowed = sorted({c["allowed_unacceptable"] for c in cells if c.get("allowed_unacceptable") is not None})
+    return field_figure(data, "n_unacceptable", "record pairs overturning at the design level [-]", "magma_r",
+                        levels=[a + 0.5 for a in allowed], reference=[(a, f"{a} allowed") for a in allowed])
+
+
 def design_figures(data: dict) -> dict:
     """All figures of a design chart (matplotlib Figures; None where a figure has no data)."""
+    capacity = "θ_ot" if any(c.get("theta_overturn") is not None for c in data["cells"]) else "θc"
     return {
         "verdict": verdict_figure(data),
         "acmr": field_figure(data, "acmr", "ACMR [-] (FEMA P695, Eq 7-4 adapted)", "viridis",
                              reference=[(v, f"required {v:.3g}") for v in sorted(
                                  {c["acmr_required"] for c in data["cells"] if c.get("acmr_required")})]),
+        "overturning": overturning_figure(data),
         "shear": field_figure(data, "superstructure_shear_p84", "superstructure shear coefficient, 84th pct [-]",
                               "magma_r"),
-        "rotation": field_figure(data, "median_theta_max_over_theta_c", "median θ_max/θc [-]", "cividis_r"),
+        "rotation": field_figure(data, "median_theta_max_over_theta_c", f"median θ_max/{capacity} [-]", "cividis_r"),
         "thesis_plane": thesis_plane_figure(data),
     }

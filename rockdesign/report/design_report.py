@@ -20,10 +20,25 @@ CAPTIONS = {
             "already fails at the design level need no margin scan and are left blank).",
     "shear": "Superstructure shear coefficient |f_s|/g, 84th percentile over the records that did not overturn "
              "(2DOF podium, SPEC §13) — the force the building above is designed for.",
+    "overturning": "Overturning of the record pairs at the design level (θ reaching θ_ot, thesis Sec 5.5.1): under "
+                   "acceptance = \"binomial\" the one-sided 95 % bound of P(overturn) (Clopper–Pearson) with the "
+                   "limit (its contour is the design level's pass/fail boundary), otherwise the pairs that overturn "
+                   "with the ASCE 7-22 §16.4.1.1 allowance.",
     "rotation": "Median θ_max/θc of the suite at the design level (Eq 3.56: θc the rotation capacity).",
     "thesis_plane": "The variants in the plane of the thesis's two curved-base design parameters: the uplift "
                     "base-shear coefficient tan α (Eq 3.34) and the rotation capacity θc (Eq 3.56).",
 }
+
+
+COLUMNS = (
+    ("ACMR (required)", "acmr", ""), ("P(collapse)", "p_collapse_design", ""),
+    ("P(overturn) bound (limit)", "p_overturn_bound", ""), ("incremental unacceptable", "n_incremental_unacceptable", ""),
+    ("shear coeff. p84", "superstructure_shear_p84", ""), ("drift p84", "superstructure_drift_p84", "m"),
+    ("median θ_max/θc", "median_theta_max_over_theta_c", ""), ("tan α", "uplift_shear_coefficient", ""),
+    ("θc", "theta_c", "rad"), ("θ_ot", "theta_overturn", "rad"), ("material", "column_material", "kg"),
+)
+"""Columns of the variants table after the verdict and the count: (header, cell key, unit), each shown when
+a cell has the number (a cylinder has no ACMR, shear or θc, but a P(overturn) bound and θ_ot)."""
 
 
 def _svg(fig) -> str:
@@ -38,6 +53,18 @@ def write_design_report(result, data: dict, out_dir: Path, *, pdf: bool = True, 
     (its summary goes into the report).  Returns the paths written."""
     out_dir = Path(out_dir)
     figs = {k: f for k, f in design_figures(data).items() if f is not None}
+    captions = dict(CAPTIONS)
+    columns = [col for col in COLUMNS if any(c.get(col[1]) is not None for c in data["cells"])]
+    rule = (data.get("settings") or {}).get("verdict_rule")
+    if rule:
+        captions["verdict"] = f"Pass/fail region: the verdict of the check ({rule}) for every variant, with the " \
+                              "governing reason."
+    if any(c.get("theta_overturn") is not None for c in data["cells"]):
+        columns = [("median θ_max/θ_ot", k, u) if k == "median_theta_max_over_theta_c" else (h, k, u)
+                   for h, k, u in columns]
+        captions["rotation"] = ("Median θ_max/θ_ot of the record pairs at the design level (θ_ot = overturn_tilt·α, "
+                                "thesis Sec 5.5.1: the tilt at which the cylinder counts as overturned).")
+
     svgs = {k: _svg(f) for k, f in figs.items()}
     written = {}
     for k, text in svgs.items():
@@ -56,7 +83,7 @@ def write_design_report(result, data: dict, out_dir: Path, *, pdf: bool = True, 
                  "superstructure": (r.statistics.get("superstructure") or {})}
     env = environment()
     html = env.get_template(TEMPLATE).render(
-        css=stylesheet(), data=data, rows=rows, figures=svgs, captions=CAPTIONS, check=check,
+        css=stylesheet(), data=data, rows=rows, figures=svgs, captions=captions, check=check, columns=columns,
         project=result.project, date=date.strftime("%Y-%m-%d"))
     path = out_dir / "design.html"
     path.write_text(html, encoding="utf-8")

@@ -10,9 +10,14 @@ CSV_COLUMNS = ("verdict", "acmr", "acmr_required", "p_collapse_design", "n_unacc
                "n_ground_motions", "superstructure_shear_p84", "superstructure_drift_p84",
                "median_theta_max_over_theta_c", "uplift_acceleration", "uplift_shear_coefficient", "theta_c",
                "decided_at_design_level", "analyses", "analyses_saved", "reason")
+EXTRA_COLUMNS = ("acceptance", "n_incremental_unacceptable", "p_overturn", "p_overturn_bound", "binomial_limit",
+                 "median_theta_max_over_alpha", "alpha", "theta_overturn", "column_material")
+"""Columns after :data:`CSV_COLUMNS` (before ``reason``) when some cell has the number: a cylinder's record-pair
+numbers (design.json documents them in docs/design.md)."""
 CSV_UNITS = {"superstructure_drift_p84": "m", "uplift_acceleration": "m/s^2", "theta_c": "rad", "p_collapse_design": "-",
              "acmr": "-", "acmr_required": "-", "superstructure_shear_p84": "-", "uplift_shear_coefficient": "-",
-             "median_theta_max_over_theta_c": "-"}
+             "median_theta_max_over_theta_c": "-", "p_overturn": "-", "p_overturn_bound": "-", "binomial_limit": "-",
+             "median_theta_max_over_alpha": "-", "alpha": "rad", "theta_overturn": "rad", "column_material": "kg"}
 
 
 def design_json(project, grid, recommendation, *, settings: dict | None = None) -> dict:
@@ -50,16 +55,20 @@ def write_design_json(data: dict, path: Path) -> Path:
 
 
 def write_design_csv(data: dict, path: Path) -> Path:
-    """design.csv: one row per cell, the variables' SI values first; units in the header ("theta_c [rad]")."""
+    """design.csv: one row per cell, the variables' SI values first; units in the header ("theta_c [rad]");
+    a cylinder grid adds its record-pair columns (:data:`EXTRA_COLUMNS`) before ``reason``."""
     keys = [v["key"] for v in data["variables"]]
     units = {v["key"]: _si_unit(v["unit"]) for v in data["variables"]}
+    extra = [c for c in EXTRA_COLUMNS if any(cell.get(c) is not None for cell in data["cells"])
+             and any(cell.get("theta_overturn") is not None for cell in data["cells"])]
+    columns = list(CSV_COLUMNS[:-1]) + extra + [CSV_COLUMNS[-1]]
     with path.open("w", newline="", encoding="utf-8") as fh:
         w = csv.writer(fh)
         w.writerow([f"{k} [{units[k]}]" for k in keys]
-                   + [f"{c} [{CSV_UNITS[c]}]" if c in CSV_UNITS else c for c in CSV_COLUMNS])
+                   + [f"{c} [{CSV_UNITS[c]}]" if c in CSV_UNITS else c for c in columns])
         for cell in data["cells"]:
             w.writerow([cell["values"][k] for k in keys] + ["" if cell.get(c) is None else cell.get(c)
-                                                           for c in CSV_COLUMNS])
+                                                           for c in columns])
     return path
 
 

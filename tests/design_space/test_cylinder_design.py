@@ -1,0 +1,156 @@
+"""``rockdesign design`` for a 3D cylinder: every cell's verdict is ``rockdesign check`` of the variant's
+own project file (exit codes compared), an impossible diameter is a named INVALID cell, the command
+writes design.json/csv and the PDF, and the charts show the cylinder's own numbers."""
+from __future__ import annotations
+
+import json
+import math
+import tomllib
+
+import pytest
+from scipy.stats import beta
+from typer.testing import CliRunner
+
+from rockdesign.cli import app
+from rockdesign.design_space.variants import parse_vary, variant_document, variant_toml
+from rockdesign.motions import pairs
+
+SUITE = "test-design-two-pairs"
+TOML = f"""\
+[project]
+name = "design cylinder"
+
+[cylinder]
+height = "3 m"
+diameter = "0.6 m"
+density = "2.6 t/m^3"
+
+[excitation]
+suites = ["{SUITE}"]
+scale = {{ method = "resultant_pga", target = "0.3 g" }}
+
+[analysis]
+acceptance = "binomial"
+overturn_probability_limit = 0.8   # a small test suite: two pairs show P ≤ 80 % with none overturning
+ensemble_size = 1
+"""
+VARY = ["cylinder.diameter=0.4m:0.6m:2", "cylinder.height=2.8m:3m:2"]
+runner = CliRunner()
+
+
+@pytest.fixture(scope="module")
+def two_pairs():
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setitem(pairs.PAIR_SUITES, SUITE, ("p695-ff", range(1, 3)))
+        yield
+
+
+@pytest.fixture(scope="module")
+def grid(two_pairs, tmp_path_factory):
+    folder = tmp_path_factory.mktemp("cyl_design")
+    path = folder / "cyl.toml"
+    path.write_text(TOML, encoding="utf-8")
+    out = folder / "d"
+    args = ["design", str(path), "-o", str(out), "--no-pdf", "--json"]
+    for v in VARY:
+        args += ["--vary", v]
+    res = runner.invoke(app, args)
+    return folder, out, res
+
+
+def test_each_cell_verdict_equals_the_check_of_its_project_file(grid):
+    folder, out, res = grid
+    assert res.exit_code == 0, res.output         # at least one variant passes
+    data = json.loads((out / "design.json").read_text(encoding="utf-8"))
+    assert json.loads(res.stdout)["cells"] == data["cells"]
+    raw = tomllib.loads(TOML)
+    variables = [parse_vary(v, raw) for v in VARY]
+    codes = {"PASS": 0, "FAIL": 1}
+    verdicts = []
+    for cell in data["cells"]:
+        doc, _ = variant_document(raw, variables, tuple(cell["index"]))
+        file = folder / f"variant_{'_'.join(map(str, cell['index']))}.toml"
+        file.write_text(variant_toml(doc), encoding="utf-8")
+        check = runner.invoke(app, ["check", str(file), "-o", str(folder / f"check_{file.stem}"), "--no-pdf",
+                                    "--json"])
+        assert check.exit_code == codes[cell["verdict"]], (cell["labels"], cell["reason"], check.output[-400:])
+        full = json.loads(check.stdout)
+        assert full["verdict"] == cell["verdict"]
+        assert full["acceptance"]["n_unacceptable"] == cell["n_unacceptable"]
+        assert full["acceptance"]["binomial_bound"] == cell["p_overturn_bound"]
+        # the same design-level analyses: the median θ_max/θ_ot of the pairs, to the last digit
+        ratios = [r["theta_max_over_theta_ot"] for r in full["records"]]
+        assert cell["median_theta_max_over_theta_c"] == pytest.approx(sorted(ratios)[0] / 2 + sorted(ratios)[1] / 2,
+                                                                     rel=1e-12)
+        verdicts.append(cell["verdict"])
+    assert sorted(set(verdicts)) == ["FAIL", "PASS"]     # the grid spans the boundary (the test can fail)
+
+
+def test_cells_hold_the_cylinders_numbers(grid):
+    _, out, _ = grid
+    data = json.loads((out / "design.json").read_text(encoding="utf-8"))
+    assert data["project"]["kind"] == "cylinder" and len(data["cells"]) == 4
+    for c in data["cells"]:
+        d, h = c["values"]["cylinder.diameter"], c["values"]["cylinder.height"]
+        alpha = math.atan(d / h)                                       # Eq 2.1: tan α = B/H
+        assert c["alpha"] == pytest.approx(alpha, rel=1e-12)
+        assert c["theta_overturn"] == pytest.approx(1.5 * alpha, rel=1e-12)        # default overturn_tilt
+        assert c["uplift_acceleration"] == pytest.approx(9.81 * d / h, rel=1e-12)  # g tan α
+        assert c["column_material"] == pytest.approx(2600 * math.pi * (d / 2) ** 2 * h, rel=1e-12)
+        assert c["superstructure_shear_p84"] is None and c["acmr"] is None and c["theta_c"] is None
+        assert c["n_ground_motions"] == 2 and c["acceptance"] == "binomial" and c["binomial_limit"] == 0.8
+        k = c["n_unacceptable"]
+        assert c["p_overturn"] == k / 2
+        # the one-sided 95 % Clopper–Pearson bound: the 95 % quantile of Beta(k + 1, n − k) (scipy)
+        bound = 1.0 if k == 2 else beta.ppf(0.95, k + 1, 2 - k)
+        assert c["p_overturn_bound"] == pytest.approx(bound, rel=1e-9)
+        assert (c["verdict"] == "PASS") <= (bound <= 0.8)
+        if c["verdict"] == "FAIL" and c["decided_at_design_level"]:
+            assert c["n_incremental_unacceptable"] is None and "not needed" in c["reason"]
+            assert c["analyses"] == 2          # the two pairs once in 3D: no planar runs, scans or ensemble
+    # the recommended design: the passing variant with the least mass, said so in its reason
+    passing = [c for c in data["cells"] if c["verdict"] == "PASS"]
+    rec = data["recommended"]
+    assert rec["index"] == min(passing, key=lambda c: c["column_material"])["index"]
+    assert "least material: the cylinder's mass" in rec["reason"]
+    rows = (out / "design.csv").read_text(encoding="utf-8").splitlines()
+    assert rows[0].startswith("cylinder.diameter [m],cylinder.height [m],verdict,")
+    assert "p_overturn_bound [-]" in rows[0] and "theta_overturn [rad]" in rows[0] and len(rows) == 5
+
+
+def test_an_impossible_diameter_is_an_invalid_cell(two_pairs, tmp_path):
+    """tan α = B/H ≥ 1 is refused by the loader: a named INVALID cell, the other cell still runs."""
+    path = tmp_path / "cyl.toml"
+    path.write_text(TOML, encoding="utf-8")
+    out = tmp_path / "d"
+    res = runner.invoke(app, ["design", str(path), "--vary", "cylinder.diameter=0.6m:3.2m:2", "-o", str(out)])
+    assert res.exit_code == 0, res.output
+    data = json.loads((out / "design.json").read_text(encoding="utf-8"))
+    ok, bad = data["cells"]
+    assert ok["verdict"] == "PASS" and bad["verdict"] == "INVALID"
+    assert "cylinder.diameter" in bad["reason"] and "too squat" in bad["reason"] and bad["analyses"] == 0
+    assert data["recommended"]["index"] == [0]
+    assert (out / "design.pdf").read_bytes()[:5] == b"%PDF-"        # the report with charts, and the full check
+    assert data["recommended"]["check"]["verdict"] == "PASS"
+    html = (out / "design.html").read_text(encoding="utf-8")
+    assert "P(overturn) bound" in html and "θ_ot" in html and "superstructure shear" not in html
+    assert (out / "design_overturning.svg").is_file() and not (out / "design_shear.svg").exists()
+
+
+def test_options_a_cylinder_does_not_use_are_refused(two_pairs, tmp_path):
+    path = tmp_path / "cyl.toml"
+    path.write_text(TOML, encoding="utf-8")
+    res = runner.invoke(app, ["design", str(path), "--vary", VARY[0], "-o", str(tmp_path / "d"), "--records-dir",
+                              str(tmp_path)])
+    assert res.exit_code == 2 and "--records-dir" in res.output and "Traceback" not in res.output
+
+
+def test_cylinder_charts_render_for_two_variables(grid):
+    from rockdesign.report.design_figures import cell_reason, design_figures
+    _, out, _ = grid
+    data = json.loads((out / "design.json").read_text(encoding="utf-8"))
+    figs = design_figures(data)
+    assert figs["verdict"] is not None and figs["overturning"] is not None and figs["rotation"] is not None
+    assert figs["shear"] is None and figs["acmr"] is None and figs["thesis_plane"] is None
+    reasons = {cell_reason(c) for c in data["cells"]}
+    assert "P ≤ 0.78" in reasons and "P ≤ 0.97" in reasons
