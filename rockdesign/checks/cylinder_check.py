@@ -340,9 +340,12 @@ def suite_pairs_key(project) -> str:
 
 
 def suite_pair_records(project) -> SuitePairs:
-    """The :class:`SuitePairs` of a cylinder project (the suites of ``[excitation]``, scaled as it says)."""
+    """The :class:`SuitePairs` of a cylinder project (the suites of ``[excitation]``, scaled as it says);
+    a suite too small for the acceptance rule raises a :class:`~rockdesign.errors.ProjectError` first."""
     cyl, a, e = project.system, project.analysis, project.excitation
     pairs = tuple((s, p) for s in e.suites for p in suite_pairs(s, gravity=cyl.g))
+    require_suite_size(cylinder_rule(a), len(pairs), len(pairs), e.suites, file=getattr(project, "path", None),
+                       key="excitation")
     factors = tuple(e.factor(p.resultant_pga) for _, p in pairs)
     accel = tuple((f * p.x, f * p.y) for (_, p), f in zip(pairs, factors))
     sd = tuple(tuple(sd_max_of_samples(c, p.dt, a.sdmax_damping, a.sdmax_band)[0] for c in xy)

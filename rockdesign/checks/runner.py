@@ -62,8 +62,9 @@ def interpret(summary: np.ndarray, status: int, theta_c: float, alpha: float, ca
 
 
 class AnalysisCount:
-    """Analyses (record × scale jobs) :func:`run_jobs` has run in this process: the design grid reads the
-    difference around a variant to report what it ran and what its shared work saved."""
+    """Analyses (record × scale jobs) :func:`run_jobs` and the cylinder check (one per record pair run in 3D
+    or per component in the plane) have run in this process: the design grid reads the difference around a
+    variant to report what it ran and what its shared work saved."""
 
     total = 0
 

@@ -117,10 +117,12 @@ def _rect(x, y, color):
     return Rectangle((x, y), 1.0, 1.0, facecolor=color, edgecolor="white", lw=1.5, alpha=0.75)
 
 
-def field_figure(data: dict, key: str, title: str, cmap: str = "viridis", levels=None, reference=None):
+def field_figure(data: dict, key: str, title: str, cmap: str = "viridis", levels=None, reference=None,
+                 level_labels=None):
     """One quantity of the cells over the grid: a coloured map with the value in each cell and contour
     lines where enough cells have it (2 variables), or a line over the values (1 variable) with the
-    ``reference`` lines [(value, label)] (e.g. the required ACMR)."""
+    ``reference`` lines [(value, label)] (e.g. the required ACMR); ``level_labels`` {level: text} names the
+    contour lines (default: their values)."""
     vars_ = data["variables"]
     z = _grid(data, key)
     if not np.isfinite(z).any():
@@ -153,7 +155,7 @@ def field_figure(data: dict, key: str, title: str, cmap: str = "viridis", levels
                 try:
                     cs = ax.contour(np.arange(nx), np.arange(ny), np.ma.masked_invalid(z.T), levels=levels or 5,
                                     colors="k", linewidths=0.7)
-                    ax.clabel(cs, fontsize=6, fmt="%.3g")
+                    ax.clabel(cs, fontsize=6, fmt=level_labels or "%.3g")
                 except (ValueError, TypeError):     # too few distinct finite values for contour lines
                     pass
             ax.set_xticks(range(nx))
@@ -201,11 +203,13 @@ def overturning_figure(data: dict):
         return None
     if all(c.get("acceptance") == "binomial" for c in cells):
         limits = sorted({c["binomial_limit"] for c in cells})
-        return field_figure(data, "p_overturn_bound", "P(overturn), one-sided 95 % bound [-]", "magma_r",
-                            levels=limits, reference=[(v, f"limit {v:.3g}") for v in limits])
+        return field_figure(data, "p_overturn_bound", "P(overturn), 95 % bound [-]", "magma_r",
+                            levels=limits, reference=[(v, f"limit {v:.3g}") for v in limits],
+                            level_labels={v: f"limit {v:.3g}" for v in limits})
     allowed = sorted({c["allowed_unacceptable"] for c in cells if c.get("allowed_unacceptable") is not None})
-    return field_figure(data, "n_unacceptable", "record pairs overturning at the design level [-]", "magma_r",
-                        levels=[a + 0.5 for a in allowed], reference=[(a, f"{a} allowed") for a in allowed])
+    return field_figure(data, "n_unacceptable", "pairs overturning at design [-]", "magma_r",
+                        levels=[a + 0.5 for a in allowed], reference=[(a, f"{a} allowed") for a in allowed],
+                        level_labels={a + 0.5: f"{a} allowed" for a in allowed})
 
 
 def design_figures(data: dict) -> dict:

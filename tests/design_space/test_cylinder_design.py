@@ -154,3 +154,26 @@ def test_cylinder_charts_render_for_two_variables(grid):
     assert figs["shear"] is None and figs["acmr"] is None and figs["thesis_plane"] is None
     reasons = {cell_reason(c) for c in data["cells"]}
     assert "P ≤ 0.78" in reasons and "P ≤ 0.97" in reasons
+
+
+def test_no_passing_variant_exits_1(two_pairs, tmp_path):
+    """Slender variants that the design-level pairs already fail: exit 1, no recommendation, no scans."""
+    path = tmp_path / "cyl.toml"
+    path.write_text(TOML, encoding="utf-8")
+    out = tmp_path / "d"
+    res = runner.invoke(app, ["design", str(path), "--vary", "cylinder.diameter=0.4m:0.42m:2", "--vary",
+                              "cylinder.height=2.8m:3m:2", "-o", str(out), "--no-pdf"])
+    data = json.loads((out / "design.json").read_text(encoding="utf-8"))
+    assert res.exit_code == 1, res.output
+    assert {c["verdict"] for c in data["cells"]} == {"FAIL"} and data["recommended"] is None
+    assert "no variant passes" in res.output
+
+
+def test_a_suite_too_small_for_the_rule_stops_the_grid(two_pairs, tmp_path):
+    """ASCE 7-22 needs 11 ground motions: the two-pair suite under the default rule is an input error of the
+    whole grid (exit 2, before any analysis), not an INVALID cell per variant."""
+    path = tmp_path / "cyl.toml"
+    path.write_text(TOML.replace('acceptance = "binomial"\n', ""), encoding="utf-8")
+    res = runner.invoke(app, ["design", str(path), "--vary", VARY[0], "-o", str(tmp_path / "d"), "--no-pdf"])
+    assert res.exit_code == 2, res.output
+    assert "11" in res.output and "excitation" in res.output and "Traceback" not in res.output
