@@ -22,8 +22,8 @@ def register(app: typer.Typer, handle_errors) -> None:
                dask: Optional[str] = typer.Option(None, "--dask", help="Run the analyses on dask.distributed: "
                                                   "'local:N' or a scheduler address.")):
         """Design chart: the check of every variant of one or two keys, the pass/fail region, contours of
-        ACMR and of the superstructure's shear coefficient, and the recommended design (exit 0 = at least
-        one variant passes, 1 = none does, 2 = input error)."""
+        ACMR and of the superstructure's shear coefficient (a cylinder: of its overturning record pairs),
+        and the recommended design (exit 0 = at least one variant passes, 1 = none does, 2 = input error)."""
         # the heavy modules (numpy, numba, pint, scipy) are imported here, not at module level: the CLI
         # mounts this command at every start-up (tests/cli/test_startup.py)
         from .. import design_command

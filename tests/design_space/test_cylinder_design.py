@@ -177,3 +177,29 @@ def test_a_suite_too_small_for_the_rule_stops_the_grid(two_pairs, tmp_path):
     res = runner.invoke(app, ["design", str(path), "--vary", VARY[0], "-o", str(tmp_path / "d"), "--no-pdf"])
     assert res.exit_code == 2, res.output
     assert "11" in res.output and "excitation" in res.output and "Traceback" not in res.output
+
+
+def test_the_pairs_are_read_once_for_all_variants(two_pairs, tmp_path, monkeypatch):
+    """Variants of one [excitation] share the read and scaled pairs: the suite is read once for four
+    variants; a variant whose target differs (the default excitation moves with tan α) reads its own."""
+    from rockdesign.checks import cylinder_check
+    from rockdesign.design_space.run import design
+    reads = []
+    real = cylinder_check.suite_pairs
+    monkeypatch.setattr(cylinder_check, "suite_pairs", lambda name, **kw: reads.append(name) or real(name, **kw))
+    path = tmp_path / "cyl.toml"
+    path.write_text(TOML, encoding="utf-8")
+    chart = design(path, ["cylinder.diameter=0.4m:0.42m:2", "cylinder.height=2.8m:3m:2"])
+    assert len(chart.grid.cells) == 4 and reads == [SUITE]
+    keys = {cylinder_check.suite_pairs_key(c.project) for c in _variants(path, ["cylinder.diameter=0.4m:0.6m:2"])}
+    assert len(keys) == 1
+    default = TOML.replace('scale = { method = "resultant_pga", target = "0.3 g" }\n', "")
+    path.write_text(default, encoding="utf-8")
+    keys = {cylinder_check.suite_pairs_key(c.project) for c in _variants(path, ["cylinder.diameter=0.4m:0.6m:2"])}
+    assert len(keys) == 2          # 1.5 g tan α: a different target per diameter
+
+
+def _variants(path, vary):
+    from rockdesign.design_space.variants import variants
+    raw = tomllib.loads(path.read_text(encoding="utf-8"))
+    return variants(raw, [parse_vary(v, raw) for v in vary], file=str(path))
