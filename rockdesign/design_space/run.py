@@ -50,7 +50,7 @@ def design(project_path, vary: list[str], *, records_dir: str | None = None, exe
     kind = kind_of(base)
     kind.check_options(base, records_dir=records_dir, executor=executor, keys=option_keys or {})
     raw = tomllib.loads(base.source_text) if base.source_text else base.raw
-    variables = [parse_vary(v, raw) for v in vary]
+    variables = [parse_vary(v, raw, alternatives=kind.key_alternatives) for v in vary]
     if len(variables) == 2 and variables[0].key == variables[1].key:
         raise RockdesignError("the same key twice", key="--vary", expected="two different keys",
                               found=variables[0].key)

@@ -20,7 +20,8 @@ from ..errors import ProjectError, RockdesignError
 ALTERNATIVES = {"radius": "curvature", "curvature": "radius", "height": "half_height", "half_height": "height",
                 "width": "slenderness", "slenderness": "width", "period": "frequency", "frequency": "period"}
 """Keys of the project file that say the same thing two ways (CONTRACT §1): varying one replaces the other
-(the replacement is listed in design.json's ``notes``)."""
+(the replacement is listed in design.json's ``notes``).  A kind may name its own
+(:attr:`~rockdesign.kinds.base.StructureKind.key_alternatives`, e.g. a cylinder's diameter/slenderness)."""
 
 MAX_VALUES = 41
 """Values per variable (a chart of 41 × 41 = 1681 checks is already a cluster's afternoon)."""
@@ -38,6 +39,8 @@ class Variable:
     values: tuple[float, ...]
     si: tuple[float, ...]
     integer: bool = False
+    replaces: tuple[str, ...] = ()
+    """Keys of the same table this key replaces when written in (its alternatives, e.g. ``curvature``)."""
 
     @property
     def table(self) -> str:
@@ -75,8 +78,9 @@ def _quantity(text: str, option: str, spec: str):
     return q
 
 
-def parse_vary(spec: str, raw: dict, *, option: str = "--vary") -> Variable:
-    """Read one ``--vary TABLE.KEY=FROM:TO:N`` against the project's TOML document ``raw``.
+def parse_vary(spec: str, raw: dict, *, option: str = "--vary", alternatives: dict | None = None) -> Variable:
+    """Read one ``--vary TABLE.KEY=FROM:TO:N`` against the project's TOML document ``raw``;
+    ``alternatives``: key → the keys it replaces (default :data:`ALTERNATIVES`, one each).
 
     Raises:
         RockdesignError: an unreadable spec, a table the project has not, a key that is not numeric,
@@ -97,7 +101,9 @@ def parse_vary(spec: str, raw: dict, *, option: str = "--vary") -> Variable:
         raise RockdesignError("the project has no such table", key=option,
                               expected="a table of the project file: " + ", ".join(
                                   f"[{t}]" for t, v in raw.items() if isinstance(v, dict)), found=f"[{table}] in {key}")
-    current = raw[table].get(name, raw[table].get(ALTERNATIVES.get(name, ""), None))
+    replaces = tuple(alternatives.get(name, ())) if alternatives is not None else \
+        ((ALTERNATIVES[name],) if name in ALTERNATIVES else ())
+    current = raw[table].get(name, next((raw[table][o] for o in replaces if o in raw[table]), None))
     if isinstance(current, (bool, dict, list)) or (isinstance(current, str) and not re.match(r"^\s*[-+.\d]", current)):
         raise RockdesignError("not a numeric key", key=option, expected="a key whose value is a number or a quantity",
                               found=f"{key} = {current!r}")
@@ -123,7 +129,7 @@ def parse_vary(spec: str, raw: dict, *, option: str = "--vary") -> Variable:
     if len(set(values)) != len(values):
         raise RockdesignError("repeated values", key=option, expected="N distinct values", found=spec)
     si = [float(registry_si(v, unit)) for v in values]
-    return Variable(key, unit, tuple(values), tuple(si), integer)
+    return Variable(key, unit, tuple(values), tuple(si), integer, replaces)
 
 
 def registry_si(value: float, unit: str) -> float:
@@ -153,10 +159,10 @@ def variant_document(raw: dict, variables, index) -> tuple[dict, list[str]]:
     notes = []
     for var, k in zip(variables, index):
         t = doc[var.table]
-        other = ALTERNATIVES.get(var.name)
-        if other and other in t:
-            del t[other]
-            notes.append(f"{var.key} replaces {var.table}.{other}")
+        for other in var.replaces:
+            if other in t:
+                del t[other]
+                notes.append(f"{var.key} replaces {var.table}.{other}")
         t[var.name] = var.toml_value(k)
     return doc, notes
 

@@ -30,6 +30,8 @@ class Cylinder(StructureKind):
     design_rule = cylinder_grid.RULE
     design_skipped = cylinder_grid.SKIPPED
     design_material = ("material: the cylinder's mass", "a free-standing cylinder carries no superstructure")
+    key_alternatives = {"height": ("half_height",), "half_height": ("height",), "diameter": ("slenderness",),
+                        "slenderness": ("diameter",), "mass": ("density",), "density": ("mass",)}
 
     def claims(self, raw):
         return claims(raw)

@@ -203,3 +203,19 @@ def _variants(path, vary):
     from rockdesign.design_space.variants import variants
     raw = tomllib.loads(path.read_text(encoding="utf-8"))
     return variants(raw, [parse_vary(v, raw) for v in vary], file=str(path))
+
+
+def test_a_key_replaces_its_alternative(two_pairs, tmp_path):
+    """cylinder.slenderness replaces the project's diameter, cylinder.mass its density (CONTRACT §1: one of
+    each pair): the variants are valid and the notes say what was replaced."""
+    from rockdesign.design_space.run import design
+    path = tmp_path / "cyl.toml"
+    path.write_text(TOML, encoding="utf-8")
+    chart = design(path, ["cylinder.slenderness=0.2:0.22:2", "cylinder.mass=2t:3t:2"])
+    cells = chart.grid.cells
+    assert all(c["verdict"] in ("PASS", "FAIL") for c in cells), [c["reason"] for c in cells]
+    assert cells[0]["notes"] == ["cylinder.slenderness replaces cylinder.diameter",
+                                 "cylinder.mass replaces cylinder.density"]
+    for c in cells:
+        assert c["uplift_shear_coefficient"] == pytest.approx(c["values"]["cylinder.slenderness"], rel=1e-12)
+        assert c["column_material"] == pytest.approx(c["values"]["cylinder.mass"], rel=1e-12)
