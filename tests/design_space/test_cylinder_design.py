@@ -154,6 +154,19 @@ def test_cylinder_charts_render_for_two_variables(grid):
     assert figs["shear"] is None and figs["acmr"] is None and figs["thesis_plane"] is None
     reasons = {cell_reason(c) for c in data["cells"]}
     assert "P ≤ 0.78" in reasons and "P ≤ 0.97" in reasons
+    from types import SimpleNamespace
+
+    from rockdesign.library import load_project
+    from rockdesign.report.design_report import write_design_report
+    folder, _, _ = grid
+    (folder / "report2").mkdir()
+    written = write_design_report(SimpleNamespace(project=load_project(folder / "cyl.toml")), data,
+                                  folder / "report2", pdf=False)
+    html = written["html"].read_text(encoding="utf-8")
+    assert {"verdict", "overturning", "rotation"} == set(written) - {"html"}
+    table = html[html.index("Variants</h2>"):]
+    assert "median θ_max/θ_ot" in table and "P(overturn) bound (limit)" in table
+    assert "ACMR" not in table and "shear coeff." not in table
 
 
 def test_no_passing_variant_exits_1(two_pairs, tmp_path):
