@@ -4,6 +4,8 @@ variant written out as its own project file (a separate process per variant, as 
     .venv/bin/python benchmarks/spot_check_design.py examples/podium_curved.toml DIR \\
         --vary podium.width=0.36m:0.52m:3 --vary podium.curvature=0.1:0.5:3 [--out results/x.json]
 
+(a cylinder project likewise, e.g. ``--vary cylinder.diameter=0.7m:0.95m:6``).
+
 DIR is the ``rockdesign design -o DIR`` folder of the same project and variables (its design.json is read).
 Exit code 1 when a verdict differs.
 """
@@ -31,8 +33,11 @@ def main() -> None:
     ap.add_argument("--out", default=None)
     opts = ap.parse_args()
     from rockdesign.design_space.variants import parse_vary, variant_document, variant_toml
+    from rockdesign.kinds import kind_of
+    from rockdesign.library import load_project
     raw = tomllib.loads(Path(opts.project).read_text(encoding="utf-8"))
-    variables = [parse_vary(v, raw) for v in opts.vary]
+    alternatives = kind_of(load_project(opts.project)).key_alternatives    # as rockdesign design reads them
+    variables = [parse_vary(v, raw, alternatives=alternatives) for v in opts.vary]
     grid = json.loads((Path(opts.design_dir) / "design.json").read_text(encoding="utf-8"))
     rows = []
     with tempfile.TemporaryDirectory(prefix="spot_check_") as tmp:
