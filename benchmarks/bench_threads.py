@@ -58,15 +58,16 @@ from rockdesign.motions.library import load_record  # noqa: E402
 
 
 @njit(parallel=True)
-def static_batch(sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides, t_out, out_y, ev_t, ev_k, ev_y):
+def static_batch(sps, systems, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides, t_out, out_y, ev_t, ev_k,
+                 ev_y):
     """numba's own schedule: ``prange`` over the jobs, each thread one fixed contiguous block of them."""
     n = kinds.shape[0]
     summaries = np.zeros((n, batch.N_SUMMARY))
     diags = np.zeros((n, batch.N_DIAG), dtype=np.int64)
     written = np.zeros(n, dtype=np.int64)
     for j in prange(n):
-        _job(j, sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides, t_out, out_y, ev_t, ev_k, ev_y,
-             summaries, diags, written)
+        _job(j, sps, systems, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides, t_out, out_y, ev_t, ev_k,
+             ev_y, summaries, diags, written)
     return summaries, diags, written
 
 
@@ -189,8 +190,8 @@ def _packed_args(sp, packed, opts, order=None):
     y0s = np.zeros((n, 4))
     sides = np.ones(n)
     empty, rows = np.zeros(0), np.zeros((0, 4))
-    return (sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides, empty, rows, empty,
-            np.zeros(0, dtype=np.int64), rows)
+    return (np.ascontiguousarray(sp).reshape(1, -1), np.zeros(n, dtype=np.int64), kinds, xps, samples, offsets,
+            lengths, t_ends, opts, y0s, sides, empty, rows, empty, np.zeros(0, dtype=np.int64), rows)
 
 
 def bench_batch(n_jobs: int, rounds: int) -> dict:

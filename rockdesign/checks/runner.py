@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import math
+import threading
 from dataclasses import dataclass
 
 import numba
@@ -9,6 +10,7 @@ import numpy as np
 
 from ..design.geometry import displacement_capacity, slenderness_angle
 from ..dynamics.batch import batch_options, run_batch
+from ..dynamics.batch_pool import current_pool
 from ..dynamics.layout import (D_STATUS, STATUS_NAMES, S_CAP_ACC_MAX, S_CAP_DV_MAX, S_DRIFT_MAX, S_FS_MAX, S_IMPACTS,
                                 S_THETA_MAX, S_T_END, S_T_UPLIFT, S_UB_MAX, S_UPLIFT_TIME)
 from ..dynamics.model import ModelChoice, system_parameters
@@ -62,11 +64,26 @@ def interpret(summary: np.ndarray, status: int, theta_c: float, alpha: float, ca
 
 
 class AnalysisCount:
-    """Analyses (record × scale jobs) :func:`run_jobs` and the cylinder check (one per record pair run in 3D
-    or per component in the plane) have run in this process: the design grid reads the difference around a
-    variant to report what it ran and what its shared work saved."""
+    """Analyses run in this process (``total``) and in the calling thread (:meth:`mine`): record × scale jobs
+    of :func:`run_jobs`, and the cylinder check's (one per record pair run in 3D or per component in the
+    plane).  The design grid, which checks its variants in threads of their own, reads the calling thread's
+    count around a variant to report what it ran and what its shared work saved."""
 
     total = 0
+    _lock = threading.Lock()
+    _local = threading.local()
+
+    @classmethod
+    def add(cls, n: int) -> None:
+        """Count ``n`` analyses run for the calling thread."""
+        with cls._lock:
+            cls.total += n
+        cls._local.n = cls.mine() + n
+
+    @classmethod
+    def mine(cls) -> int:
+        """The analyses counted for the calling thread."""
+        return getattr(cls._local, "n", 0)
 
 
 def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rtol: float, atol: float,
@@ -93,7 +110,7 @@ def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rto
     alpha = slenderness_angle(system.column.half_width, system.column.half_height)
     capacity = displacement_capacity(system.column)
     n = len(motions)
-    AnalysisCount.total += n
+    AnalysisCount.add(n)
     t_ends = [m.duration + free_vibration for m in motions]
     out: list[RunSummary] = []
     step = chunk or max(4 * usable_cores(), 8)
@@ -111,13 +128,17 @@ def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rto
         return [interpret(summaries[j], diags[j, D_STATUS], theta_c, alpha, capacity, criterion, two_dof)
                 for j in range(n)]
     threads = numba.get_num_threads()     # the batch driver's threads
+    pool = current_pool()
     predicted = list(t_ends if costs is None else costs)
     for start in range(0, n, step):
         sl = slice(start, min(n, start + step))
         ms, fs, ts = list(motions[sl]), list(scales[sl]), t_ends[sl]
         order = balanced_order(list(predicted[sl]), threads)
-        summaries, diags = run_batch(sp, [ms[k] for k in order], [fs[k] for k in order], [ts[k] for k in order],
-                                     opts)
+        jobs = ([ms[k] for k in order], [fs[k] for k in order], [ts[k] for k in order])
+        if pool is not None:      # the design grid: run with the other variants' waiting batches
+            summaries, diags = pool.run(sp, *jobs, opts, costs=[predicted[sl][k] for k in order])
+        else:
+            summaries, diags = run_batch(sp, *jobs, opts)
         rows = [None] * len(order)
         for j, k in enumerate(order):
             rows[k] = interpret(summaries[j], diags[j, D_STATUS], theta_c, alpha, capacity, criterion, two_dof)

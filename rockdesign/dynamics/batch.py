@@ -1,9 +1,10 @@
 """Many time-history analyses in one call: in parallel over the machine's cores (numba prange, jobs handed
 out dynamically), or one after the other in the calling thread when a batch is too small to pay for threads.
 
-A batch is a list of jobs that share one system (``sp``) and differ in their excitation: each job
-has an excitation kind, a parameter row (pulse amplitude/period, or record scale/dt) and a slice
-of one concatenated sample array.  Only the summaries (θ_max, impacts, overturning...) are kept —
+A batch is a list of jobs, each with its system (a row of ``sps``, usually one row shared by every job;
+several when the design grid runs the analyses of many variants together, :mod:`.batch_pool`) and its
+excitation: an excitation kind, a parameter row (pulse amplitude/period, or record scale/dt) and a
+slice of one concatenated sample array.  Only the summaries (θ_max, impacts, overturning...) are kept —
 what spectra, suites and margins need.  Results are identical to one-by-one :func:`integrate` calls,
 whichever driver runs them and in whatever order the threads take the jobs.
 
@@ -36,10 +37,11 @@ count suits both."""
 
 
 @njit(cache=True)
-def _job(j, sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides, t_out, out_y, ev_t, ev_k, ev_y,
-         summaries, diags, written):
-    """Job ``j`` of a batch (the arguments of :func:`_run_batch`): its :func:`integrate` run, written into row
-    ``j`` of ``summaries``/``diags``/``written``.  The one loop body of both drivers."""
+def _job(j, sps, systems, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides, t_out, out_y, ev_t, ev_k,
+         ev_y, summaries, diags, written):
+    """Job ``j`` of a batch (the arguments of :func:`_run_batch`): its :func:`integrate` run of the system
+    ``sps[systems[j]]``, written into row ``j`` of ``summaries``/``diags``/``written``.  The one loop body of
+    both drivers."""
     n = kinds.shape[0]
     o = opts.copy()
     o[O_T_END] = t_ends[j]
@@ -49,7 +51,7 @@ def _job(j, sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides,
     else:
         t_o, o_y, e_t, e_k, e_y = (np.zeros(0), np.zeros((0, 4)), np.zeros(0), np.zeros(0, dtype=np.int64),
                                    np.zeros((0, 4)))
-    summ, diag, w = integrate(sp, kinds[j], xps[j], s, y0s[j], sides[j], 0.0, o, t_o, o_y, e_t, e_k, e_y)
+    summ, diag, w = integrate(sps[systems[j]], kinds[j], xps[j], s, y0s[j], sides[j], 0.0, o, t_o, o_y, e_t, e_k, e_y)
     written[j] = w
     for k in range(N_SUMMARY):
         summaries[j, k] = summ[k]
@@ -58,9 +60,10 @@ def _job(j, sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides,
 
 
 @njit(cache=True, parallel=True)
-def _run_batch(sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides, t_out, out_y, ev_t, ev_k, ev_y,
-               workers):
-    """The jobs in parallel: ``workers`` workers (prange; one per numba thread), each taking the next job
+def _run_batch(sps, systems, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides, t_out, out_y, ev_t, ev_k,
+               ev_y, workers):
+    """The jobs in parallel (job ``j`` analyses the system ``sps[systems[j]]``): ``workers`` workers (prange;
+    one per numba thread), each taking the next job
     until none is left; a batch of one job also records its history into ``t_out``/``out_y`` and its
     events into ``ev_t``/``ev_k``/``ev_y`` (pass empty arrays otherwise).
 
@@ -74,13 +77,14 @@ def _run_batch(sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sid
     for _ in prange(workers):
         j = take(counter)
         while j < n:
-            _job(j, sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides, t_out, out_y, ev_t, ev_k,
-                 ev_y, summaries, diags, written)
+            _job(j, sps, systems, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides, t_out, out_y, ev_t,
+                 ev_k, ev_y, summaries, diags, written)
             j = take(counter)
     return summaries, diags, written
 
 
-def _run_serial(sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides, t_out, out_y, ev_t, ev_k, ev_y):
+def _run_serial(sps, systems, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides, t_out, out_y, ev_t,
+                ev_k, ev_y):
     """:func:`_run_batch` one job after the other in the calling thread (no parallel region; the same
     machine code for each job, :func:`_job`)."""
     n = kinds.shape[0]
@@ -88,8 +92,8 @@ def _run_serial(sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, si
     diags = np.zeros((n, N_DIAG), dtype=np.int64)
     written = np.zeros(n, dtype=np.int64)
     for j in range(n):
-        _job(j, sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides, t_out, out_y, ev_t, ev_k, ev_y,
-             summaries, diags, written)
+        _job(j, sps, systems, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides, t_out, out_y, ev_t, ev_k,
+             ev_y, summaries, diags, written)
     return summaries, diags, written
 
 
@@ -98,15 +102,30 @@ def use_threads(jobs: int) -> bool:
     return jobs >= SERIAL_BELOW_JOBS and numba.get_num_threads() > 1
 
 
-def run_packed(sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, threads: bool | None = None):
+def system_rows(sp, n: int, systems=None) -> tuple[np.ndarray, np.ndarray]:
+    """(sps, systems) of a batch of ``n`` jobs: ``sp`` one system's parameters (every job's) or a table of
+    several systems' rows with ``systems[j]`` the row of job ``j``."""
+    sps = np.ascontiguousarray(sp, dtype=np.float64)
+    if sps.ndim == 1:
+        return sps.reshape(1, -1), np.zeros(n, dtype=np.int64)
+    index = np.ascontiguousarray(systems, dtype=np.int64)
+    if index.shape != (n,) or (n and (index.min() < 0 or index.max() >= sps.shape[0])):
+        raise ValueError("systems: one row index of sps per job")
+    return sps, index
+
+
+def run_packed(sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, threads: bool | None = None,
+               systems=None):
     """The packed jobs (:func:`pack_motions`), summaries only: (summaries, diagnostics).
 
-    ``threads``: run on numba's threads (True), serially in the calling thread (False), or by the size of
-    the batch (None, :func:`use_threads`); the results are the same."""
+    ``sp``: the system of every job, or a table of systems (one row each) with ``systems[j]`` the row of job
+    ``j`` (:func:`system_rows`).  ``threads``: run on numba's threads (True), serially in the calling thread
+    (False), or by the size of the batch (None, :func:`use_threads`); the results are the same."""
     sides = np.where(y0s[:, 0] >= 0.0, 1.0, -1.0)
     empty = np.zeros(0)
     empty_rows = np.zeros((0, 4))
-    args = (sp, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides, empty, empty_rows, empty,
+    sps, index = system_rows(sp, kinds.shape[0], systems)
+    args = (sps, index, kinds, xps, samples, offsets, lengths, t_ends, opts, y0s, sides, empty, empty_rows, empty,
             np.zeros(0, dtype=np.int64), empty_rows)
     n = kinds.shape[0]
     if use_threads(n) if threads is None else threads:
@@ -124,7 +143,8 @@ def run_history(sp, kind, xp, samples, y0, side0, opts, t_out, out_y, ev_t, ev_k
     the parallel driver's jobs): a parallel region would cost more than the analysis on a loaded machine.
     """
     summaries, diags, written = _run_serial(
-        sp, np.array([kind], dtype=np.int64), np.ascontiguousarray(xp, dtype=np.float64).reshape(1, -1),
+        np.ascontiguousarray(sp, dtype=np.float64).reshape(1, -1), np.zeros(1, dtype=np.int64),
+        np.array([kind], dtype=np.int64), np.ascontiguousarray(xp, dtype=np.float64).reshape(1, -1),
         np.ascontiguousarray(samples, dtype=np.float64), np.zeros(1, dtype=np.int64),
         np.array([samples.shape[0]], dtype=np.int64), np.array([opts[O_T_END]]), opts,
         np.ascontiguousarray(y0, dtype=np.float64).reshape(1, 4), np.array([float(side0)]), t_out, out_y, ev_t,
@@ -157,11 +177,13 @@ def batch_options(rtol: float = 1e-10, atol: float = 1e-12, energy_stop: bool = 
     return opts
 
 
-def run_batch(sp: np.ndarray, motions, scales, t_ends, opts: np.ndarray, y0s=None, threads: bool | None = None):
+def run_batch(sp: np.ndarray, motions, scales, t_ends, opts: np.ndarray, y0s=None, threads: bool | None = None,
+              systems=None):
     """Run ``motions[i]`` scaled by ``scales[i]`` until ``t_ends[i]`` (in parallel unless the batch is small).
 
     Args:
-        sp: system parameters (:func:`rockdesign.dynamics.model.system_parameters`).
+        sp: system parameters (:func:`rockdesign.dynamics.model.system_parameters`), or a table of several
+            systems' parameter rows with ``systems[i]`` the row of job ``i``.
         motions: list of :class:`GroundMotion` (records share their sample arrays; pass the same
             object several times for several scale factors).
         scales: amplitude multipliers per job.
@@ -177,7 +199,7 @@ def run_batch(sp: np.ndarray, motions, scales, t_ends, opts: np.ndarray, y0s=Non
     kinds, xps, samples, offsets, lengths = pack_motions(motions, scales)
     y0 = np.zeros((n, 4)) if y0s is None else np.ascontiguousarray(y0s, dtype=np.float64)
     return run_packed(sp, kinds, xps, samples, offsets, lengths, np.asarray(t_ends, dtype=np.float64), opts, y0,
-                      threads)
+                      threads, systems)
 
 
 def pack_motions(motions, scales) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:

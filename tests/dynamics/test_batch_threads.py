@@ -72,14 +72,38 @@ def test_every_driver_gives_the_one_by_one_results_in_job_order(name, system, ch
     sides = np.ones(len(motions))
     empty, rows = np.zeros(0), np.zeros((0, 4))
     for workers in (1, 3, len(motions)):
-        s, d, _ = batch._run_batch(sp, kinds, xps, samples, offsets, lengths, t, opts, y0s, sides, empty, rows,
-                                   empty, np.zeros(0, dtype=np.int64), rows, workers)
+        s, d, _ = batch._run_batch(sp.reshape(1, -1), np.zeros(len(motions), dtype=np.int64), kinds, xps, samples,
+                                   offsets, lengths, t, opts, y0s, sides, empty, rows, empty,
+                                   np.zeros(0, dtype=np.int64), rows, workers)
         np.testing.assert_array_equal(s, expected_s)
         np.testing.assert_array_equal(d, expected_d)
     # a reordered batch gives the same rows, reordered
     order = np.argsort(-t, kind="stable")
     s, _ = run_batch(sp, [motions[k] for k in order], [scales[k] for k in order], t[order], opts, threads=True)
     np.testing.assert_array_equal(s, expected_s[order])
+
+
+def test_jobs_of_several_systems_in_one_batch_equal_their_own_batches():
+    """A batch whose jobs analyse different systems (the design grid's shared batches) gives each job the
+    result of a batch of its own system alone, bit for bit, whatever the mix and order."""
+    sps = [system_parameters(table34_column("B1"), ModelChoice("block", "exact")),
+           system_parameters(table34_column("B4ec"), ModelChoice("block", "exact")),
+           system_parameters(reference_podium(), ModelChoice("podium-2dof", "exact"))]
+    motions = [pulse_motion("ricker-anti", a * G, 0.95) for a in (0.3, 0.38, 0.5)]
+    opts = batch_options(1e-8, 1e-10)
+    t_ends = [6.0] * len(motions)
+    alone = [run_batch(sp, motions, [1.0] * len(motions), t_ends, opts, threads=False) for sp in sps]
+    assert not np.array_equal(alone[0][0], alone[1][0])            # the systems respond differently
+    jobs = [(k, i) for i in range(len(motions)) for k in (2, 0, 1)]   # interleaved, the podium first
+    table = np.vstack(sps)
+    for threads in (True, False):
+        s, d = run_batch(table, [motions[i] for _, i in jobs], [1.0] * len(jobs), [6.0] * len(jobs), opts,
+                         threads=threads, systems=[k for k, _ in jobs])
+        for row, (k, i) in enumerate(jobs):
+            np.testing.assert_array_equal(s[row], alone[k][0][i])
+            np.testing.assert_array_equal(d[row], alone[k][1][i])
+    with pytest.raises(ValueError):
+        run_batch(table, motions, [1.0] * 3, t_ends, opts, systems=[0, 3, 1])
 
 
 def test_small_work_runs_serially_and_a_history_is_the_batch_job():

@@ -1,0 +1,110 @@
+"""Shared batches of the design grid (rockdesign.dynamics.batch_pool): the batches of member threads run
+together, and every thread gets exactly what its batch gives alone."""
+from __future__ import annotations
+
+import threading
+import time
+
+import numpy as np
+import pytest
+
+from support import G, reference_podium, table34_column
+from rockdesign.dynamics.batch import batch_options, run_batch
+from rockdesign.dynamics.batch_pool import BatchPool, PoolCancelled, current_pool
+from rockdesign.dynamics.model import ModelChoice, system_parameters
+from rockdesign.motions.motion import pulse_motion
+
+
+def _systems():
+    return [system_parameters(table34_column("B1"), ModelChoice("block", "exact")),
+            system_parameters(table34_column("B4ec"), ModelChoice("block", "exact")),
+            system_parameters(reference_podium(), ModelChoice("podium-2dof", "exact"))]
+
+
+def _members(pool, work):
+    """Run ``work[k]()`` in a member thread each; returns their results (re-raises the first error)."""
+    results, errors = [None] * len(work), []
+
+    def body(k):
+        try:
+            with pool.member():
+                assert current_pool() is pool
+                results[k] = work[k]()
+        except BaseException as exc:      # noqa: BLE001 — re-raised in the test's thread
+            errors.append(exc)
+    threads = [threading.Thread(target=body, args=(k,)) for k in range(len(work))]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join(timeout=120)
+        assert not t.is_alive(), "a member thread is stuck"
+    if errors:
+        raise errors[0]
+    return results
+
+
+def test_members_batches_run_together_and_each_gets_its_own_result():
+    sps = _systems()
+    motions = [pulse_motion("ricker-anti", a * G, 0.95) for a in (0.25, 0.3, 0.38, 0.5)]
+    loose, tight = batch_options(1e-6, 1e-8), batch_options(1e-8, 1e-10)
+    # three variants with different numbers of batches, options and Python work between them
+    plans = [[(0, [0, 1], loose), (0, [2, 3], loose), (0, [1], tight)],
+             [(1, [3, 2, 1, 0], loose)],
+             [(2, [0], loose), (2, [1, 2], tight)]]
+    pool = BatchPool()
+
+    def variant(plan):
+        def work():
+            out = []
+            for k, (system, picks, opts) in enumerate(plan):
+                time.sleep(0.01 * k)
+                out.append(pool.run(sps[system], [motions[i] for i in picks], [1.0] * len(picks),
+                                    [5.0] * len(picks), opts))
+            return out
+        return work
+
+    got = _members(pool, [variant(p) for p in plans])
+    for plan, results in zip(plans, got):
+        for (system, picks, opts), (s, d) in zip(plan, results):
+            s_alone, d_alone = run_batch(sps[system], [motions[i] for i in picks], [1.0] * len(picks),
+                                         [5.0] * len(picks), opts, threads=False)
+            np.testing.assert_array_equal(s, s_alone)
+            np.testing.assert_array_equal(d, d_alone)
+    assert pool.requests == 6 and pool.jobs == 12
+    assert pool.calls < pool.requests            # batches of different variants shared calls
+
+
+def test_a_lone_member_runs_at_once_and_outside_a_pool_nothing_changes():
+    assert current_pool() is None
+    sp = _systems()[0]
+    motion = pulse_motion("ricker-anti", 0.38 * G, 0.95)
+    pool = BatchPool()
+    with pool.member():
+        s, _ = pool.run(sp, [motion], [1.0], [5.0], batch_options())
+    assert pool.calls == 1 and current_pool() is None
+    np.testing.assert_array_equal(s, run_batch(sp, [motion], [1.0], [5.0], batch_options())[0])
+
+
+def test_cancel_wakes_a_waiting_member():
+    pool = BatchPool()
+    sp = _systems()[0]
+    motion = pulse_motion("ricker-anti", 0.38 * G, 0.95)
+    busy = threading.Event()
+    release = threading.Event()
+
+    def waiting():
+        busy.wait(timeout=60)           # the other member is in: this batch waits for it
+        return pool.run(sp, [motion], [1.0], [5.0], batch_options())
+
+    def other():        # a member that never asks for a batch keeps the first one waiting
+        busy.set()
+        release.wait(timeout=60)
+
+    def cancel_later():
+        busy.wait(timeout=60)
+        time.sleep(0.2)
+        pool.cancel()
+        release.set()
+    threading.Thread(target=cancel_later).start()
+    with pytest.raises(PoolCancelled):
+        _members(pool, [other, waiting])
