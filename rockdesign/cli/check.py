@@ -17,7 +17,7 @@ def register(app: typer.Typer, handle_errors) -> None:
     def check(project: Path = typer.Argument(..., help="Project file (TOML)"),
               out: Optional[Path] = typer.Option(None, "-o", "--out", help="Output folder (default: <project>_check)"),
               as_json: bool = typer.Option(False, "--json", metavar=" ", help="Print results.json to stdout."),
-              no_pdf: bool = typer.Option(False, "--no-pdf", metavar=" ", help="Skip the PDF (results.json/csv and HTML only)."),
+              no_pdf: bool = typer.Option(False, "--no-pdf", metavar=" ", help="Skip the report: results.json/csv only (add --html for report.html)."),
               html: bool = typer.Option(False, "--html", metavar=" ", help="Write report.html even with --no-pdf."),
               no_margins: bool = typer.Option(False, "--no-margins", metavar=" ", help="Skip the incremental margin analysis."),
               records_dir: Optional[Path] = typer.Option(None, "--records-dir", help="Folder of PEER AT2 files."),
