@@ -3,9 +3,10 @@ of every variant that is waiting (the design grid, SPEC §15).
 
 The design grid checks each variant in a thread of its own (:mod:`rockdesign.design_space.grid`).  Every
 batch a variant's check asks for (:func:`rockdesign.checks.runner.run_jobs`) comes here
-(:meth:`BatchPool.run`) and waits until every live variant thread waits too; then the last one to arrive
-runs all waiting batches as one call of the batch driver — jobs of several systems,
-:func:`~.batch.run_batch` with ``systems`` — longest predicted job first, and hands each thread its rows.
+(:meth:`BatchPool.run`) and waits until every live variant thread waits too; then the grid's own thread
+(:meth:`BatchPool.serve`) runs all waiting batches as one call of the batch driver — jobs of several
+systems, :func:`~.batch.run_batch` with ``systems`` — longest predicted job first, and hands each thread
+its rows.
 A check's own Python work (model selection, criteria) runs between its batches, while the others wait.
 
 Why: a variant's check asks for batches of a few jobs at a time (a chunk of its suite, one round of a
@@ -26,7 +27,7 @@ from __future__ import annotations
 
 import threading
 from contextlib import contextmanager
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -49,26 +50,28 @@ class _Request:
     error: BaseException | None = None
 
 
-@dataclass
 class BatchPool:
-    """A barrier that merges the batches of its member threads (see module docstring).  ``calls`` and
-    ``jobs`` count the batch-driver calls made and the jobs they ran; ``requests`` the batches asked for."""
+    """A barrier that merges the batches of its member threads (see module docstring), served by one owner
+    thread.  ``calls`` and ``jobs`` count the batch-driver calls made and the jobs they ran; ``requests`` the
+    batches asked for.
 
-    calls: int = 0
-    jobs: int = 0
-    requests: int = 0
-    _cv: threading.Condition = field(default_factory=threading.Condition, repr=False)
-    _live: int = 0
-    _pending: list = field(default_factory=list, repr=False)
-    _running: bool = False
-    _cancelled: bool = False
+    The owner makes the pool for ``members`` threads, starts them (each runs its work inside
+    :meth:`member`) and calls :meth:`serve`, which runs every round of waiting batches in the owner's thread
+    — numba's parallel regions are always opened by that one thread — until every member has ended."""
+
+    def __init__(self, members: int):
+        self.calls = 0
+        self.jobs = 0
+        self.requests = 0
+        self._cv = threading.Condition()
+        self._live = int(members)
+        self._pending: list[_Request] = []
+        self._cancelled = False
 
     @contextmanager
     def member(self):
-        """Make the calling thread a member for the ``with`` block: its :func:`current_pool` is this pool,
-        and while it lives the other members' batches wait for its own (or for its end)."""
-        with self._cv:
-            self._live += 1
+        """Run the ``with`` block as one of the pool's members: :func:`current_pool` is this pool in it, and
+        its end (normal or not) releases the others' batches from waiting for this one."""
         _local.pool = self
         try:
             yield self
@@ -77,7 +80,6 @@ class BatchPool:
             with self._cv:
                 self._live -= 1
                 self._cv.notify_all()
-            self._flush_if_ready()
 
     def cancel(self) -> None:
         """Wake every waiting member with :class:`PoolCancelled` (their batches are not run)."""
@@ -86,22 +88,16 @@ class BatchPool:
             self._cv.notify_all()
 
     def run(self, sp, motions, scales, t_ends, opts, costs=None) -> tuple[np.ndarray, np.ndarray]:
-        """The (summaries, diagnostics) of ``run_batch(sp, motions, scales, t_ends, opts)``, computed in a
-        shared call with the other members' waiting batches.  ``costs``: predicted cost per job (the
-        longest run first; default the end times)."""
+        """The (summaries, diagnostics) of ``run_batch(sp, motions, scales, t_ends, opts)`` (a member's call),
+        computed by the owner in one call with the other members' waiting batches.  ``costs``: predicted
+        cost per job (the longest run first; default the end times)."""
         req = _Request(np.ascontiguousarray(sp, dtype=np.float64), list(motions), list(scales),
                        [float(t) for t in t_ends], opts, list(t_ends if costs is None else costs))
         with self._cv:
             self.requests += 1
             self._pending.append(req)
             self._cv.notify_all()
-        while True:
-            # whoever changes the state (a new batch, a member's end, a finished round) checks whether the
-            # round can run, so a waiting thread needs only the wake-up of a finished round
-            self._flush_if_ready()
-            with self._cv:
-                if req.result is not None or req.error is not None:
-                    break
+            while req.result is None and req.error is None:
                 if self._cancelled:
                     raise PoolCancelled("the design grid was interrupted")
                 self._cv.wait()
@@ -109,18 +105,30 @@ class BatchPool:
             raise req.error
         return req.result
 
-    def _flush_if_ready(self) -> None:
-        """Run the waiting batches when every live member waits (and no round is running)."""
-        with self._cv:
-            if self._running or self._cancelled or not self._pending or len(self._pending) < self._live:
-                return
-            batch, self._pending, self._running = self._pending, [], True
-        try:
-            self._run_round(batch)
-        finally:
+    def serve(self, on_wake=None, poll: float = 0.5) -> None:
+        """The owner's loop: run each round of batches once every live member waits, until no member is
+        left.  ``on_wake()`` is called in this thread after every round and whenever a member ends (or
+        every ``poll`` seconds), e.g. to report finished variants."""
+        while True:
             with self._cv:
-                self._running = False
-                self._cv.notify_all()
+                while not self._cancelled and self._live > 0 and (not self._pending
+                                                                  or len(self._pending) < self._live):
+                    if not self._cv.wait(timeout=poll):
+                        break
+                if self._cancelled:
+                    raise PoolCancelled("the design grid was interrupted")
+                if self._live <= 0 and not self._pending:
+                    break
+                ready = bool(self._pending) and len(self._pending) >= self._live
+                batch, self._pending = (self._pending, []) if ready else ([], self._pending)
+            if batch:
+                self._run_round(batch)
+                with self._cv:
+                    self._cv.notify_all()
+            if on_wake is not None:
+                on_wake()
+        if on_wake is not None:
+            on_wake()
 
     def _run_round(self, batch: list[_Request]) -> None:
         groups: dict[bytes, list[_Request]] = {}

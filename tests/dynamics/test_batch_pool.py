@@ -22,7 +22,8 @@ def _systems():
 
 
 def _members(pool, work):
-    """Run ``work[k]()`` in a member thread each; returns their results (re-raises the first error)."""
+    """Run ``work[k]()`` in a member thread each while this thread serves the pool; returns their results
+    (re-raises the first error)."""
     results, errors = [None] * len(work), []
 
     def body(k):
@@ -35,6 +36,10 @@ def _members(pool, work):
     threads = [threading.Thread(target=body, args=(k,)) for k in range(len(work))]
     for t in threads:
         t.start()
+    try:
+        pool.serve()
+    finally:
+        pool.cancel()           # (a no-op once every member has ended)
     for t in threads:
         t.join(timeout=120)
         assert not t.is_alive(), "a member thread is stuck"
@@ -51,7 +56,7 @@ def test_members_batches_run_together_and_each_gets_its_own_result():
     plans = [[(0, [0, 1], loose), (0, [2, 3], loose), (0, [1], tight)],
              [(1, [3, 2, 1, 0], loose)],
              [(2, [0], loose), (2, [1, 2], tight)]]
-    pool = BatchPool()
+    pool = BatchPool(len(plans))
 
     def variant(plan):
         def work():
@@ -78,15 +83,14 @@ def test_a_lone_member_runs_at_once_and_outside_a_pool_nothing_changes():
     assert current_pool() is None
     sp = _systems()[0]
     motion = pulse_motion("ricker-anti", 0.38 * G, 0.95)
-    pool = BatchPool()
-    with pool.member():
-        s, _ = pool.run(sp, [motion], [1.0], [5.0], batch_options())
+    pool = BatchPool(1)
+    (s, _), = _members(pool, [lambda: pool.run(sp, [motion], [1.0], [5.0], batch_options())])
     assert pool.calls == 1 and current_pool() is None
     np.testing.assert_array_equal(s, run_batch(sp, [motion], [1.0], [5.0], batch_options())[0])
 
 
 def test_cancel_wakes_a_waiting_member():
-    pool = BatchPool()
+    pool = BatchPool(2)
     sp = _systems()[0]
     motion = pulse_motion("ricker-anti", 0.38 * G, 0.95)
     busy = threading.Event()
@@ -100,7 +104,7 @@ def test_cancel_wakes_a_waiting_member():
         busy.set()
         release.wait(timeout=60)
 
-    def cancel_later():
+    def cancel_later():     # as the grid does on Ctrl-C
         busy.wait(timeout=60)
         time.sleep(0.2)
         pool.cancel()
@@ -108,3 +112,4 @@ def test_cancel_wakes_a_waiting_member():
     threading.Thread(target=cancel_later).start()
     with pytest.raises(PoolCancelled):
         _members(pool, [other, waiting])
+    assert pool.calls == 0
