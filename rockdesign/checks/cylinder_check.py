@@ -160,7 +160,7 @@ class PairOutcome:
 def _run_3d(cyl, pair, a, *, rtol=None, atol=None) -> PairRun:
     r = simulate_cylinder(cyl, pair, free_vibration=a.free_vibration, rtol=rtol or a.rtol, atol=atol or a.atol,
                           rest_velocity=a.rest_velocity)
-    AnalysisCount.total += 1
+    AnalysisCount.add(1)
     return PairRun(r.theta_max / cyl.alpha, r.theta_max / cyl.theta_overturn, r.overturned, r.overturn_mode,
                    r.quasi_impacts, r.uplift_time, r.status,
                    r.min_contact_force_over_weight if cyl.damped else None)
@@ -170,7 +170,7 @@ def _planar_component(block, samples, dt, a) -> dict:
     motion = record_motion("component", samples, dt)
     r = simulate(block, motion, model="exact", rtol=a.rtol, atol=a.atol, t_end=motion.duration + a.free_vibration,
                  overturn="static", rest_velocity=a.rest_velocity)
-    AnalysisCount.total += 1
+    AnalysisCount.add(1)
     return {"theta_max_over_alpha": r.theta_max_over_alpha, "overturned": bool(r.overturned), "impacts": r.impacts}
 
 

@@ -7,6 +7,11 @@ Shared work:
   variant's uplift acceleration and is keyed on it; a cylinder's record pairs and their SD_max are
   shared by the variants of one ``[excitation]``) and handed to the check's ``records`` hook;
 - the kernels compile (or load from the cache) once, in this one process;
+- the analyses of all variants run together: each variant's check runs in a thread of its own and its
+  batches (a chunk of a suite, a round of a margin scan) wait for the other variants' to run as one call
+  of the batch driver (:mod:`rockdesign.dynamics.batch_pool`) — as many times more jobs per call as there
+  are variants, so the cores stay busy to the end of each call (on a dask cluster the variants run one
+  after the other, each on the whole cluster);
 - each variant runs the check's own stages through its kind's grid hooks (:mod:`rockdesign.kinds`:
   ``grid_records``, ``grid_check``, ``grid_cell``; planar: :func:`rockdesign.checks.check.run_check`,
   cylinder: :func:`rockdesign.checks.cylinder_check.run_cylinder_check`, both with ``verdict_only``):
@@ -26,6 +31,7 @@ from __future__ import annotations
 import hashlib
 import json
 import math
+import threading
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -38,7 +44,9 @@ from .variants import Variable, Variant, variant_toml
 @dataclass
 class GridRun:
     """The grid's outcome: ``cells`` (one dict per variant, design.json's ``cells``), the analyses run
-    and the lower bound of those saved, how many variants came from a stored earlier run."""
+    and the lower bound of those saved, how many variants came from a stored earlier run, and
+    ``shared_batches`` — the variants checked together, the batches they asked for and the calls of the
+    batch driver that ran them (None when no variants ran together)."""
 
     variables: list[Variable]
     cells: list[dict]
@@ -46,6 +54,7 @@ class GridRun:
     analyses_saved: int = 0
     resumed: int = 0
     notes: list[str] = field(default_factory=list)
+    shared_batches: dict | None = None
 
 
 def _digest(text: str) -> str:
@@ -84,53 +93,139 @@ EMPTY = dict.fromkeys(("governing", "acmr", "acmr_required", "p_collapse_design"
 
 def run_grid(variant_list: list[Variant], variables, *, records_dir=None, executor=None, store: Path | None = None,
              progress=None, stage_progress=None) -> GridRun:
-    """Check every variant (see module docstring); ``progress(done, total, cell)`` after each variant,
-    ``stage_progress(stage, done, total)`` inside one (the check's stages); ``store``: the folder of the
-    per-variant results that makes the run resumable (None: nothing stored)."""
-    from ..checks.runner import AnalysisCount
+    """Check every variant (see module docstring); ``progress(done, total, cell)`` as each variant ends,
+    ``stage_progress(stage, done, total)`` inside one (the check's stages; not while variants run together);
+    ``store``: the folder of the per-variant results that makes the run resumable (None: nothing stored).
+
+    Variants whose analyses can share batches (:attr:`~rockdesign.kinds.base.StructureKind.grid_shared_batches`)
+    are checked together, each in a thread of its own, their batches merged into shared calls of the batch
+    driver (:mod:`rockdesign.dynamics.batch_pool`); on a dask cluster (``executor``) one after the other."""
     run = GridRun(list(variables), [])
     records_cache: dict[str, tuple] = {}
     total = len(variant_list)
-    for done, variant in enumerate(variant_list, 1):
+    cells: list[dict | None] = [None] * total
+    tasks = []                  # (position, variant, kind, records, stored path) of the variants to check
+    for pos, variant in enumerate(variant_list):
         if variant.project is None:
-            cell = {**_base_cell(variant, variables), **EMPTY, "verdict": "INVALID", "reason": variant.invalid,
-                    "decided_at_design_level": False, "n_failed_analyses": 0, "analyses": 0, "analyses_saved": 0}
-        else:
-            path = None if store is None else store / f"{_digest(variant_toml(variant.raw))}.json"
-            if path is not None and path.is_file():
-                cell = json.loads(path.read_text(encoding="utf-8"))
-                cell["resumed"] = True
-                run.resumed += 1
-            else:
-                proj = variant.project
-                kind = kind_of(proj)
-                key = f"{kind.name}\n{kind.grid_records_key(proj)}"
-                if key not in records_cache:     # input errors stop the grid (exit 2)
-                    records_cache[key] = kind.grid_records(proj, records_dir)
-                before = AnalysisCount.total
-                try:
-                    result = kind.grid_check(proj, records=records_cache[key], records_dir=records_dir,
-                                             executor=executor, progress=stage_progress)
-                except RockdesignError as exc:  # the variant's own model or geometry is impossible
-                    cell = {**_base_cell(variant, variables), **EMPTY, "reason": str(exc),
-                            "verdict": "INVALID" if isinstance(exc, ProjectError) else "ERROR",
-                            "decided_at_design_level": False, "n_failed_analyses": 0,
-                            "analyses": AnalysisCount.total - before, "analyses_saved": 0}
-                else:
-                    cell = _cell(kind, variant, variables, result, AnalysisCount.total - before)
-                if path is not None:
-                    path.parent.mkdir(parents=True, exist_ok=True)
-                    tmp = path.with_suffix(".tmp")
-                    tmp.write_text(json.dumps(cell, default=_json_default), encoding="utf-8")
-                    tmp.replace(path)        # atomic: an interruption leaves no half-written variant
-                cell["resumed"] = False
-        run.cells.append(cell)
+            cells[pos] = {**_base_cell(variant, variables), **EMPTY, "verdict": "INVALID", "reason": variant.invalid,
+                          "decided_at_design_level": False, "n_failed_analyses": 0, "analyses": 0,
+                          "analyses_saved": 0}
+            continue
+        path = None if store is None else store / f"{_digest(variant_toml(variant.raw))}.json"
+        if path is not None and path.is_file():
+            cell = json.loads(path.read_text(encoding="utf-8"))
+            cell["resumed"] = True
+            cells[pos] = cell
+            run.resumed += 1
+            continue
+        proj = variant.project
+        kind = kind_of(proj)
+        key = f"{kind.name}\n{kind.grid_records_key(proj)}"
+        if key not in records_cache:     # input errors stop the grid (exit 2), before any analysis
+            records_cache[key] = kind.grid_records(proj, records_dir)
+        tasks.append((pos, variant, kind, records_cache[key], path))
+
+    done = [0]
+
+    def report(pos: int) -> None:
+        done[0] += 1
+        cell = cells[pos]
         if not cell.get("resumed"):
             run.analyses_run += cell.get("analyses") or 0
             run.analyses_saved += cell.get("analyses_saved") or 0
         if progress is not None:
-            progress(done, total, cell)
+            progress(done[0], total, cell)
+
+    for pos in range(total):        # invalid and stored variants first
+        if cells[pos] is not None:
+            report(pos)
+
+    def check(task, stages) -> None:
+        pos, variant, kind, records, path = task
+        cells[pos] = _check_variant(variant, variables, kind, records, path, records_dir=records_dir,
+                                    executor=executor, progress=stages)
+
+    together = [t for t in tasks if t[2].grid_shared_batches] if executor is None else []
+    if len(together) > 1:
+        pool = _check_together(together, lambda task: check(task, None), report)
+        run.shared_batches = {"variants": len(together), "batches": pool.requests, "driver_calls": pool.calls,
+                              "analyses": pool.jobs}
+    for task in tasks:
+        if cells[task[0]] is None:
+            check(task, stage_progress)
+            report(task[0])
+    run.cells = cells
     return run
+
+
+def _check_variant(variant, variables, kind, records, path, *, records_dir, executor, progress) -> dict:
+    """The cell of one variant's check (stored in ``path`` for a resumed run)."""
+    from ..checks.runner import AnalysisCount
+    before = AnalysisCount.mine()
+    try:
+        result = kind.grid_check(variant.project, records=records, records_dir=records_dir, executor=executor,
+                                 progress=progress)
+    except RockdesignError as exc:  # the variant's own model or geometry is impossible
+        cell = {**_base_cell(variant, variables), **EMPTY, "reason": str(exc),
+                "verdict": "INVALID" if isinstance(exc, ProjectError) else "ERROR",
+                "decided_at_design_level": False, "n_failed_analyses": 0,
+                "analyses": AnalysisCount.mine() - before, "analyses_saved": 0}
+    else:
+        cell = _cell(kind, variant, variables, result, AnalysisCount.mine() - before)
+    if path is not None:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        tmp = path.with_suffix(f".{threading.get_ident()}.tmp")
+        tmp.write_text(json.dumps(cell, default=_json_default), encoding="utf-8")
+        tmp.replace(path)        # atomic: an interruption leaves no half-written variant
+    cell["resumed"] = False
+    return cell
+
+
+def _check_together(tasks, check, report):
+    """Check ``tasks`` at once, a thread each, their analyses in shared batches served by this thread;
+    ``report(position)`` here as each one ends.  An error or Ctrl-C cancels the others and is raised.
+    Returns the :class:`~rockdesign.dynamics.batch_pool.BatchPool` (its counts)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from ..dynamics.batch_pool import BatchPool, PoolCancelled
+    pool = BatchPool(len(tasks))
+    errors: list[BaseException] = []
+    finished: list[int] = []
+    lock = threading.Lock()
+
+    def body(task) -> None:
+        try:
+            with pool.member():
+                check(task)
+        except PoolCancelled:
+            return
+        except BaseException as exc:    # noqa: BLE001 — raised again in the grid's thread
+            errors.append(exc)
+            pool.cancel()
+            return
+        with lock:
+            finished.append(task[0])
+
+    def on_wake() -> None:
+        with lock:
+            ended, finished[:] = list(finished), []
+        for pos in ended:
+            report(pos)
+
+    with ThreadPoolExecutor(max_workers=len(tasks), thread_name_prefix="variant") as threads:
+        for task in tasks:
+            threads.submit(body, task)
+        try:
+            pool.serve(on_wake)
+        except PoolCancelled:
+            pass
+        except BaseException:
+            pool.cancel()               # Ctrl-C: the variants stop at their next batch
+            raise
+    on_wake()
+    if errors:
+        raise errors[0]
+    return pool
 
 
 def _json_default(x):

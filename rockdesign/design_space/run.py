@@ -61,7 +61,8 @@ def design(project_path, vary: list[str], *, records_dir: str | None = None, exe
     grid = run_grid(cells, variables, records_dir=records_dir, executor=executor, store=store, progress=progress,
                     stage_progress=stage_progress)
     settings = {"early_stopping": kind.design_skipped, "verdict_rule": kind.design_rule,
-                "executor": "dask" if executor is not None else "local"}
+                "executor": "dask" if executor is not None else "local",
+                "shared_batches": grid.shared_batches}
     return DesignResult(base, grid, recommended(grid.cells, kind.design_material), settings)
 
 

@@ -37,6 +37,10 @@ class StructureKind(abc.ABC):
     """What the design grid skips of a variant's check (design.json ``settings.early_stopping``)."""
     design_material: tuple[str, str] = ("column material", "no elastic superstructure demand")
     """The recommended design without a superstructure force to rank by: (what is least, why)."""
+    grid_shared_batches: bool = False
+    """Whether the design grid may check variants of this kind together, their analyses merged into shared
+    batches (:mod:`rockdesign.dynamics.batch_pool`; the analyses run through
+    :func:`rockdesign.checks.runner.run_jobs`)."""
     key_alternatives: dict[str, tuple[str, ...]] | None = None
     """Keys of the kind's project tables that say the same thing two ways: a ``--vary`` of one replaces the
     others (None: :data:`rockdesign.design_space.variants.ALTERNATIVES`)."""

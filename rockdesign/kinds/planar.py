@@ -30,6 +30,7 @@ class Planar(StructureKind):
     check_kernels = "check"
     design_rule = planar_grid.RULE
     design_skipped = planar_grid.SKIPPED
+    grid_shared_batches = True       # every analysis of its check runs through run_jobs
 
     def claims(self, raw):
         return True            # the default kind: its parser names what is missing ([column] or [podium])

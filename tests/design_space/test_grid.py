@@ -153,3 +153,35 @@ def test_design_report_and_files(grid, tmp_path):
     assert "Recommended design" in html and "podium.width = 0.65 m" in html
     assert {"verdict", "acmr", "rotation", "thesis_plane"} <= set(written)   # rigid superstructure: no shear chart
     assert "FAIL" in html and "unacc." in html
+
+
+def test_variants_checked_together_equal_variants_checked_one_after_the_other(small, grid, monkeypatch, tmp_path):
+    """The grid's shared batches (every variant's analyses merged into shared calls of the batch driver)
+    change nothing in a cell: the same grid checked one variant after the other gives the same cells."""
+    from rockdesign.kinds.planar import Planar
+    shared = grid.grid.shared_batches
+    assert shared["variants"] == 2 and shared["driver_calls"] < shared["batches"]
+    assert shared["analyses"] == grid.grid.analyses_run
+    monkeypatch.setattr(Planar, "grid_shared_batches", False)
+    folder, path = small
+    alone = design(path, VARY, store=tmp_path / "variants")
+    assert alone.grid.shared_batches is None
+    assert alone.as_json()["cells"] == grid.as_json()["cells"]
+
+
+def test_an_error_in_one_variant_stops_the_grid_without_hanging(small, monkeypatch, tmp_path):
+    """A variant that raises (a bug, Ctrl-C in its thread) cancels the others at their next batch and the
+    error reaches the caller; nothing waits forever for the failed variant's batches."""
+    from rockdesign.kinds import planar_grid
+    real = planar_grid.grid_check
+    calls = []
+
+    def failing(project, **kw):
+        calls.append(project.system.column.half_width)
+        if len(calls) == 2:
+            raise RuntimeError("boom")
+        return real(project, **kw)
+    monkeypatch.setattr(planar_grid, "grid_check", failing)
+    folder, path = small
+    with pytest.raises(RuntimeError, match="boom"):
+        design(path, VARY, store=tmp_path / "variants")
