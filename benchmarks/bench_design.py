@@ -8,6 +8,11 @@ as an engineer would; the grid is one ``design --no-pdf`` process.  A 1 × 3 gri
 first height) against the three matching checks shows how the saving grows with the grid.  Every
 cell's verdict is compared with its check's verdict (the benchmark fails if one differs).
 
+In one process, the 3 × 3 grid with its variants checked together (their batches merged into shared
+calls of the batch driver, the default) against the same grid checked one variant after the other,
+alternating, ``--rounds`` times each: the ratio of the medians, and the cells compared (they must be
+equal).
+
     .venv/bin/python benchmarks/bench_design.py [--out benchmarks/results/design.json]
 """
 from __future__ import annotations
@@ -70,6 +75,7 @@ def run(args: list[str], cwd: Path) -> tuple[float, int, str]:
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--out", default=str(ROOT / "benchmarks" / "results" / "design.json"))
+    ap.add_argument("--rounds", type=int, default=2, help="rounds of the in-process shared/one-by-one comparison")
     opts = ap.parse_args()
     from rockdesign.bench.timing import machine_info
     from rockdesign.design_space.variants import parse_vary, variant_document, variant_toml
@@ -96,6 +102,7 @@ def main() -> None:
         dt3, code3, _ = run(["design", str(base), "--vary", WIDTH, "--no-pdf", "-o", str(tmp / "grid1x3")], tmp)
         row = json.loads((tmp / "grid1x3" / "design.json").read_text())
         print(f"design 1 × 3: {dt3:.1f} s")
+        together = shared_vs_one_by_one(base, tmp, opts.rounds)
     mismatches = [c["index"] for c in grid["cells"] if c["verdict"] != checks[tuple(c["index"])]["verdict"]]
     mismatches += [c["index"] for c in row["cells"] if c["verdict"] != checks[(c["index"][0], 0)]["verdict"]]
     sum9 = sum(c["seconds"] for c in checks.values())
@@ -112,6 +119,7 @@ def main() -> None:
                                   "FAIL": sum(c["verdict"] == "FAIL" for c in grid["cells"])}},
         "grid_1x3": {"seconds": dt3, "separate_checks_seconds": sum3, "ratio": dt3 / sum3,
                      "analyses_run": row["analyses_run"], "analyses_saved_at_least": row["analyses_saved"]},
+        "grid_3x3_shared_vs_one_by_one": together,
         "verdicts_equal": not mismatches, "mismatches": mismatches,
         "goal_ratio_3x3_at_most_0.6": dt9 / sum9 <= 0.6,
     }
@@ -121,6 +129,33 @@ def main() -> None:
           f"ratio {dt3 / sum3:.2f}; verdicts equal: {not mismatches}")
     if mismatches:
         raise SystemExit(f"verdicts differ from the checks at {mismatches}")
+    if not together["cells_equal"]:
+        raise SystemExit("the grid's cells differ between shared batches and one variant after the other")
+
+
+def shared_vs_one_by_one(base: Path, tmp: Path, rounds: int) -> dict:
+    """The 3 × 3 grid in this process, variants together (shared batches) and one after the other,
+    alternating: seconds of each run, the ratio of the medians, the shared batches' counts."""
+    import statistics
+
+    from rockdesign.design_space.run import design
+    from rockdesign.kinds.planar import Planar
+    times = {"together": [], "one_by_one": []}
+    cells = {}
+    shared = None
+    for k in range(rounds):
+        for how in ("together", "one_by_one"):
+            Planar.grid_shared_batches = how == "together"
+            t0 = time.perf_counter()
+            res = design(base, [WIDTH, HEIGHT], store=None)
+            times[how].append(time.perf_counter() - t0)
+            cells[how] = [{key: v for key, v in c.items() if key != "resumed"} for c in res.as_json()["cells"]]
+            shared = res.grid.shared_batches or shared
+            print(f"in-process 3 × 3, {how.replace('_', ' ')}: {times[how][-1]:.1f} s")
+    Planar.grid_shared_batches = True
+    med = {how: statistics.median(v) for how, v in times.items()}
+    return {"seconds": times, "ratio_together_over_one_by_one": med["together"] / med["one_by_one"],
+            "shared_batches": shared, "cells_equal": cells["together"] == cells["one_by_one"]}
 
 
 def _variant(tmp: Path, raw: dict, variables, index, variant_document, variant_toml) -> Path:
