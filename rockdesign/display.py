@@ -123,7 +123,7 @@ def demand_rows(r, g: float) -> list[tuple[str, str, str]]:
 
 def check_summary(data: dict, out_dir, console: Console) -> None:
     """Print the checks, what the run found (failed analyses, missing records), the verdict and its
-    reason, and where the report went."""
+    reason, and where the report went (``out_dir``; None: not yet, the caller says it)."""
     s = data["summary"]
     table = Table(title=escape(f"{data['project']['name']} — design check"), title_justify="left")
     for col in ("check", "utilisation or ratio", "result"):
@@ -166,4 +166,5 @@ def check_summary(data: dict, out_dir, console: Console) -> None:
     colour = "green" if data["verdict"] == "PASS" and data.get("verdict_robust", True) else (
         "yellow" if data["verdict"] in ("PASS", "NOT DECIDED") else "red")
     console.print(f"verdict: [bold {colour}]{escape(data.get('verdict_reason') or data['verdict'])}[/]", highlight=False)
-    console.print(f"output: {escape(str(out_dir))}", highlight=False)
+    if out_dir is not None:
+        console.print(f"output: {escape(str(out_dir))}", highlight=False)

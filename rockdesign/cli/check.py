@@ -40,6 +40,8 @@ def register(app: typer.Typer, handle_errors) -> None:
 
 
 def _check(rd, project, out, as_json, no_pdf, html, no_margins, records_dir, dask, pdf_worker) -> None:
+    from rich.markup import escape
+
     from ..display import check_summary
     proj = rd.load_project(project)
     rd.check_options(proj, records_dir=records_dir, dask=dask)
@@ -50,12 +52,14 @@ def _check(rd, project, out, as_json, no_pdf, html, no_margins, records_dir, das
                          pdf_in_process=pdf_worker is None)
         result = rd.run_check(proj, records_dir=records_dir, margins=not no_margins,
                               progress=not as_json or make_console(stderr=True).is_terminal, executor=dask)
+        data = result.as_json()
+        if not as_json:     # the verdict first: the engineer reads it while the report is being written
+            check_summary(data, None, make_console())
         _report(rd.write_report, result, folder, no_pdf, html, pdf_worker)
-    data = result.as_json()
     if as_json:
         sys.stdout.write(rd.json_text(data))
     else:
-        check_summary(data, folder.target, make_console())
+        make_console().print(f"output: {escape(str(folder.target))}", highlight=False)
     # failed analyses: the check is incomplete (exit 2), whatever the other records say
     raise typer.Exit(2 if data.get("failed_records") else _exit_code(data["verdict"]))
 
