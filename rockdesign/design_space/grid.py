@@ -91,6 +91,10 @@ EMPTY = dict.fromkeys(("governing", "acmr", "acmr_required", "p_collapse_design"
 """The check's numbers of a cell that has none (INVALID, ERROR)."""
 
 
+MAX_TOGETHER = 64
+"""Variants checked together at most (a thread each); a larger grid runs in waves of this many."""
+
+
 def run_grid(variant_list: list[Variant], variables, *, records_dir=None, executor=None, store: Path | None = None,
              progress=None, stage_progress=None) -> GridRun:
     """Check every variant (see module docstring); ``progress(done, total, cell)`` as each variant ends,
@@ -147,9 +151,12 @@ def run_grid(variant_list: list[Variant], variables, *, records_dir=None, execut
 
     together = [t for t in tasks if t[2].grid_shared_batches] if executor is None else []
     if len(together) > 1:
-        pool = _check_together(together, lambda task: check(task, None), report)
-        run.shared_batches = {"variants": len(together), "batches": pool.requests, "driver_calls": pool.calls,
-                              "analyses": pool.jobs}
+        counts = {"variants": len(together), "batches": 0, "driver_calls": 0, "analyses": 0}
+        for start in range(0, len(together), MAX_TOGETHER):
+            pool = _check_together(together[start:start + MAX_TOGETHER], lambda task: check(task, None), report)
+            for key, value in (("batches", pool.requests), ("driver_calls", pool.calls), ("analyses", pool.jobs)):
+                counts[key] += value
+        run.shared_batches = counts
     for task in tasks:
         if cells[task[0]] is None:
             check(task, stage_progress)
