@@ -1,7 +1,8 @@
 """Benchmark: the full design check of the podium example (44 records, PDF included).
 
-Budget (issue 16): warm run ≤ 8 s, first (JIT-compiling) run < 45 s on the 2-core machine (before:
-15 s and 90 s).  ``--baseline-root DIR`` also times another checkout's ``check`` (e.g. main) warm, runs
+First (JIT-compiling) run < 45 s on the 2-core machine.  ``--pairs N`` (default 5) runs ``check`` and
+``check --no-pdf`` alternately, warm, and reports the median ratio of the pairs (what the report adds;
+goal ≤ 1.5×), and the report's stages are timed in this process (figures, HTML, PDF).  ``--baseline-root DIR`` also times another checkout's ``check`` (e.g. main) warm, runs
 alternating with ours in this process (the machine is shared: best of ``--repeats``), and compares
 verdict, counts and classes of the two results.json.  The cold run uses an empty numba cache directory (NUMBA_CACHE_DIR), so nothing of
 the repository's cache is reused; the warm run repeats it with that cache filled.  As a ratio
@@ -32,8 +33,9 @@ CPU_SECONDS = {}
 grows with the load, the CPU time much less; CPU/cores is the wall time of an idle machine at best."""
 
 
-def timed_check(project: str, out_dir: str, cache_dir: str | None, root: Path = ROOT) -> tuple[float, int]:
-    """Seconds and exit code of ``rockdesign check project -o out_dir`` run from the checkout ``root``
+def timed_check(project: str, out_dir: str, cache_dir: str | None, root: Path = ROOT,
+                extra: tuple[str, ...] = ()) -> tuple[float, int]:
+    """Seconds and exit code of ``rockdesign check project -o out_dir [extra]`` run from the checkout ``root``
     (its CPU seconds in :data:`CPU_SECONDS`)."""
     import resource
     env = dict(os.environ, PYTHONPATH=str(root))
@@ -41,8 +43,8 @@ def timed_check(project: str, out_dir: str, cache_dir: str | None, root: Path = 
         env["NUMBA_CACHE_DIR"] = cache_dir
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
-    proc = subprocess.run([sys.executable, "-m", "rockdesign.cli", "check", project, "-o", out_dir], env=env, cwd=root,
-                          capture_output=True, text=True)
+    proc = subprocess.run([sys.executable, "-m", "rockdesign.cli", "check", project, "-o", out_dir, *extra], env=env,
+                          cwd=root, capture_output=True, text=True)
     dt = time.perf_counter() - t0
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     CPU_SECONDS["last"] = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
@@ -141,6 +143,7 @@ def main():
     ap.add_argument("--skip-cold", action="store_true", help="only the warm run")
     ap.add_argument("--baseline-root", default=None, help="another checkout (e.g. /work/main) timed alternately")
     ap.add_argument("--repeats", type=int, default=2, help="warm runs (best is reported)")
+    ap.add_argument("--pairs", type=int, default=5, help="paired runs of check and check --no-pdf (0: none)")
     args = ap.parse_args()
     baseline = None
     with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as work:
@@ -157,7 +160,8 @@ def main():
                 base_warms.append(b_k)
                 print(f"baseline warm run {k + 1}: {b_k:.1f} s")
         warm = min(warms)
-        print(f"warm run: {warm:.1f} s (best of {len(warms)}; budget 8 s)")
+        print(f"warm run: {warm:.1f} s (best of {len(warms)})")
+        cost = report_cost(args.project, work, cache, args.pairs) if args.pairs else None
         if args.baseline_root:
             baseline = {"root": args.baseline_root, "warm_run_s": min(base_warms), "runs_s": base_warms,
                         "ratio_baseline_over_ours": min(base_warms) / warm,
@@ -166,8 +170,56 @@ def main():
             print(f"baseline warm {min(base_warms):.1f} s → ours is {baseline['ratio_baseline_over_ours']:.2f}× "
                   f"faster; same verdict/counts/classes: {baseline['outcome']}")
     write_result(args.out, {"benchmark": "check", "project": args.project, "first_run_s": cold, "warm_run_s": warm,
-                            "warm_runs_s": warms, "budget_first_s": 45, "budget_warm_s": 8, "baseline": baseline,
+                            "warm_runs_s": warms, "budget_first_s": 45, "baseline": baseline,
+                            "report_cost": cost, "report_stages_in_process": report_stages(args.project),
                             "suite_rha_vs_scipy": reported_suite_ratio(args.project)})
+
+
+def report_cost(project: str, work: str, cache: str, pairs: int) -> dict:
+    """``check`` against ``check --no-pdf`` (warm), run alternately ``pairs`` times: the median over the
+    pairs of the wall-time and CPU-time ratios (the goal: the report adds at most half, ratio ≤ 1.5)."""
+    import statistics
+    rows = []
+    for k in range(pairs):
+        a, _ = timed_check(project, str(Path(work) / "pdf"), cache)
+        a_cpu = CPU_SECONDS["last"]
+        b, _ = timed_check(project, str(Path(work) / "nopdf"), cache, extra=("--no-pdf",))
+        b_cpu = CPU_SECONDS["last"]
+        rows.append({"check_s": a, "no_pdf_s": b, "check_cpu_s": a_cpu, "no_pdf_cpu_s": b_cpu})
+        print(f"pair {k + 1}: check {a:.1f} s ({a_cpu:.1f} CPU-s), --no-pdf {b:.1f} s ({b_cpu:.1f} CPU-s)")
+    wall = statistics.median(r["check_s"] / r["no_pdf_s"] for r in rows)
+    cpu = statistics.median(r["check_cpu_s"] / r["no_pdf_cpu_s"] for r in rows)
+    print(f"check / --no-pdf: wall {wall:.2f}×, CPU {cpu:.2f}× (median of {pairs} pairs; goal ≤ 1.5× wall)")
+    return {"pairs": rows, "wall_ratio_median": wall, "cpu_ratio_median": cpu, "goal_wall_ratio_at_most": 1.5}
+
+
+def report_stages(project: str) -> dict:
+    """The report's stages timed in this process after one check: figures, HTML, PDF (process CPU seconds,
+    after a warm-up render, so imports and fonts are not counted), and whether WeasyPrint subsets fonts
+    with HarfBuzz (the system library libharfbuzz-subset0) or fontTools."""
+    import time as _time
+
+    import rockdesign.library as rd
+    from rockdesign.report import render
+    proj = rd.load_project(ROOT / project)
+    result = rd.run_check(proj, progress=False)
+    render.warm_up()
+    t = _time.process_time()
+    figs = render.render_figures(result)
+    t_fig = _time.process_time() - t
+    t = _time.process_time()
+    html = render.render_html(result, figures=figs)
+    t_html = _time.process_time() - t
+    with tempfile.TemporaryDirectory() as tmp:
+        t = _time.process_time()
+        render.html_to_pdf(html, Path(tmp) / "report.pdf")
+        t_pdf = _time.process_time() - t
+    from weasyprint.text.ffi import harfbuzz_subset
+    out = {"figures_cpu_s": t_fig, "figures": len(figs), "html_cpu_s": t_html, "pdf_cpu_s": t_pdf,
+           "font_subsetting": "harfbuzz" if harfbuzz_subset is not None else "fonttools"}
+    print(f"report stages (CPU-s): figures {t_fig:.2f} ({len(figs)}), HTML {t_html:.2f}, PDF {t_pdf:.2f} "
+          f"(fonts subset by {out['font_subsetting']})")
+    return out
 
 
 if __name__ == "__main__":
