@@ -8,10 +8,10 @@ Shared work:
   shared by the variants of one ``[excitation]``) and handed to the check's ``records`` hook;
 - the kernels compile (or load from the cache) once, in this one process;
 - the analyses of all variants run together: each variant's check runs in a thread of its own and its
-  batches (a chunk of a suite, a round of a margin scan) wait for the other variants' to run as one call
-  of the batch driver (:mod:`rockdesign.dynamics.batch_pool`) — as many times more jobs per call as there
-  are variants, so the cores stay busy to the end of each call (on a dask cluster the variants run one
-  after the other, each on the whole cluster);
+  batches (a chunk of a suite, a round of a margin scan) wait for the other running variants' to run as
+  one call of the batch driver (:mod:`rockdesign.dynamics.batch_pool`) — as many times more jobs per call
+  as there are variants running (:func:`at_once`), so the cores stay busy to the end of each call (on a
+  dask cluster the variants run one after the other, each on the whole cluster);
 - each variant runs the check's own stages through its kind's grid hooks (:mod:`rockdesign.kinds`:
   ``grid_records``, ``grid_check``, ``grid_cell``; planar: :func:`rockdesign.checks.check.run_check`,
   cylinder: :func:`rockdesign.checks.cylinder_check.run_cylinder_check`, both with ``verdict_only``):
@@ -91,8 +91,12 @@ EMPTY = dict.fromkeys(("governing", "acmr", "acmr_required", "p_collapse_design"
 """The check's numbers of a cell that has none (INVALID, ERROR)."""
 
 
-MAX_TOGETHER = 64
-"""Variants checked together at most (a thread each); a larger grid runs in waves of this many."""
+def at_once() -> int:
+    """Variants checked at the same time (a thread each; the next starts when one ends): 4 per core, at
+    least 8, at most 64 — enough jobs per shared call to keep the cores busy, few enough that variants
+    finish (and are stored for a resumed run) one after another."""
+    from ..execution.executor import usable_cores
+    return min(64, max(8, 4 * usable_cores()))
 
 
 def run_grid(variant_list: list[Variant], variables, *, records_dir=None, executor=None, store: Path | None = None,
@@ -151,12 +155,9 @@ def run_grid(variant_list: list[Variant], variables, *, records_dir=None, execut
 
     together = [t for t in tasks if t[2].grid_shared_batches] if executor is None else []
     if len(together) > 1:
-        counts = {"variants": len(together), "batches": 0, "driver_calls": 0, "analyses": 0}
-        for start in range(0, len(together), MAX_TOGETHER):
-            pool = _check_together(together[start:start + MAX_TOGETHER], lambda task: check(task, None), report)
-            for key, value in (("batches", pool.requests), ("driver_calls", pool.calls), ("analyses", pool.jobs)):
-                counts[key] += value
-        run.shared_batches = counts
+        pool = _check_together(together, lambda task: check(task, None), report, at_once())
+        run.shared_batches = {"variants": len(together), "batches": pool.requests, "driver_calls": pool.calls,
+                              "analyses": pool.jobs}
     for task in tasks:
         if cells[task[0]] is None:
             check(task, stage_progress)
@@ -188,10 +189,10 @@ def _check_variant(variant, variables, kind, records, path, *, records_dir, exec
     return cell
 
 
-def _check_together(tasks, check, report):
-    """Check ``tasks`` at once, a thread each, their analyses in shared batches served by this thread;
-    ``report(position)`` here as each one ends.  An error or Ctrl-C cancels the others and is raised.
-    Returns the :class:`~rockdesign.dynamics.batch_pool.BatchPool` (its counts)."""
+def _check_together(tasks, check, report, threads: int):
+    """Check ``tasks`` in ``threads`` threads (the next task starting as one ends), their analyses in shared
+    batches served by this thread; ``report(position)`` here as each one ends.  An error or Ctrl-C cancels
+    the others and is raised.  Returns the :class:`~rockdesign.dynamics.batch_pool.BatchPool` (its counts)."""
     from concurrent.futures import ThreadPoolExecutor
 
     from ..dynamics.batch_pool import BatchPool, PoolCancelled
@@ -219,9 +220,10 @@ def _check_together(tasks, check, report):
         for pos in ended:
             report(pos)
 
-    with ThreadPoolExecutor(max_workers=len(tasks), thread_name_prefix="variant") as threads:
+    workers = max(1, min(threads, len(tasks)))
+    with ThreadPoolExecutor(max_workers=workers, thread_name_prefix="variant") as pool_threads:
         for task in tasks:
-            threads.submit(body, task)
+            pool_threads.submit(body, task)
         try:
             pool.serve(on_wake)
         except PoolCancelled:

@@ -55,16 +55,19 @@ class BatchPool:
     thread.  ``calls`` and ``jobs`` count the batch-driver calls made and the jobs they ran; ``requests`` the
     batches asked for.
 
-    The owner makes the pool for ``members`` threads, starts them (each runs its work inside
-    :meth:`member`) and calls :meth:`serve`, which runs every round of waiting batches in the owner's thread
-    — numba's parallel regions are always opened by that one thread — until every member has ended."""
+    The owner makes the pool for ``members`` pieces of work, runs them in threads (each inside
+    :meth:`member`; as many at a time as it likes, the next starting when one ends) and calls :meth:`serve`,
+    which runs every round of waiting batches in the owner's thread — numba's parallel regions are always
+    opened by that one thread — until every member has ended.  A round runs when every *running* member
+    waits, so a member still queued for a thread never holds the others up."""
 
     def __init__(self, members: int):
         self.calls = 0
         self.jobs = 0
         self.requests = 0
         self._cv = threading.Condition()
-        self._live = int(members)
+        self._unfinished = int(members)
+        self._running = 0
         self._pending: list[_Request] = []
         self._cancelled = False
 
@@ -72,13 +75,16 @@ class BatchPool:
     def member(self):
         """Run the ``with`` block as one of the pool's members: :func:`current_pool` is this pool in it, and
         its end (normal or not) releases the others' batches from waiting for this one."""
+        with self._cv:
+            self._running += 1
         _local.pool = self
         try:
             yield self
         finally:
             _local.pool = None
             with self._cv:
-                self._live -= 1
+                self._running -= 1
+                self._unfinished -= 1
                 self._cv.notify_all()
 
     def cancel(self) -> None:
@@ -106,20 +112,19 @@ class BatchPool:
         return req.result
 
     def serve(self, on_wake=None, poll: float = 0.5) -> None:
-        """The owner's loop: run each round of batches once every live member waits, until no member is
-        left.  ``on_wake()`` is called in this thread after every round and whenever a member ends (or
+        """The owner's loop: run each round of batches once every running member waits, until every member
+        has ended.  ``on_wake()`` is called in this thread after every round and whenever a member ends (or
         every ``poll`` seconds), e.g. to report finished variants."""
         while True:
             with self._cv:
-                while not self._cancelled and self._live > 0 and (not self._pending
-                                                                  or len(self._pending) < self._live):
+                while not self._cancelled and self._unfinished > 0 and not self._ready():
                     if not self._cv.wait(timeout=poll):
                         break
                 if self._cancelled:
                     raise PoolCancelled("the design grid was interrupted")
-                if self._live <= 0 and not self._pending:
+                if self._unfinished <= 0 and not self._pending:
                     break
-                ready = bool(self._pending) and len(self._pending) >= self._live
+                ready = self._ready()
                 batch, self._pending = (self._pending, []) if ready else ([], self._pending)
             if batch:
                 self._run_round(batch)
@@ -129,6 +134,10 @@ class BatchPool:
                 on_wake()
         if on_wake is not None:
             on_wake()
+
+    def _ready(self) -> bool:
+        """Every running member waits here (called holding the lock)."""
+        return bool(self._pending) and len(self._pending) >= self._running
 
     def _run_round(self, batch: list[_Request]) -> None:
         groups: dict[bytes, list[_Request]] = {}

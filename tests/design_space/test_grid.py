@@ -187,9 +187,9 @@ def test_an_error_in_one_variant_stops_the_grid_without_hanging(small, monkeypat
         design(path, VARY, store=tmp_path / "variants")
 
 
-def test_a_grid_larger_than_a_wave_runs_in_waves(small, grid, monkeypatch, tmp_path):
+def test_more_variants_than_threads_queue_and_share_what_runs(small, grid, monkeypatch, tmp_path):
     from rockdesign.design_space import grid as grid_module
-    monkeypatch.setattr(grid_module, "MAX_TOGETHER", 1)      # waves of one variant: nothing shared
+    monkeypatch.setattr(grid_module, "at_once", lambda: 1)   # one variant at a time: nothing shared
     folder, path = small
     waves = design(path, VARY, store=tmp_path / "variants")
     assert waves.grid.shared_batches["driver_calls"] == waves.grid.shared_batches["batches"]

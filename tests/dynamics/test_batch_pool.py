@@ -21,9 +21,9 @@ def _systems():
             system_parameters(reference_podium(), ModelChoice("podium-2dof", "exact"))]
 
 
-def _members(pool, work):
-    """Run ``work[k]()`` in a member thread each while this thread serves the pool; returns their results
-    (re-raises the first error)."""
+def _members(pool, work, threads=None):
+    """Run ``work[k]()`` as members in ``threads`` threads (default one each; the next starts when one
+    ends) while this thread serves the pool; returns their results (re-raises the first error)."""
     results, errors = [None] * len(work), []
 
     def body(k):
@@ -33,7 +33,17 @@ def _members(pool, work):
                 results[k] = work[k]()
         except BaseException as exc:      # noqa: BLE001 — re-raised in the test's thread
             errors.append(exc)
-    threads = [threading.Thread(target=body, args=(k,)) for k in range(len(work))]
+    queue = list(range(len(work)))
+    lock = threading.Lock()
+
+    def worker():
+        while True:
+            with lock:
+                if not queue:
+                    return
+                k = queue.pop(0)
+            body(k)
+    threads = [threading.Thread(target=worker) for _ in range(threads or len(work))]
     for t in threads:
         t.start()
     try:
@@ -63,18 +73,22 @@ def test_members_batches_run_together_and_each_gets_its_own_result():
             out = []
             for k, (system, picks, opts) in enumerate(plan):
                 time.sleep(0.01 * k)
-                out.append(pool.run(sps[system], [motions[i] for i in picks], [1.0] * len(picks),
-                                    [5.0] * len(picks), opts))
+                out.append(current_pool().run(sps[system], [motions[i] for i in picks], [1.0] * len(picks),
+                                              [5.0] * len(picks), opts))
             return out
         return work
 
     got = _members(pool, [variant(p) for p in plans])
-    for plan, results in zip(plans, got):
-        for (system, picks, opts), (s, d) in zip(plan, results):
-            s_alone, d_alone = run_batch(sps[system], [motions[i] for i in picks], [1.0] * len(picks),
-                                         [5.0] * len(picks), opts, threads=False)
-            np.testing.assert_array_equal(s, s_alone)
-            np.testing.assert_array_equal(d, d_alone)
+    queued = BatchPool(len(plans))          # two threads for three members: the third waits for a thread
+    got_queued = _members(queued, [variant(p) for p in plans], threads=2)
+    for results_of in (got, got_queued):
+        for plan, results in zip(plans, results_of):
+            for (system, picks, opts), (s, d) in zip(plan, results):
+                s_alone, d_alone = run_batch(sps[system], [motions[i] for i in picks], [1.0] * len(picks),
+                                             [5.0] * len(picks), opts, threads=False)
+                np.testing.assert_array_equal(s, s_alone)
+                np.testing.assert_array_equal(d, d_alone)
+    assert queued.requests == 6 and queued.jobs == 12
     assert pool.requests == 6 and pool.jobs == 12
     assert pool.calls < pool.requests            # batches of different variants shared calls
 
