@@ -26,6 +26,7 @@ from ..dynamics.layout import (D_STATUS, D_STEPS, O_T_END, S_DYNAMIC, S_IMPACTS,
                                S_IMPACTS_BEFORE_OVERTURN, S_THETA_MAX, S_T_END, S_T_UPLIFT)
 from ..dynamics.eom import P_THETA_C
 from ..dynamics.overturning import capacity_exceeded
+from ..dynamics.scheduling import take, worker_count
 from ..kernel_cache import sources_digest
 from ..motions.excitation import (EXC_CYCLOIDAL_A, EXC_CYCLOIDAL_B, EXC_CYCLOIDAL_C, EXC_RICKER_ANTI,
                                   EXC_RICKER_SYM, EXC_SINE, excitation_end)
@@ -110,8 +111,11 @@ def run_pulse(sp, kind, shape, T_p, a_p, opts, t_free, out):
 
 
 @njit(cache=True, parallel=True)
-def spectrum_kernel(sp, kind, shape, periods, amplitudes, opts, t_free):
-    """Run the analyses of a block of spectrum rows in parallel.
+def spectrum_kernel(sp, kind, shape, periods, amplitudes, opts, t_free, workers):
+    """Run the analyses of a block of spectrum rows in parallel: ``workers`` workers (one per numba
+    thread), each taking the next grid point from a shared counter until none is left
+    (:mod:`rockdesign.dynamics.scheduling`), so cheap points (no uplift) and costly ones (long rocking)
+    balance whatever core is busy.
 
     Args:
         sp: system parameters (``eom.P_*``, from :func:`rockdesign.dynamics.model.system_parameters`).
@@ -127,16 +131,21 @@ def spectrum_kernel(sp, kind, shape, periods, amplitudes, opts, t_free):
     """
     ny = amplitudes.shape[0]
     nx = periods.shape[0]
+    n = ny * nx
     out = np.empty((ny, nx, N_OUT))
-    for job in prange(ny * nx):
-        iy = job // nx
-        ix = job - iy * nx
-        run_pulse(sp, kind, shape, periods[ix], amplitudes[iy], opts, t_free, out[iy, ix])
+    counter = np.zeros(1, dtype=np.int64)
+    for _ in prange(workers):
+        job = take(counter)
+        while job < n:
+            iy = job // nx
+            ix = job - iy * nx
+            run_pulse(sp, kind, shape, periods[ix], amplitudes[iy], opts, t_free, out[iy, ix])
+            job = take(counter)
     return out
 
 
 @njit(cache=True, parallel=True)
-def points_kernel(sp, kind, shape, periods, amplitudes, opts, t_free):
+def points_kernel(sp, kind, shape, periods, amplitudes, opts, t_free, workers):
     """Like :func:`spectrum_kernel` for scattered points: point k is (periods[k], amplitudes[k]).
 
     Returns:
@@ -144,8 +153,12 @@ def points_kernel(sp, kind, shape, periods, amplitudes, opts, t_free):
     """
     n = periods.shape[0]
     out = np.empty((n, N_OUT))
-    for k in prange(n):
-        run_pulse(sp, kind, shape, periods[k], amplitudes[k], opts, t_free, out[k])
+    counter = np.zeros(1, dtype=np.int64)
+    for _ in prange(workers):
+        k = take(counter)
+        while k < n:
+            run_pulse(sp, kind, shape, periods[k], amplitudes[k], opts, t_free, out[k])
+            k = take(counter)
     return out
 
 
@@ -170,24 +183,19 @@ def pulse_shape(pulse: str, tm_ratio: float = 1.5, n_cycles: int = 1) -> tuple[i
 
 
 def spectrum_rows(sp: np.ndarray, kind: int, shape: np.ndarray, periods: np.ndarray, amplitudes: np.ndarray,
-                  opts: np.ndarray, t_free: float, chunk_size: int = 4) -> dict[str, np.ndarray]:
-    """The chunk function of a spectrum: rows ``amplitudes`` × columns ``periods`` (see :func:`spectrum_kernel`).
-
-    ``chunk_size`` is numba's parallel chunk size: small blocks of grid points are handed to the
-    threads dynamically, so cheap rows (no uplift) and costly rows (long rocking) balance.
+                  opts: np.ndarray, t_free: float) -> dict[str, np.ndarray]:
+    """The chunk function of a spectrum: rows ``amplitudes`` × columns ``periods`` (see :func:`spectrum_kernel`;
+    the grid points are handed to numba's threads one at a time, so cheap and costly rows balance).
 
     Returns:
         {"out": float64 (ny, nx, N_OUT)} — a dict so that chunk stores and executors treat every
         batch function alike.
     """
-    import numba
     sp = np.ascontiguousarray(sp, dtype=np.float64)
     args = (sp, int(kind), np.ascontiguousarray(shape, dtype=np.float64),
             np.ascontiguousarray(periods, dtype=np.float64), np.ascontiguousarray(amplitudes, dtype=np.float64),
             np.ascontiguousarray(opts, dtype=np.float64), float(t_free))
-    with numba.parallel_chunksize(int(chunk_size)):
-        out = spectrum_kernel(*args)
-    return {"out": out}
+    return {"out": spectrum_kernel(*args, worker_count(len(periods) * len(amplitudes)))}
 
 
 SOURCE_DIGEST = sources_digest()
@@ -197,18 +205,16 @@ of every chunk fingerprint, so chunks computed by another version of the engine 
 
 
 def pulse_points(sp: np.ndarray, kind: int, shape: np.ndarray, periods: np.ndarray, amplitudes: np.ndarray,
-                 opts: np.ndarray, t_free: float, chunk_size: int = 4) -> np.ndarray:
+                 opts: np.ndarray, t_free: float) -> np.ndarray:
     """Scattered pulse analyses (point k: T_p = periods[k] [s], a_p = amplitudes[k] [m/s²]) in parallel.
 
     The batch function for margins and samples: each point equals the spectrum grid point (and the
     ``simulate`` call) of the same pulse. Returns the (n, N_OUT) outputs.
     """
-    import numba
     args = (np.ascontiguousarray(sp, dtype=np.float64), int(kind), np.ascontiguousarray(shape, dtype=np.float64),
             np.ascontiguousarray(periods, dtype=np.float64), np.ascontiguousarray(amplitudes, dtype=np.float64),
             np.ascontiguousarray(opts, dtype=np.float64), float(t_free))
-    with numba.parallel_chunksize(int(chunk_size)):
-        return points_kernel(*args)
+    return points_kernel(*args, worker_count(len(periods)))
 
 
 _WARM = False
