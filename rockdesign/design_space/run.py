@@ -107,7 +107,7 @@ def design_command(project, vary, out, *, as_json: bool, no_pdf: bool, records_d
         labels = ", ".join(f"{k} = {v}" for k, v in cell["labels"].items())
         how = " (stored)" if cell.get("resumed") else ""
         bar.console.print(f"[{done}/{total}] {labels}: {cell['verdict']}{how}", highlight=False)
-        bar.update(task, completed=done)
+        bar.update(task, completed=done, total=total)
 
     try:
         with bar:
