@@ -46,7 +46,7 @@ TWO_RECORD_LIMIT = ('acceptance = "binomial"\n'
 
 
 def stocky_podium_toml(records=("p695-ff/12a", "p695-ff/15b"), pga: str = "0.1 g",
-                       analysis: str = TWO_RECORD_LIMIT) -> str:
+                       analysis: str = TWO_RECORD_LIMIT, height: str = "3.0 m") -> str:
     """A small, quick podium project file (rigid superstructure, built-in records scaled to ``pga``)."""
     listed = ", ".join(f'"{r}"' for r in records)
     return f"""\
@@ -56,7 +56,7 @@ name = "stocky podium"
 [podium]
 columns = 20
 cap_beam_mass = "200 t"
-height = "3.0 m"
+height = "{height}"
 width = "0.6 m"
 mass = "2.7 t"
 mass_distribution = 0.3333

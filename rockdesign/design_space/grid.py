@@ -227,7 +227,7 @@ def _check_together(tasks, check, report, threads: int):
         try:
             pool.serve(on_wake)
         except PoolCancelled:
-            pass
+            pass                        # a variant failed and cancelled the rest: its error is raised below
         except BaseException:
             pool.cancel()               # Ctrl-C: the variants stop at their next batch
             raise

@@ -8,35 +8,14 @@ import tomllib
 import pytest
 
 import rockdesign as rd
+from support import stocky_podium_toml
 from rockdesign.design_space.grid import recommended
 from rockdesign.design_space.run import design
 from rockdesign.design_space.variants import parse_vary, variant_document, variant_toml
 
-RECORDS = ", ".join(f'"p695-ff/{k}a"' for k in range(1, 12))   # 11 ground motions (one component each)
-
-SMALL = f"""\
-[project]
-name = "stocky podium, 11 ground motions"
-
-[podium]
-columns = 20
-cap_beam_mass = "200 t"
-height = "2.5 m"
-width = "0.6 m"
-mass = "2.7 t"
-mass_distribution = 0.3333
-
-[superstructure]
-mass = "600 t"
-period = "rigid"
-
-[excitation]
-records = [{RECORDS}]
-scale = {{ method = "pga", target = "0.4 g" }}
-
-[analysis]
-overturn = "static"
-"""
+# 11 ground motions (one component each), the ASCE 7-22 minimum
+SMALL = stocky_podium_toml(records=[f"p695-ff/{k}a" for k in range(1, 12)], pga="0.4 g", analysis="",
+                           height="2.5 m")
 VARY = ["podium.width=0.35m:0.65m:2"]
 
 
