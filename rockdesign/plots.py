@@ -38,6 +38,7 @@ def time_history_figure(response, g: float, title: str = ""):
         if title:
             axes[0].set_title(title, fontsize=9, loc="left")
         fig.align_ylabels(axes)
+        fig.set_layout_engine("tight")      # (laid out when drawn: it fills its figure size)
         return fig
 
 

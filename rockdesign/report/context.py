@@ -19,7 +19,7 @@ from ..kernel_cache import sources_digest
 from .formatting import fmt
 from .methods import PLANAR_METHODS
 
-SOFTWARE = ("rockdesign", "numpy", "scipy", "numba", "matplotlib", "weasyprint", "jinja2", "pint", "pypdf")
+SOFTWARE = ("rockdesign", "numpy", "scipy", "numba", "matplotlib", "weasyprint", "typst", "pikepdf", "jinja2", "pint")
 """Packages whose versions the report lists (besides Python)."""
 
 KIND_LABELS = {"column": "solitary rocking column", "podium": "rocking podium (frame of columns under a cap beam)"}

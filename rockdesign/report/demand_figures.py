@@ -38,7 +38,7 @@ def demand_figure(result):
         ax2.set_xticks(x)
         ax2.set_xticklabels([i.split("/")[-1] for i in ids], rotation=90, fontsize=5)
         ax2.set_xlabel("record")
-        fig.tight_layout()
+        fig.set_layout_engine("tight")
         return fig
 
 
@@ -68,5 +68,5 @@ def demand_history_figure(result):
         axes[2].plot(r.t, r.u_rel * 1e3, color="C1", lw=0.6)
         axes[2].set_ylabel("u$_T$ − u$_B$ [mm]")
         axes[2].set_xlabel("t [s]")
-        fig.tight_layout()
+        fig.set_layout_engine("tight")
         return fig

@@ -176,7 +176,7 @@ def column_drawing(system):
         if axd is not None:
             _base_detail(axd, c)
             axd.axis("off")
-        fig.tight_layout()
+        fig.set_layout_engine("tight")
         return fig
 
 
@@ -266,7 +266,7 @@ def podium_drawing(system, given: dict | None = None):
         ax.set_ylim(-0.32 * H2, y_hi + 0.1 * H2)
         _frame_axes(ax)
         ax.set_title("elevation: columns and cap beam to scale", fontsize=8, loc="left")
-        fig.tight_layout()
+        fig.set_layout_engine("tight")
         return fig
 
 

@@ -25,28 +25,30 @@ from ..plots import STYLE, time_history_figure  # noqa: E402
 SVG_SALT = "rockdesign-report"
 CLASS_COLOURS = {"a1": "#2c7fb8", "a2": "#7fcdbb", "b": "#d7301f", "c": "#fdae61", "d": "#7f2704"}
 """Periods of the plotted elastic spectra (log grid over the SD_max band)."""
-RASTER_POINTS = 400
-"""Lines with more points than this are rasterized inside the SVG (at RASTER_DPI)."""
-RASTER_DPI = 200
 HISTORY_CLIP = 2.0
 """Time histories of overturning records are drawn up to ±HISTORY_CLIP·θc (and ±HISTORY_CLIP·u_B(θc))."""
 SCATTER_Y_TOP = 1.6
 """Top of the Fig 4.9 scatter (overturned records are drawn at min(y, top) with their own marker)."""
 
 
-def svg(fig, prefix: str) -> str:
-    """SVG markup of ``fig`` for inline use (XML prolog dropped, ids prefixed), and close the figure."""
+def view_box_of(fig) -> str:
+    """The ``viewBox`` matplotlib writes for ``fig`` saved uncropped (its size in points)."""
+    width, height = (72.0 * v for v in fig.get_size_inches())
+    return " ".join(("0", "0", *(f"{v:f}".rstrip("0").rstrip(".") for v in (width, height))))
+
+
+def svg(fig, prefix: str, *, crop: bool = True) -> str:
+    """SVG markup of ``fig`` for inline use (XML prolog dropped, ids prefixed), and close the figure.
+
+    ``crop``: cut the drawing to its ink (``bbox_inches="tight"``, one more drawing pass); without it
+    the viewBox is the figure size (:func:`view_box_of`), known before drawing, and the figure's layout
+    engine fills it."""
     buf = io.StringIO()
-    # dense data lines (time histories, 44 spectra) are embedded as images inside the SVG: axes, text
-    # and markers stay vector, and WeasyPrint renders the page several times faster
-    for ax in fig.axes:
-        for line in ax.lines:
-            if len(line.get_xdata()) > RASTER_POINTS:
-                line.set_rasterized(True)
-    # text stays text (searchable in the PDF, and WeasyPrint lays out 15–20 % faster than glyph paths)
+    # every line stays vector (the PDF's figures are drawn by typst: rockdesign.report.stamped_pdf), and
+    # text stays text (searchable in the PDF)
     with plt.rc_context({"svg.hashsalt": SVG_SALT, "svg.fonttype": "none"}):
-        fig.savefig(buf, format="svg", metadata={"Date": None, "Creator": None}, bbox_inches="tight",
-                    dpi=RASTER_DPI)
+        fig.savefig(buf, format="svg", metadata={"Date": None, "Creator": None},
+                    bbox_inches="tight" if crop else None)
     plt.close(fig)
     text = buf.getvalue()
     text = text[text.index("<svg"):]
@@ -118,7 +120,7 @@ def pushover_figure(system):
         ax.set_xlim(0.0, geo.theta_c * 1.08)
         ax.set_ylim(min(0.0, force.min()) - 0.05 * max(force.max(), 1e-9), force.max() * 1.15)
         ax.legend(fontsize=7, loc="upper right")
-        fig.tight_layout()
+        fig.set_layout_engine("tight")
         return fig
 
 
@@ -145,7 +147,7 @@ def spectra_figure(result):
         ax.set_title(f"elastic displacement spectra, ζ = {fmt(100 * rule.damping)} %, "
                      f"band {fmt(rule.band[0])}–{fmt(rule.band[1])} s", fontsize=8, loc="left")
         ax.legend(fontsize=7, loc="upper left")
-        fig.tight_layout()
+        fig.set_layout_engine("tight")
         return fig
 
 
@@ -194,7 +196,7 @@ def polyakov_scatter_figure(result):
         ax.set_xlabel(f"SD$_{{max}}$ / $u_B$(θc)  (ζ = {fmt(100 * result.rule.damping)} %)")
         ax.set_ylabel("$u_{B,max}$ / $u_B$(θc)  (RHA)")
         ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, frameon=False)
-        fig.tight_layout()
+        fig.set_layout_engine("tight")
         return fig
 
 
@@ -259,7 +261,7 @@ def margin_figure(result):
         ax.legend(handles=handles, fontsize=7, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=2, frameon=False)
         ax.grid(True, axis="x", which="both", alpha=0.3)
         ax.grid(False, axis="y")
-        fig.tight_layout()
+        fig.set_layout_engine("tight")
         return fig
 
 
@@ -286,7 +288,7 @@ def ecdf_figure(result):
         ax.set_xlabel("θ$_{max}$/α [-]")
         ax.set_ylabel("F [-]")
         ax.legend(fontsize=7, loc="upper left")
-        fig.tight_layout()
+        fig.set_layout_engine("tight")
         return fig
 
 

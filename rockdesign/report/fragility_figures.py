@@ -88,7 +88,7 @@ def fragility_figure(result):
             axis.xaxis.set_major_formatter(ticker.FuncFormatter(lambda v, _: f"{v:g}"))
             axis.xaxis.set_minor_formatter(ticker.FuncFormatter(
                 lambda v, _: f"{v:g}" if f"{v:.1e}"[0] in "25" else ""))
-        fig.tight_layout()
+        fig.set_layout_engine("tight")
         return fig
 
 

@@ -1,14 +1,17 @@
-"""A second process that writes the calculation report's PDF for ``rockdesign check``.
+"""A second process that lays out the calculation report's PDF for ``rockdesign check``.
 
-WeasyPrint's import and the first page a process renders (fonts, the style sheet, the SVG and
-text paths) cost ≈ 1 s. A warm ``check`` keeps one core idle while it starts (imports, the project,
-the records), so it starts this worker first. The worker loads WeasyPrint and renders a small page
-into memory (:func:`rockdesign.report.render.warm_up_pdf`) on that idle core, at low priority. When
-the report's HTML is ready, the check sends it here, and the worker writes the PDF. The check itself
-never imports WeasyPrint. Measurements: docs/engine.md, "Speed".
+WeasyPrint's import and the first page a process renders (fonts, the style sheet, the text paths)
+cost ≈ 1 s. A warm ``check`` keeps one core idle while it starts (imports, the project, the
+records), so it starts this worker first. The worker loads WeasyPrint and renders a small page into
+memory (:func:`rockdesign.report.render.warm_up_pdf`) on that idle core, at low priority. When the
+analyses end, the check sends the report's HTML with an empty box per figure
+(:mod:`rockdesign.report.stamped_pdf`); the worker writes that PDF and answers where the boxes
+landed, while the check draws the figures it then stamps in. The check itself never imports
+WeasyPrint. Measurements: docs/engine.md, "Speed".
 
 The protocol is length-prefixed pickles over the worker's stdin and stdout. A request is
-``(html_text, path)``; a reply is ``("ok", path)`` or ``("error", traceback_text)``.
+``(html_text, path)``; a reply is ``("ok", slots)`` (a list of
+:class:`~rockdesign.report.stamped_pdf.Slot`) or ``("error", traceback_text)``.
 
 The worker is a help, never a dependency. When it cannot start, dies or fails, the caller writes the
 PDF itself (:class:`WorkerFailed`). A failure then costs time only, and WeasyPrint's own error is
@@ -58,8 +61,9 @@ def _read(stream):
 
 
 class PdfWorker:
-    """The worker process, as seen by ``rockdesign check``: :meth:`start` it, call :meth:`pdf` (which
-    falls back to this process; :meth:`write_pdf` raises instead), and :meth:`close` it at the end."""
+    """The worker process, as seen by ``rockdesign check``: :meth:`start` it, :meth:`begin_layout` a PDF
+    (which falls back to this process; :meth:`send` and :meth:`receive` raise instead), and
+    :meth:`close` it at the end."""
 
     def __init__(self, process: subprocess.Popen):
         self.process = process
@@ -79,11 +83,18 @@ class PdfWorker:
         except OSError:
             return None
 
-    def write_pdf(self, html_text: str, path: Path) -> Path:
-        """Write ``html_text`` to the PDF ``path`` (waits for it). Raises :class:`WorkerFailed` if the
-        worker has gone or failed."""
+    def send(self, html_text: str, path: Path) -> None:
+        """Ask for the layout of ``html_text`` (figures as empty boxes) into the PDF ``path``; returns at
+        once (:meth:`receive` the answer). Raises :class:`WorkerFailed` if the worker has gone."""
         try:
             _write(self.process.stdin, (html_text, str(path)))
+        except (OSError, ValueError) as exc:
+            raise WorkerFailed(f"PDF worker: {exc}") from exc
+
+    def receive(self) -> list:
+        """The figure slots of the last :meth:`send` (waits for them). Raises :class:`WorkerFailed` if the
+        worker has gone or failed."""
+        try:
             answer = _read(self.process.stdout)
         except (OSError, ValueError, pickle.UnpicklingError, EOFError) as exc:
             raise WorkerFailed(f"PDF worker: {exc}") from exc
@@ -92,15 +103,13 @@ class PdfWorker:
         status, value = answer
         if status != "ok":
             raise WorkerFailed(f"PDF worker failed:\n{value}")
-        return Path(value)
+        return value
 
-    def pdf(self, html_text: str, path: Path) -> Path:
-        """Write the PDF here (:meth:`write_pdf`), or in this process if the worker fails."""
-        try:
-            return self.write_pdf(html_text, path)
-        except WorkerFailed:
-            from .render import html_to_pdf
-            return html_to_pdf(html_text, path)
+    def begin_layout(self, html_text: str, path: Path) -> "LayoutJob":
+        """Start laying out ``html_text`` (from :func:`~rockdesign.report.stamped_pdf.slot_html`) into the
+        PDF ``path``; the job's :meth:`~LayoutJob.result` is the figure slots, laid out in this process
+        if the worker fails."""
+        return LayoutJob(self, html_text, Path(path))
 
     def close(self) -> None:
         """End the worker. It holds nothing that needs saving; one busy writing is killed."""
@@ -115,6 +124,29 @@ class PdfWorker:
         with contextlib.suppress(OSError, ValueError):
             self.process.stdout.close()
         atexit.unregister(self.close)
+
+
+class LayoutJob:
+    """A layout the worker is doing (:meth:`PdfWorker.begin_layout`)."""
+
+    def __init__(self, worker: PdfWorker, html_text: str, path: Path):
+        self.html_text, self.path = html_text, path
+        try:
+            worker.send(html_text, path)
+            self.worker = worker
+        except WorkerFailed:
+            self.worker = None
+
+    def result(self) -> list:
+        """The figure slots (:func:`~rockdesign.report.stamped_pdf.layout_pdf`): the worker's, or laid out
+        here when it has failed (the file is the same)."""
+        if self.worker is not None:
+            try:
+                return self.worker.receive()
+            except WorkerFailed:
+                pass    # (a help, never a dependency: the PDF is written here instead)
+        from .stamped_pdf import layout_pdf
+        return layout_pdf(self.html_text, self.path)
 
 
 def serve() -> None:
@@ -143,11 +175,12 @@ def serve() -> None:
 
     threading.Thread(target=reader, daemon=True).start()
     from . import render
+    from .stamped_pdf import layout_pdf
     render.warm_up_pdf()
     while (request := requests.get()) is not None:
         try:
             html_text, path = request
-            answer = ("ok", str(render.html_to_pdf(html_text, Path(path))))
+            answer = ("ok", layout_pdf(html_text, Path(path)))
         except Exception:   # noqa: BLE001 — reported to the caller, which writes the PDF itself
             answer = ("error", traceback.format_exc())
         try:

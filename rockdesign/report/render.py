@@ -80,30 +80,50 @@ def _given_inputs(project) -> dict:
             "superstructure_damping": given_value(project, "superstructure", "damping")}
 
 
-def render_figures(result) -> dict[str, str]:
-    """Inline SVG of every report figure, keyed by name (``history:<record id>`` for time histories)."""
+def make_figures(result) -> dict[str, tuple[object, str]]:
+    """Every report figure as ``name: (matplotlib Figure, id prefix)``, not yet drawn (``history:<record
+    id>`` for time histories).  Each figure lays itself out when drawn and fills its ``figsize``."""
     from . import figures
     from .drawing import structure_drawing
     system = result.project.system
     out = {
-        "drawing": figures.svg(structure_drawing(system, _given_inputs(result.project)), "drawing"),
-        "pushover": figures.svg(figures.pushover_figure(system), "pushover"),
-        "spectra": figures.svg(figures.spectra_figure(result), "spectra"),
-        "scatter": figures.svg(figures.polyakov_scatter_figure(result), "scatter"),
-        "ecdf": figures.svg(figures.ecdf_figure(result), "ecdf"),
-        "margins": figures.svg(figures.margin_figure(result), "margins"),
+        "drawing": (structure_drawing(system, _given_inputs(result.project)), "drawing"),
+        "pushover": (figures.pushover_figure(system), "pushover"),
+        "spectra": (figures.spectra_figure(result), "spectra"),
+        "scatter": (figures.polyakov_scatter_figure(result), "scatter"),
+        "ecdf": (figures.ecdf_figure(result), "ecdf"),
+        "margins": (figures.margin_figure(result), "margins"),
     }
     if getattr(result, "fragility", None) and result.fragility.get("capacities"):
         from .fragility_figures import fragility_figure
-        out["fragility"] = figures.svg(fragility_figure(result), "fragility")
+        out["fragility"] = (fragility_figure(result), "fragility")
     from .demand_figures import demand_figure, demand_history_figure
     for name, make in (("demand", demand_figure), ("demand_history", demand_history_figure)):
         fig = make(result)
         if fig is not None:
-            out[name] = figures.svg(fig, name)
+            out[name] = (fig, name)
     for k, rid in enumerate(result.histories):
-        out[f"history:{rid}"] = figures.svg(figures.history_figure(result, rid), f"history{k}")
+        out[f"history:{rid}"] = (figures.history_figure(result, rid), f"history{k}")
     return out
+
+
+def figure_boxes(made: dict) -> dict[str, str]:
+    """An empty SVG per figure of :func:`make_figures` with the viewBox its drawing will have (the figure
+    size in points): the report laid out with these has the figures' page layout."""
+    from .figures import view_box_of
+    from .stamped_pdf import empty_svg
+    return {name: empty_svg(view_box_of(fig)) for name, (fig, _) in made.items()}
+
+
+def draw_figures(made: dict) -> dict[str, str]:
+    """The SVG of each figure of :func:`make_figures` (uncropped: the viewBox is the figure size)."""
+    from .figures import svg
+    return {name: svg(fig, prefix, crop=False) for name, (fig, prefix) in made.items()}
+
+
+def render_figures(result) -> dict[str, str]:
+    """Inline SVG of every report figure, keyed by name (``history:<record id>`` for time histories)."""
+    return draw_figures(make_figures(result))
 
 
 def verification_statement(result) -> dict:
@@ -121,68 +141,73 @@ def verification_statement(result) -> dict:
 
 def render_html(result, *, figures: dict | None = None, date: str | None = None) -> str:
     """The report as one self-contained HTML document (CSS and SVG figures inline)."""
+    return html_renderer(result, date=date)(figures if figures is not None else render_figures(result))
+
+
+def html_renderer(result, *, date: str | None = None):
+    """``render(figures) -> str``: :func:`render_html` of ``result`` with the context built once, for
+    rendering the same report with different figures (empty boxes first, then the drawings)."""
     folder = templates_dir()
-    env = environment(folder)
-    css = stylesheet(folder)
-    ctx = build_context(result, figures=figures if figures is not None else render_figures(result),
-                        verification=verification_statement(result), date=date)
-    ctx["css"] = jinja2.utils.markupsafe.Markup(css)
+    template = environment(folder).get_template(TEMPLATE)
+    ctx = build_context(result, figures={}, verification=verification_statement(result), date=date)
+    ctx["css"] = jinja2.utils.markupsafe.Markup(stylesheet(folder))
     ctx["digits"] = DIGITS
-    return env.get_template(TEMPLATE).render(**ctx)
+
+    def render(figures: dict) -> str:
+        histories = [{**h, "svg": figures.get(f"history:{h['id']}", "")} for h in ctx["histories"]]
+        return template.render(**{**ctx, "figures": figures, "histories": histories})
+    return render
 
 
 def warm_up(pdf: bool = True) -> None:
-    """Load the report's libraries, fonts and style sheets (matplotlib with mathtext, WeasyPrint with the
-    report's CSS, unless ``pdf`` is False) by rendering a small figure and page into memory.  The first
-    report of a process is ≈ 1 s slower without it; ``rockdesign check`` calls this while its rocking
-    engine is still compiling on the first run, when this process would otherwise wait
-    (:mod:`rockdesign.dynamics.compilation`)."""
+    """Load the report's libraries, fonts and style sheets (matplotlib with mathtext, typst, and
+    WeasyPrint with the report's CSS unless ``pdf`` is False) by rendering a small figure and page into
+    memory.  The first report of a process is ≈ 1 s slower without it; ``rockdesign check`` calls this
+    while its rocking engine is still compiling on the first run, when this process would otherwise
+    wait (:mod:`rockdesign.dynamics.compilation`)."""
     from . import figures
+    from .stamped_pdf import figure_pdfs
     fig, ax = figures.plt.subplots(figsize=(2.0, 1.5))
     ax.plot([0.0, 1.0], [0.0, 1.0], "o-", label=r"$F_R/(m_C\,g)$, θ")
     ax.set_xlabel("θ [rad]")
     ax.legend()
-    fig.tight_layout()
-    figure = figures.svg(fig, "warm-up")
+    fig.set_layout_engine("tight")
+    figure_pdfs([figures.svg(fig, "warm-up", crop=False)])
     if pdf:
-        warm_up_pdf(figure)
+        warm_up_pdf()
 
 
-WARM_UP_SVG = ('<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" '
-               'viewBox="0 0 144 108"><defs><path id="warm-up-m" d="M 0 -3 L 3 3 L -3 3 z"/></defs>'
-               '<path d="M 10 90 L 130 20" style="fill: none; stroke: #1f77b4; stroke-width: 1.5"/>'
-               '<use xlink:href="#warm-up-m" x="10" y="90" style="fill: #1f77b4"/>'
-               '<text style="font: 10px \'DejaVu Sans\'; text-anchor: middle" x="72" y="104">θ [rad]</text></svg>')
-"""A small figure in the form of the report's (a line, a marker, text) for :func:`warm_up_pdf`."""
-
-
-def warm_up_pdf(figure: str = WARM_UP_SVG) -> None:
-    """Load WeasyPrint, the fonts and the report's style sheet by rendering a small page with ``figure``
-    (SVG) into memory: the PDF part of :func:`warm_up`, without matplotlib (the PDF worker of
-    :mod:`rockdesign.report.pdf_worker` calls it)."""
+def warm_up_pdf() -> None:
+    """Load WeasyPrint, the fonts and the report's style sheet by rendering a small page (with an empty
+    figure box, as the report's pages are laid out) into memory: the PDF part of :func:`warm_up`,
+    without matplotlib (the PDF worker of :mod:`rockdesign.report.pdf_worker` calls it)."""
     import io
 
     from weasyprint import HTML
+
+    from .stamped_pdf import empty_svg
     folder = templates_dir()
     css = stylesheet(folder)
     page = (f"<html><head><style>{css}</style></head><body><h1>θ</h1><p>SD<sub>max</sub> <b>b</b> <i>i</i> "
-            f"<code>c</code></p><table><tr><th>a</th><td>1</td></tr></table>{svg_image(figure)}</body></html>")
+            f"<code>c</code></p><table><tr><th>a</th><td>1</td></tr></table>"
+            f"{svg_image(empty_svg('0 0 144 108'))}</body></html>")
     HTML(string=page, base_url=str(folder)).write_pdf(io.BytesIO())
 
 
 def html_to_pdf(html_text: str, path: Path, base_url: str | None = None) -> Path:
-    """Render HTML to a PDF file with WeasyPrint."""
-    from weasyprint import HTML
-    HTML(string=html_text, base_url=base_url or str(templates_dir())).write_pdf(str(path))
-    return path
+    """Render HTML (figures as SVG images) to a PDF file: WeasyPrint for the pages, the figures stamped
+    in (:mod:`rockdesign.report.stamped_pdf`)."""
+    from .stamped_pdf import html_to_pdf as stamped
+    return stamped(html_text, Path(path), base_url)
 
 
 def write_report(result, out_dir, *, pdf: bool = True, html: bool = True, render=None,
                  pdf_worker=None) -> dict[str, Path]:
     """Write ``report.html`` and/or ``report.pdf`` of a check result into ``out_dir``.
 
-    ``render(result) -> str`` makes the HTML (default :func:`render_html`, the planar CheckResult's report).
-    ``pdf_worker``: a started :class:`~rockdesign.report.pdf_worker.PdfWorker` writes the PDF (this
+    ``render(result) -> str`` makes the HTML (default: the planar CheckResult's report, whose pages are
+    laid out — by ``pdf_worker`` when given — while its figures are drawn; see :func:`_planar_report`).
+    ``pdf_worker``: a started :class:`~rockdesign.report.pdf_worker.PdfWorker` lays out the PDF (this
     process does if it fails); the file is the same.
 
     Returns:
@@ -190,18 +215,55 @@ def write_report(result, out_dir, *, pdf: bool = True, html: bool = True, render
     """
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
-    written: dict[str, Path] = {}
     if not (pdf or html):
-        return written
+        return {}
+    if render is None and pdf:
+        return _planar_report(result, out_dir, html=html, pdf_worker=pdf_worker)
     text = (render or render_html)(result)
+    written: dict[str, Path] = {}
     if html:
-        path = out_dir / "report.html"
-        path.write_text(text, encoding="utf-8")
-        written["html"] = path
+        written["html"] = _write_html(text, out_dir)
     if pdf:
         written["pdf"] = _pdf(text, out_dir / "report.pdf", pdf_worker)
     return written
 
 
+def _write_html(text: str, out_dir: Path) -> Path:
+    path = out_dir / "report.html"
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def _planar_report(result, out_dir: Path, *, html: bool, pdf_worker) -> dict[str, Path]:
+    """The check's report with its two halves at once: the pages are laid out with an empty box per
+    figure (each figure's size is known before it is drawn), by the worker when there is one, while
+    this process draws the figures; then the figures are stamped into their boxes."""
+    from . import stamped_pdf
+    made = make_figures(result)
+    render = html_renderer(result)
+    slotted, boxes = stamped_pdf.slot_html(render(figure_boxes(made)))
+    path = out_dir / "report.pdf"
+    job = pdf_worker.begin_layout(slotted, path) if pdf_worker is not None else None
+    text = render(draw_figures(made))
+    written = {"html": _write_html(text, out_dir)} if html else {}
+    _, svgs = stamped_pdf.slot_html(text)
+    if [stamped_pdf.view_box(b) for b in boxes] != [stamped_pdf.view_box(s) for s in svgs]:
+        # (a figure drawn at another size than it announced: lay out the pages again around the drawings)
+        if job is not None:
+            job.result()        # (the worker writes the same file: wait for it)
+        written["pdf"] = stamped_pdf.html_to_pdf(text, path)
+        return written
+    figures = stamped_pdf.figure_pdfs(svgs)
+    slots = job.result() if job is not None else stamped_pdf.layout_pdf(slotted, path)
+    written["pdf"] = stamped_pdf.stamp(path, slots, figures)
+    return written
+
+
 def _pdf(text: str, path: Path, pdf_worker) -> Path:
-    return html_to_pdf(text, path) if pdf_worker is None else pdf_worker.pdf(text, path)
+    if pdf_worker is None:
+        return html_to_pdf(text, path)
+    from .stamped_pdf import figure_pdfs, slot_html, stamp
+    slotted, svgs = slot_html(text)
+    job = pdf_worker.begin_layout(slotted, path)
+    figures = figure_pdfs(svgs)
+    return stamp(path, job.result(), figures)

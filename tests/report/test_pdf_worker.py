@@ -1,5 +1,5 @@
-"""The PDF worker of ``rockdesign check`` (report.pdf_worker): the same PDF as in this process, and a
-worker that fails or dies costs time only (this process writes the PDF)."""
+"""The PDF worker of ``rockdesign check`` (report.pdf_worker): the same pages and figure boxes as in
+this process, and a worker that fails or dies costs time only (this process lays out the PDF)."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 from pypdf import PdfReader
 
-from rockdesign.report import render
+from rockdesign.report import render, stamped_pdf
 from rockdesign.report.pdf_worker import PdfWorker, WorkerFailed
 
 PAGE = ("<html><head><style>{css}</style></head><body><h1>Verdict: FAIL</h1>"
@@ -15,8 +15,24 @@ PAGE = ("<html><head><style>{css}</style></head><body><h1>Verdict: FAIL</h1>"
         "<table><tr><th>Record</th><td>p695-ff/11a</td></tr></table>{figure}</body></html>")
 
 
+FIGURE = ('<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" '
+          'viewBox="0 0 144 108"><defs><path id="m" d="M 0 -3 L 3 3 L -3 3 z"/></defs>'
+          '<path d="M 10 90 L 130 20" style="fill: none; stroke: #1f77b4; stroke-width: 1.5"/>'
+          '<use xlink:href="#m" x="10" y="90" style="fill: #1f77b4"/>'
+          '<text style="font: 10px \'DejaVu Sans\'; text-anchor: middle" x="72" y="104">θ [rad]</text></svg>')
+
+
 def _page() -> str:
-    return PAGE.format(css=render.stylesheet(), figure=render.svg_image(render.WARM_UP_SVG))
+    return PAGE.format(css=render.stylesheet(), figure=render.svg_image(FIGURE))
+
+
+def _slotted() -> str:
+    return stamped_pdf.slot_html(_page())[0]
+
+
+def _layout(worker, path: Path) -> list:
+    worker.send(_slotted(), path)
+    return worker.receive()
 
 
 def _text(path: Path) -> str:
@@ -32,28 +48,31 @@ def worker():
     w.close()
 
 
-def test_the_worker_writes_the_pdf_this_process_would(worker, tmp_path):
-    html = _page()
-    assert worker.write_pdf(html, tmp_path / "worker.pdf") == tmp_path / "worker.pdf"
-    render.html_to_pdf(html, tmp_path / "here.pdf")
+def test_the_worker_lays_out_the_pdf_this_process_would(worker, tmp_path):
+    slots = _layout(worker, tmp_path / "worker.pdf")
+    assert slots == stamped_pdf.layout_pdf(_slotted(), tmp_path / "here.pdf")
+    assert len(slots) == 1 and slots[0].width > 100
     text = _text(tmp_path / "worker.pdf")
-    assert "Verdict: FAIL" in text and "p695-ff/11a" in text and "θ [rad]" in text
+    assert "Verdict: FAIL" in text and "p695-ff/11a" in text
     assert text == _text(tmp_path / "here.pdf")
+    written = render.write_report(None, tmp_path / "out", html=False, render=lambda _: _page(), pdf_worker=worker)
+    assert "θ [rad]" in _text(written["pdf"])       # the figure, stamped in
 
 
 def test_a_failed_job_is_reported_and_the_worker_goes_on(worker, tmp_path):
     with pytest.raises(WorkerFailed, match="FileNotFoundError"):
-        worker.write_pdf(_page(), tmp_path / "no such folder" / "report.pdf")
-    assert worker.write_pdf(_page(), tmp_path / "report.pdf").stat().st_size > 1000
+        _layout(worker, tmp_path / "no such folder" / "report.pdf")
+    assert len(_layout(worker, tmp_path / "report.pdf")) == 1
+    assert (tmp_path / "report.pdf").stat().st_size > 1000
 
 
 def test_a_dead_worker_costs_time_only(worker, tmp_path):
     worker.process.kill()
     worker.process.wait()
     with pytest.raises(WorkerFailed):
-        worker.write_pdf(_page(), tmp_path / "never.pdf")
+        _layout(worker, tmp_path / "never.pdf")
     written = render.write_report(None, tmp_path, html=False, render=lambda _: _page(), pdf_worker=worker)
-    assert "Verdict: FAIL" in _text(written["pdf"])
+    assert "Verdict: FAIL" in _text(written["pdf"]) and "θ [rad]" in _text(written["pdf"])
 
 
 def test_closing_ends_the_worker(worker):
