@@ -31,24 +31,35 @@ SCATTER_Y_TOP = 1.6
 """Top of the Fig 4.9 scatter (overturned records are drawn at min(y, top) with their own marker)."""
 
 
-def view_box_of(fig) -> str:
-    """The ``viewBox`` matplotlib writes for ``fig`` saved uncropped (its size in points)."""
-    width, height = (72.0 * v for v in fig.get_size_inches())
+def ink_box(fig):
+    """The box (inches) that ``bbox_inches="tight"`` would crop ``fig`` to, found by laying the figure out
+    once without drawing it: for figures whose axes keep an aspect ratio (drawings to scale), which leave
+    blank bands in their figure size.  Saving with it crops the same way, and the size is known before
+    drawing (:func:`view_box_of`)."""
+    import matplotlib
+    fig.draw_without_rendering()
+    return fig.get_tightbbox().padded(matplotlib.rcParams["savefig.pad_inches"])
+
+
+def view_box_of(fig, crop=None) -> str:
+    """The ``viewBox`` matplotlib writes for ``fig`` saved uncropped, or cropped to the box ``crop``
+    (:func:`ink_box`): its size in points."""
+    width, height = (72.0 * v for v in ((crop.width, crop.height) if crop is not None else fig.get_size_inches()))
     return " ".join(("0", "0", *(f"{v:f}".rstrip("0").rstrip(".") for v in (width, height))))
 
 
-def svg(fig, prefix: str, *, crop: bool = True) -> str:
+def svg(fig, prefix: str, *, crop=True) -> str:
     """SVG markup of ``fig`` for inline use (XML prolog dropped, ids prefixed), and close the figure.
 
-    ``crop``: cut the drawing to its ink (``bbox_inches="tight"``, one more drawing pass); without it
-    the viewBox is the figure size (:func:`view_box_of`), known before drawing, and the figure's layout
-    engine fills it."""
+    ``crop``: True cuts the drawing to its ink (``bbox_inches="tight"``, one more drawing pass); a box
+    of :func:`ink_box` cuts it to that box; False keeps the figure size, which the figure's layout
+    engine fills.  Without True the viewBox is known before drawing (:func:`view_box_of`)."""
     buf = io.StringIO()
     # every line stays vector (the PDF's figures are drawn by typst: rockdesign.report.stamped_pdf), and
     # text stays text (searchable in the PDF)
     with plt.rc_context({"svg.hashsalt": SVG_SALT, "svg.fonttype": "none"}):
         fig.savefig(buf, format="svg", metadata={"Date": None, "Creator": None},
-                    bbox_inches="tight" if crop else None)
+                    bbox_inches="tight" if crop is True else (crop or None))
     plt.close(fig)
     text = buf.getvalue()
     text = text[text.index("<svg"):]

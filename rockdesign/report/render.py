@@ -80,30 +80,32 @@ def _given_inputs(project) -> dict:
             "superstructure_damping": given_value(project, "superstructure", "damping")}
 
 
-def make_figures(result) -> dict[str, tuple[object, str]]:
-    """Every report figure as ``name: (matplotlib Figure, id prefix)``, not yet drawn (``history:<record
-    id>`` for time histories).  Each figure lays itself out when drawn and fills its ``figsize``."""
+def make_figures(result) -> dict[str, tuple]:
+    """Every report figure as ``name: (matplotlib Figure, id prefix, crop box or None)``, not yet drawn
+    (``history:<record id>`` for time histories).  Each figure lays itself out when drawn and fills its
+    ``figsize``; the structure drawing (to scale) is cropped to its ink (:func:`figures.ink_box`)."""
     from . import figures
     from .drawing import structure_drawing
     system = result.project.system
+    drawing = structure_drawing(system, _given_inputs(result.project))
     out = {
-        "drawing": (structure_drawing(system, _given_inputs(result.project)), "drawing"),
-        "pushover": (figures.pushover_figure(system), "pushover"),
-        "spectra": (figures.spectra_figure(result), "spectra"),
-        "scatter": (figures.polyakov_scatter_figure(result), "scatter"),
-        "ecdf": (figures.ecdf_figure(result), "ecdf"),
-        "margins": (figures.margin_figure(result), "margins"),
+        "drawing": (drawing, "drawing", figures.ink_box(drawing)),
+        "pushover": (figures.pushover_figure(system), "pushover", None),
+        "spectra": (figures.spectra_figure(result), "spectra", None),
+        "scatter": (figures.polyakov_scatter_figure(result), "scatter", None),
+        "ecdf": (figures.ecdf_figure(result), "ecdf", None),
+        "margins": (figures.margin_figure(result), "margins", None),
     }
     if getattr(result, "fragility", None) and result.fragility.get("capacities"):
         from .fragility_figures import fragility_figure
-        out["fragility"] = (fragility_figure(result), "fragility")
+        out["fragility"] = (fragility_figure(result), "fragility", None)
     from .demand_figures import demand_figure, demand_history_figure
     for name, make in (("demand", demand_figure), ("demand_history", demand_history_figure)):
         fig = make(result)
         if fig is not None:
-            out[name] = (fig, name)
+            out[name] = (fig, name, None)
     for k, rid in enumerate(result.histories):
-        out[f"history:{rid}"] = (figures.history_figure(result, rid), f"history{k}")
+        out[f"history:{rid}"] = (figures.history_figure(result, rid), f"history{k}", None)
     return out
 
 
@@ -112,13 +114,13 @@ def figure_boxes(made: dict) -> dict[str, str]:
     size in points): the report laid out with these has the figures' page layout."""
     from .figures import view_box_of
     from .stamped_pdf import empty_svg
-    return {name: empty_svg(view_box_of(fig)) for name, (fig, _) in made.items()}
+    return {name: empty_svg(view_box_of(fig, crop)) for name, (fig, _, crop) in made.items()}
 
 
 def draw_figures(made: dict) -> dict[str, str]:
-    """The SVG of each figure of :func:`make_figures` (uncropped: the viewBox is the figure size)."""
+    """The SVG of each figure of :func:`make_figures` (the viewBox :func:`figure_boxes` announced)."""
     from .figures import svg
-    return {name: svg(fig, prefix, crop=False) for name, (fig, prefix) in made.items()}
+    return {name: svg(fig, prefix, crop=crop if crop is not None else False) for name, (fig, prefix, crop) in made.items()}
 
 
 def render_figures(result) -> dict[str, str]:

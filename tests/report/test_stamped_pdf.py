@@ -92,3 +92,26 @@ def test_a_figure_without_its_box_is_refused(tmp_path):
     assert len(slots) == 3
     with pytest.raises(ValueError, match="2 figures for 3 figure boxes"):
         stamped_pdf.stamp(tmp_path / "pages.pdf", slots, stamped_pdf.figure_pdfs(svgs[:2]))
+
+
+def test_the_check_report_announces_each_figure_size_before_drawing_it(curved_out):
+    """The check's report lays out its pages while its figures are drawn: that needs each figure's box
+    before the drawing, and a box that differs from the drawing would lay out the pages again."""
+    made = render.make_figures(curved_out.result)
+    boxes = render.figure_boxes(made)
+    drawn = render.draw_figures(made)
+    assert list(boxes) == list(drawn) and len(drawn) >= 8
+    assert [stamped_pdf.view_box(b) for b in boxes.values()] == [stamped_pdf.view_box(s) for s in drawn.values()]
+
+
+def test_every_figure_of_the_check_report_is_stamped(curved_out):
+    """Each figure of report.html is painted once in report.pdf, each by a Form XObject of its own."""
+    import re
+    html_figures = len(stamped_pdf.slot_html(curved_out.html)[1])
+    reader = pypdf.PdfReader(str(curved_out.out / "report.pdf"))
+    painted = []
+    for page in reader.pages:
+        forms = {name for name, x in page.get("/Resources", {}).get("/XObject", {}).items()
+                 if x.get_object().get("/Subtype") == "/Form"}
+        painted += [n for n in re.findall(rb"(/\S+) Do\b", page.get_contents().get_data()) if n.decode() in forms]
+    assert len(painted) == html_figures == len(set(painted)) and html_figures >= 8
