@@ -2,7 +2,7 @@
 
 First (JIT-compiling) run < 45 s on the 2-core machine.  ``--pairs N`` (default 5) runs ``check`` and
 ``check --no-pdf`` alternately, warm, and reports the median ratio of the pairs (what the report adds;
-goal ≤ 1.5×), and the report's stages are timed in this process (figures, HTML, PDF).  ``--baseline-root DIR`` also times another checkout's ``check`` (e.g. main) warm, runs
+goal ≤ 1.5×), and the report's stages are timed in this process (figures, HTML, pages, stamps).  ``--baseline-root DIR`` also times another checkout's ``check`` (e.g. main) warm, runs
 alternating with ours in this process (the machine is shared: best of ``--repeats``), and compares
 verdict, counts and classes of the two results.json.  The cold run uses an empty numba cache directory (NUMBA_CACHE_DIR), so nothing of
 the repository's cache is reused; the warm run repeats it with that cache filled.  As a ratio
@@ -194,31 +194,44 @@ def report_cost(project: str, work: str, cache: str, pairs: int) -> dict:
 
 
 def report_stages(project: str) -> dict:
-    """The report's stages timed in this process after one check: figures, HTML, PDF (process CPU seconds,
-    after a warm-up render, so imports and fonts are not counted), and whether WeasyPrint subsets fonts
-    with HarfBuzz (the system library libharfbuzz-subset0) or fontTools."""
+    """The report's stages timed in this process after one check (process CPU seconds, after a warm-up
+    render, so imports and fonts are not counted): making the figures, drawing them (SVG), the HTML,
+    the pages' layout with an empty box per figure (WeasyPrint; the PDF worker's share in ``check``),
+    the figures as PDF (typst), stamping them in (pikepdf) — and, for comparison, WeasyPrint drawing
+    the same SVG figures itself; and whether WeasyPrint subsets fonts with HarfBuzz (the system library
+    libharfbuzz-subset0) or fontTools."""
     import time as _time
 
     import rockdesign.library as rd
-    from rockdesign.report import render
+    from rockdesign.report import render, stamped_pdf
     proj = rd.load_project(ROOT / project)
     result = rd.run_check(proj, progress=False)
     render.warm_up()
-    t = _time.process_time()
-    figs = render.render_figures(result)
-    t_fig = _time.process_time() - t
-    t = _time.process_time()
-    html = render.render_html(result, figures=figs)
-    t_html = _time.process_time() - t
-    with tempfile.TemporaryDirectory() as tmp:
+    times = {}
+
+    def timed(name, call, *args):
         t = _time.process_time()
-        render.html_to_pdf(html, Path(tmp) / "report.pdf")
-        t_pdf = _time.process_time() - t
+        value = call(*args)
+        times[name] = _time.process_time() - t
+        return value
+
+    made = timed("make_figures_cpu_s", render.make_figures, result)
+    html_of = timed("context_cpu_s", render.html_renderer, result)
+    slotted, _ = stamped_pdf.slot_html(html_of(render.figure_boxes(made)))
+    svgs = timed("draw_figures_cpu_s", render.draw_figures, made)
+    html = timed("html_cpu_s", html_of, svgs)
+    _, figures = stamped_pdf.slot_html(html)
+    with tempfile.TemporaryDirectory() as tmp:
+        slots = timed("layout_pdf_cpu_s", stamped_pdf.layout_pdf, slotted, Path(tmp) / "report.pdf")
+        pdfs = timed("figure_pdfs_cpu_s", stamped_pdf.figure_pdfs, figures)
+        timed("stamp_cpu_s", stamped_pdf.stamp, Path(tmp) / "report.pdf", slots, pdfs)
+        from weasyprint import HTML
+        timed("weasyprint_with_svg_figures_cpu_s", lambda: HTML(string=html, base_url=str(render.templates_dir()))
+              .write_pdf(str(Path(tmp) / "weasyprint.pdf")))
     from weasyprint.text.ffi import harfbuzz_subset
-    out = {"figures_cpu_s": t_fig, "figures": len(figs), "html_cpu_s": t_html, "pdf_cpu_s": t_pdf,
-           "font_subsetting": "harfbuzz" if harfbuzz_subset is not None else "fonttools"}
-    print(f"report stages (CPU-s): figures {t_fig:.2f} ({len(figs)}), HTML {t_html:.2f}, PDF {t_pdf:.2f} "
-          f"(fonts subset by {out['font_subsetting']})")
+    out = {**times, "figures": len(svgs), "font_subsetting": "harfbuzz" if harfbuzz_subset is not None else "fonttools"}
+    print("report stages (CPU-s): " + ", ".join(f"{k.removesuffix('_cpu_s')} {v:.2f}" for k, v in times.items())
+          + f" ({len(svgs)} figures; fonts subset by {out['font_subsetting']})")
     return out
 
 

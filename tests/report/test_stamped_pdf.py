@@ -115,3 +115,9 @@ def test_every_figure_of_the_check_report_is_stamped(curved_out):
                  if x.get_object().get("/Subtype") == "/Form"}
         painted += [n for n in re.findall(rb"(/\S+) Do\b", page.get_contents().get_data()) if n.decode() in forms]
     assert len(painted) == html_figures == len(set(painted)) and html_figures >= 8
+
+
+def test_a_report_without_figures(tmp_path):
+    html = f"<html><head><style>{render.stylesheet()}</style></head><body><p>No figure here.</p></body></html>"
+    path = stamped_pdf.html_to_pdf(html, tmp_path / "plain.pdf")
+    assert "No figure here." in pypdf.PdfReader(str(path)).pages[0].extract_text()
