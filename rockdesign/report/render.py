@@ -1,5 +1,6 @@
 """The calculation report of ``rockdesign check``: jinja2 template → HTML (figures inline as SVG) →
-WeasyPrint PDF (CONTRACT §4: ``report.html``, ``report.pdf``).
+PDF: pages by WeasyPrint, figures stamped in (:mod:`rockdesign.report.stamped_pdf`) (CONTRACT §4:
+``report.html``, ``report.pdf``).
 
     write_report(result, out_dir, pdf=True, html=True) -> {"html": Path, "pdf": Path}
     render_html(result) -> str

@@ -10,12 +10,11 @@ from __future__ import annotations
 import base64
 
 import numpy as np
+import pypdf
+import pypdfium2 as pdfium      # (a test dependency: the figures are found in the rendered pages)
 import pytest
 
 from rockdesign.report import render, stamped_pdf
-
-pdfium = pytest.importorskip("pypdfium2")
-pypdf = pytest.importorskip("pypdf")
 
 DPI = 96
 
