@@ -13,7 +13,8 @@ library does the whole route; each step is a library call.
 The two halves are independent, so ``rockdesign check`` runs them at the same time: the layout in
 its PDF worker (:mod:`rockdesign.report.pdf_worker`) while it draws the figures
 (:func:`rockdesign.report.render.write_report`).  :func:`html_to_pdf` is the same route in one
-process, for every report.  Measurements: docs/engine.md, "Where a warm check spends its time".
+process, for every report.  If typst refuses a figure, WeasyPrint draws the figures itself
+(:func:`drawn_by_weasyprint`: the same pages, slower).  Measurements: docs/engine.md, "Where a warm check spends its time".
 """
 from __future__ import annotations
 
@@ -133,7 +134,21 @@ def stamp(path: Path, slots: list[Slot], figures: bytes) -> Path:
 
 
 def html_to_pdf(html_text: str, path: Path, base_url: str | None = None) -> Path:
-    """The report's HTML (figures as SVG images) to the PDF ``path``: layout, figures, stamps in turn."""
+    """The report's HTML (figures as SVG images) to the PDF ``path``: figures, layout, stamps in turn
+    (:func:`drawn_by_weasyprint` if typst cannot draw a figure)."""
     slotted, svgs = slot_html(html_text)
-    slots = layout_pdf(slotted, Path(path), base_url)
-    return stamp(Path(path), slots, figure_pdfs(svgs))
+    try:
+        figures = figure_pdfs(svgs)
+    except Exception:   # noqa: BLE001 — typst refused a figure: WeasyPrint draws them (slower, same page)
+        return drawn_by_weasyprint(html_text, Path(path), base_url)
+    return stamp(Path(path), layout_pdf(slotted, Path(path), base_url), figures)
+
+
+def drawn_by_weasyprint(html_text: str, path: Path, base_url: str | None = None) -> Path:
+    """The report's HTML to the PDF ``path`` with WeasyPrint drawing the SVG figures itself: the same
+    pages (the boxes are the figures' own), ≈ 2 s slower for the check's report."""
+    from weasyprint import HTML
+
+    from ..paths import templates_dir
+    HTML(string=html_text, base_url=base_url or str(templates_dir())).write_pdf(str(path))
+    return path

@@ -120,3 +120,31 @@ def test_a_report_without_figures(tmp_path):
     html = f"<html><head><style>{render.stylesheet()}</style></head><body><p>No figure here.</p></body></html>"
     path = stamped_pdf.html_to_pdf(html, tmp_path / "plain.pdf")
     assert "No figure here." in pypdf.PdfReader(str(path)).pages[0].extract_text()
+
+
+def test_a_figure_typst_refuses_is_drawn_by_weasyprint(tmp_path, monkeypatch):
+    """The figures are never lost: when typst cannot draw one, WeasyPrint draws them all, in place."""
+    from weasyprint import HTML
+
+    def refuse(svgs):
+        raise RuntimeError("typst: unsupported SVG")
+    monkeypatch.setattr(stamped_pdf, "figure_pdfs", refuse)
+    ours = _black_boxes(stamped_pdf.html_to_pdf(_html(), tmp_path / "fallback.pdf").read_bytes())
+    assert ours == _black_boxes(HTML(string=_html(), base_url=str(render.templates_dir())).write_pdf())
+    assert len(ours) == 3
+
+
+@pytest.mark.parametrize("failure", ["size", "typst"])
+def test_the_check_report_survives_a_figure_it_cannot_stamp(curved_out, tmp_path, monkeypatch, failure):
+    """A figure drawn at another size than announced, or one typst refuses: the check's report is laid out
+    again, whole, with every figure in it (slower, same content)."""
+    if failure == "size":
+        boxes = render.figure_boxes
+        monkeypatch.setattr(render, "figure_boxes", lambda made: {
+            name: stamped_pdf.empty_svg("0 0 100 100") if name == "pushover" else svg
+            for name, svg in boxes(made).items()})
+    else:
+        monkeypatch.setattr(stamped_pdf, "figure_pdfs", lambda svgs: (_ for _ in ()).throw(RuntimeError("typst")))
+    written = render.write_report(curved_out.result, tmp_path, html=False)
+    text = "".join(page.extract_text() for page in pypdf.PdfReader(str(written["pdf"])).pages)
+    assert "Pushover curve" in text and "θ [rad]" in text      # the section and its figure's axis label
