@@ -111,21 +111,26 @@ class StructureKind(abc.ABC):
     def write_report(self, result, folder: Path, *, pdf: bool, html: bool, pdf_worker) -> None:
         """results.json, results.csv, the figures and report.pdf/html of a check into ``folder`` (staging)."""
 
-    # --- the design grid (rockdesign design, SPEC §15) --------------------------------------
-    @abc.abstractmethod
+    # --- the design grid (rockdesign design, SPEC §15): the kind's ``grid`` module does the work --------
+    grid = None
+    """The module of the kind's design-grid hooks (``records_key``, ``grid_records``, ``grid_check``,
+    ``grid_cell``): :mod:`rockdesign.kinds.planar_grid`, :mod:`rockdesign.kinds.cylinder_grid`."""
+
     def grid_records_key(self, project) -> str:
         """Which variants share the records read and scaled by :meth:`grid_records` (equal keys share)."""
+        return self.grid.records_key(project)
 
-    @abc.abstractmethod
     def grid_records(self, project, records_dir):
         """The records of the project's excitation, read and scaled once for every variant sharing them."""
+        return self.grid.grid_records(project, records_dir)
 
-    @abc.abstractmethod
     def grid_check(self, project, *, records, records_dir, executor, progress):
         """The check of one variant (its verdict is :meth:`check`'s), computing only what the verdict's word
         and the design table need (``verdict_only``) on the shared ``records``."""
+        return self.grid.grid_check(project, records=records, records_dir=records_dir, executor=executor,
+                                    progress=progress)
 
-    @abc.abstractmethod
     def grid_cell(self, result, analyses: int) -> dict:
         """The check's numbers of a design-grid cell (design.json ``cells``, SI): verdict, reason, governing,
         acceptance numbers, ``decided_at_design_level``, ``analyses`` (run) and ``analyses_saved``."""
+        return self.grid.grid_cell(result, analyses)

@@ -27,6 +27,7 @@ class Cylinder(StructureKind):
     check_kernels = "cylinder-check"
     report_files = frozenset(FIGURE_FILES)
     spectrum_excitation = "record pair"
+    grid = cylinder_grid
     design_rule = cylinder_grid.RULE
     design_skipped = cylinder_grid.SKIPPED
     design_material = ("material: the cylinder's mass", "a free-standing cylinder carries no superstructure")
@@ -85,16 +86,3 @@ class Cylinder(StructureKind):
 
     def write_report(self, result, folder, *, pdf, html, pdf_worker):
         write_cylinder_files(result, folder, pdf=pdf, html=html, pdf_worker=pdf_worker)
-
-    def grid_records_key(self, project):
-        return cylinder_grid.records_key(project)
-
-    def grid_records(self, project, records_dir):
-        return cylinder_grid.grid_records(project, records_dir)
-
-    def grid_check(self, project, *, records, records_dir, executor, progress):
-        return cylinder_grid.grid_check(project, records=records, records_dir=records_dir, executor=executor,
-                                        progress=progress)
-
-    def grid_cell(self, result, analyses):
-        return cylinder_grid.grid_cell(result, analyses)

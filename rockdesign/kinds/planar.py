@@ -28,6 +28,7 @@ class Planar(StructureKind):
     systems = ("column", "podium")
     simulate_kernels = "simulate"
     check_kernels = "check"
+    grid = planar_grid
     design_rule = planar_grid.RULE
     design_skipped = planar_grid.SKIPPED
     grid_shared_batches = True       # every analysis of its check runs through run_jobs
@@ -91,16 +92,3 @@ class Planar(StructureKind):
         write_results_csv(data, folder / "results.csv")
         if pdf or html:
             render.write_report(result, folder, pdf=pdf, html=html, pdf_worker=pdf_worker)
-
-    def grid_records_key(self, project):
-        return planar_grid.records_key(project)
-
-    def grid_records(self, project, records_dir):
-        return planar_grid.grid_records(project, records_dir)
-
-    def grid_check(self, project, *, records, records_dir, executor, progress):
-        return planar_grid.grid_check(project, records=records, records_dir=records_dir, executor=executor,
-                                      progress=progress)
-
-    def grid_cell(self, result, analyses):
-        return planar_grid.grid_cell(result, analyses)

@@ -250,12 +250,8 @@ def _planar_report(result, out_dir: Path, *, html: bool, pdf_worker) -> dict[str
     text = render(draw_figures(made))
     written = {"html": _write_html(text, out_dir)} if html else {}
     _, svgs = stamped_pdf.slot_html(text)
-    figures = None
-    if [stamped_pdf.view_box(b) for b in boxes] == [stamped_pdf.view_box(s) for s in svgs]:
-        try:
-            figures = stamped_pdf.figure_pdfs(svgs)
-        except Exception:   # noqa: BLE001 — typst refused a figure: html_to_pdf below lets WeasyPrint draw them
-            pass
+    same_boxes = [stamped_pdf.view_box(b) for b in boxes] == [stamped_pdf.view_box(s) for s in svgs]
+    figures = stamped_pdf.figure_pdfs_or_none(svgs) if same_boxes else None
     if figures is None:
         # a figure drawn at another size than it announced, or one typst refused: the PDF again, whole
         if job is not None:
@@ -270,12 +266,9 @@ def _planar_report(result, out_dir: Path, *, html: bool, pdf_worker) -> dict[str
 def _pdf(text: str, path: Path, pdf_worker) -> Path:
     if pdf_worker is None:
         return html_to_pdf(text, path)
-    from .stamped_pdf import drawn_by_weasyprint, figure_pdfs, slot_html, stamp
+    from .stamped_pdf import drawn_by_weasyprint, figure_pdfs_or_none, slot_html, stamp
     slotted, svgs = slot_html(text)
     job = pdf_worker.begin_layout(slotted, path)
-    try:
-        figures = figure_pdfs(svgs)
-    except Exception:   # noqa: BLE001 — typst refused a figure: WeasyPrint draws them (same pages)
-        job.result()
-        return drawn_by_weasyprint(text, path)
-    return stamp(path, job.result(), figures)
+    figures = figure_pdfs_or_none(svgs)
+    slots = job.result()        # (the worker writes the file: wait for it either way)
+    return stamp(path, slots, figures) if figures is not None else drawn_by_weasyprint(text, path)

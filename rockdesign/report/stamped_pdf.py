@@ -114,6 +114,15 @@ def figure_pdfs(svgs: list[str]) -> bytes:
                              ignore_system_fonts=True)
 
 
+def figure_pdfs_or_none(svgs: list[str]) -> bytes | None:
+    """:func:`figure_pdfs`, or None when typst refuses a figure (the caller lets WeasyPrint draw the
+    figures: :func:`drawn_by_weasyprint`)."""
+    try:
+        return figure_pdfs(svgs)
+    except Exception:   # noqa: BLE001 — any refusal of typst's: the figures are drawn another way
+        return None
+
+
 def stamp(path: Path, slots: list[Slot], figures: bytes) -> Path:
     """Place page k of the PDF ``figures`` (:func:`figure_pdfs`) into slot k of the PDF ``path``
     (rewritten in place)."""
@@ -137,9 +146,8 @@ def html_to_pdf(html_text: str, path: Path, base_url: str | None = None) -> Path
     """The report's HTML (figures as SVG images) to the PDF ``path``: figures, layout, stamps in turn
     (:func:`drawn_by_weasyprint` if typst cannot draw a figure)."""
     slotted, svgs = slot_html(html_text)
-    try:
-        figures = figure_pdfs(svgs)
-    except Exception:   # noqa: BLE001 — typst refused a figure: WeasyPrint draws them (slower, same page)
+    figures = figure_pdfs_or_none(svgs)
+    if figures is None:
         return drawn_by_weasyprint(html_text, Path(path), base_url)
     return stamp(Path(path), layout_pdf(slotted, Path(path), base_url), figures)
 
