@@ -26,9 +26,9 @@ CHILD = r"""
 import json, sys, time
 sys.path.insert(0, sys.argv[1])
 from rockdesign.bench.problems import SYSTEMS, bench_record
-from rockdesign.dynamics.simulate import simulate
-from rockdesign.dynamics.batch import batch_options, run_batch
-from rockdesign.dynamics.model import ModelChoice, system_parameters
+from rockdesign.planar.dynamics.simulate import simulate
+from rockdesign.planar.dynamics.batch import batch_options, run_batch
+from rockdesign.planar.dynamics.model import ModelChoice, system_parameters
 repeats = int(sys.argv[2])
 record = bench_record()
 out = {}

@@ -75,9 +75,9 @@ def same_outcome(ours: Path, baseline: Path) -> dict:
 
 def suite_ratio(project: str, n_records: int = 3) -> dict:
     """Our engine vs the scipy reference on the first records of the project's suite (same model)."""
-    from rockdesign.checks.check import _excitation
-    from rockdesign.design.quantities import design_quantities
-    from rockdesign.dynamics.simulate import simulate
+    from rockdesign.planar.checks.check import _excitation
+    from rockdesign.planar.design.quantities import design_quantities
+    from rockdesign.planar.dynamics.simulate import simulate
     from rockdesign.motions.config import resolve_motions
     from rockdesign.library import load_project
     from rockdesign.bench.baseline.scipy_engine import simulate_scipy
@@ -204,6 +204,7 @@ def report_stages(project: str) -> dict:
 
     import rockdesign.library as rd
     from rockdesign.report import render, stamped_pdf
+    from rockdesign.planar.report import report as planar_report
     proj = rd.load_project(ROOT / project)
     result = rd.run_check(proj, progress=False)
     render.warm_up()
@@ -215,10 +216,10 @@ def report_stages(project: str) -> dict:
         times[name] = _time.process_time() - t
         return value
 
-    made = timed("make_figures_cpu_s", render.make_figures, result)
-    html_of = timed("context_cpu_s", render.html_renderer, result)
-    slotted, _ = stamped_pdf.slot_html(html_of(render.figure_boxes(made)))
-    svgs = timed("draw_figures_cpu_s", render.draw_figures, made)
+    made = timed("make_figures_cpu_s", planar_report.make_figures, result)
+    html_of = timed("context_cpu_s", planar_report.html_renderer, result)
+    slotted, _ = stamped_pdf.slot_html(html_of(planar_report.figure_boxes(made)))
+    svgs = timed("draw_figures_cpu_s", planar_report.draw_figures, made)
     html = timed("html_cpu_s", html_of, svgs)
     _, figures = stamped_pdf.slot_html(html)
     with tempfile.TemporaryDirectory() as tmp:

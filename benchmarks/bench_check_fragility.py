@@ -37,9 +37,9 @@ def without_ensembles(text: str) -> str:
 
 def stage_times(project: str) -> dict:
     """Seconds per stage of one in-process check (kernels warm), from the progress callback."""
-    from rockdesign.checks.check import run_check
-    from rockdesign.checks.fragility import check_fragility
-    from rockdesign.checks.margins import SCAN_RATIO
+    from rockdesign.planar.checks.check import run_check
+    from rockdesign.acceptance.fragility import check_fragility
+    from rockdesign.acceptance.scans import SCAN_RATIO
     from rockdesign.library import load_project
     proj = load_project(ROOT / project)
     starts = {}

@@ -24,10 +24,10 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from rockdesign.bench.timing import machine_info  # noqa: E402
-from rockdesign.checks.check import check_records  # noqa: E402
-from rockdesign.checks.demand import DEMAND_RTOL, fixed_base_damping, record_demand, stats_of  # noqa: E402
-from rockdesign.checks.runner import run_jobs  # noqa: E402
-from rockdesign.dynamics.model import ModelChoice  # noqa: E402
+from rockdesign.planar.checks.check import check_records  # noqa: E402
+from rockdesign.planar.checks.demand import DEMAND_RTOL, fixed_base_damping, record_demand, stats_of  # noqa: E402
+from rockdesign.planar.checks.runner import run_jobs  # noqa: E402
+from rockdesign.planar.dynamics.model import ModelChoice  # noqa: E402
 from rockdesign.jsonable import json_ready  # noqa: E402
 from rockdesign.library import load_project  # noqa: E402
 
@@ -90,7 +90,7 @@ def section(study: dict) -> str:
               "From rtol 1e-8 on, every statistic stays within 0.3 % of its value at 1e-11; single records keep "
               "moving by about 1 % below 1e-8 (rest decisions and the peak's sampling), so a per-record demand is "
               f"quoted to 2 %. The check reads the demand at rtol ≤ {_e(DEMAND_RTOL)} "
-              "(`rockdesign.checks.demand.DEMAND_RTOL`): the default rtol already is 1e-8, so the demand costs no "
+              "(`rockdesign.planar.checks.demand.DEMAND_RTOL`): the default rtol already is 1e-8, so the demand costs no "
               "extra analysis; a project with a looser `[analysis] rtol` gets a separate 2DOF run at 1e-8 for the "
               "demand, and the report's note says so.", ""]
     return "\n".join(lines)

@@ -139,7 +139,7 @@ def shared_vs_one_by_one(base: Path, tmp: Path, rounds: int) -> dict:
     import statistics
 
     from rockdesign.design_space.run import design
-    from rockdesign.kinds.planar import Planar
+    from rockdesign.planar.kind import Planar
     times = {"together": [], "one_by_one": []}
     cells = {}
     shared = None

@@ -21,7 +21,7 @@ Usage::
 
 3. **Stepper choice** (``stepper_choice``): DP5(4) and DOP853 forced, rtol 1e-6 … 1e-12, on every
    system — time, error, steps, evaluations: the work-precision data behind the automatic choice
-   (``rockdesign.dynamics.engine.DOP853_BELOW_RTOL``).
+   (``rockdesign.planar.dynamics.engine.DOP853_BELOW_RTOL``).
 
 Every time is the best of repeated runs after a warm-up run (the machine is shared; the best run is
 the least disturbed), measured in this process; every result is a ratio against the baseline
@@ -41,15 +41,15 @@ import numpy as np
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from rockdesign.dynamics import metrics  # noqa: E402
+from rockdesign.planar.dynamics import metrics  # noqa: E402
 from rockdesign.bench.problems import G, RECORD_ID, RECORD_SCALE, SYSTEMS, Problem, bench_record  # noqa: E402
 from rockdesign.bench.reference import build_reference  # noqa: E402
 from rockdesign.jsonable import json_ready  # noqa: E402
 from rockdesign.bench.timing import TimingPolicy, machine_info, time_call  # noqa: E402
-from rockdesign.dynamics.batch import batch_options, run_batch  # noqa: E402
-from rockdesign.dynamics.layout import DOP853_BELOW_RTOL, S_DYNAMIC, S_IMPACTS, S_THETA_MAX  # noqa: E402
-from rockdesign.dynamics.model import ModelChoice, system_parameters  # noqa: E402
-from rockdesign.dynamics.simulate import simulate  # noqa: E402
+from rockdesign.planar.dynamics.batch import batch_options, run_batch  # noqa: E402
+from rockdesign.planar.dynamics.layout import DOP853_BELOW_RTOL, S_DYNAMIC, S_IMPACTS, S_THETA_MAX  # noqa: E402
+from rockdesign.planar.dynamics.model import ModelChoice, system_parameters  # noqa: E402
+from rockdesign.planar.dynamics.simulate import simulate  # noqa: E402
 from rockdesign.motions.library import load_record  # noqa: E402
 from rockdesign.bench.baseline.scipy_engine import simulate_scipy  # noqa: E402
 

@@ -48,7 +48,7 @@ sys.path.insert(0, str(ROOT))
 
 from rockdesign.bench.problems import G, RECORD_ID, bench_record, housner_block  # noqa: E402
 from rockdesign.bench.timing import machine_info  # noqa: E402
-from rockdesign.dynamics.simulate import simulate  # noqa: E402
+from rockdesign.planar.dynamics.simulate import simulate  # noqa: E402
 
 T_FREE = 2.0
 T_RECORD = 30.0

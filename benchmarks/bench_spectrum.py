@@ -83,13 +83,13 @@ def cli_run(project: Path, out: Path, x: str, y: str) -> dict:
 
 def baselines(n_sample: int, n_python: int, n_scipy: int, seed: int = 0) -> dict:
     """Cost per analysis of the spectrum kernel vs full-length runs, Python simulate() calls and scipy."""
-    from rockdesign.dynamics.batch import batch_options
-    from rockdesign.dynamics.simulate import simulate
+    from rockdesign.planar.dynamics.batch import batch_options
+    from rockdesign.planar.dynamics.simulate import simulate
     from rockdesign.motions.motion import pulse_motion
     from rockdesign.bench.baseline.scipy_engine import simulate_scipy
-    from rockdesign.spectra.kernel import OUT_STEPS, pulse_points, warm_up
-    from rockdesign.spectra.spectrum import SpectrumRequest, prepare
-    from rockdesign.systems import Column, RockingSystem
+    from rockdesign.planar.spectra.kernel import OUT_STEPS, pulse_points, warm_up
+    from rockdesign.planar.spectra.spectrum import SpectrumRequest, prepare
+    from rockdesign.planar.system import Column, RockingSystem
 
     system = RockingSystem("B1", "column", Column(1.5, 0.15, 1000.0, 1 / 3))
     req = SpectrumRequest("ricker-anti")
@@ -143,8 +143,8 @@ def thread_scaling(x: str, y: str) -> dict:
     """In-process kernel with 1 and 2 numba threads: how much parallelism the machine offers now."""
     import numba
 
-    from rockdesign.spectra import SpectrumRequest, compute_spectrum, parse_axis
-    from rockdesign.systems import Column, RockingSystem
+    from rockdesign.planar.spectra import SpectrumRequest, compute_spectrum, parse_axis
+    from rockdesign.planar.system import Column, RockingSystem
     system = RockingSystem("B1", "column", Column(1.5, 0.15, 1000.0, 1 / 3))
     req = SpectrumRequest("ricker-anti", parse_axis(x, "x"), parse_axis(y, "y"))
     out = {}
@@ -159,9 +159,9 @@ def thread_scaling(x: str, y: str) -> dict:
 
 
 def dask_scaling(x: str, y: str) -> dict:
-    from rockdesign.spectra import SpectrumRequest, compute_spectrum, make_executor, parse_axis
-    from rockdesign.spectra.kernel import warm_up
-    from rockdesign.systems import Column, RockingSystem
+    from rockdesign.planar.spectra import SpectrumRequest, compute_spectrum, make_executor, parse_axis
+    from rockdesign.planar.spectra.kernel import warm_up
+    from rockdesign.planar.system import Column, RockingSystem
     system = RockingSystem("B1", "column", Column(1.5, 0.15, 1000.0, 1 / 3))
     req = SpectrumRequest("ricker-anti", parse_axis(x, "x"), parse_axis(y, "y"))
     local = compute_spectrum(system, req)

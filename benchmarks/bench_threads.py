@@ -13,14 +13,14 @@ Usage::
    ratios of the two times in each round (paired; the most robust on a shared machine).
 2. **A batch with a busy core** (``batch``): the Housner block under the same record at
    ``--jobs`` scale factors 0.05 … 1.0 (summaries only), on one thread (the serial driver), and on all
-   threads with the dynamic driver (:mod:`rockdesign.dynamics.scheduling`: each thread takes the next job
+   threads with the dynamic driver (:mod:`rockdesign.execution.scheduling`: each thread takes the next job
    from a shared counter) and with a static driver (numba's own ``prange`` over the jobs, each thread a
    fixed contiguous block — the scheme the batch driver replaced; compiled here, not cached), each with
    and without a competitor pinned to the last core.  The goal: the batch on all cores with one core busy
    takes ≤ 1.3× the one-thread time.
 3. **Break-even** (``break_even``): batches of 1 … 8 jobs of the same block (scale factors 0.6 … 1.0, every
    job rocks), serial driver against the parallel driver: the smallest batch for which threads pay
-   (``rockdesign.dynamics.batch.SERIAL_BELOW_JOBS``).
+   (``rockdesign.planar.dynamics.batch.SERIAL_BELOW_JOBS``).
 4. **Job order** (``order``): the batch's jobs in their own order, longest first (by each job's measured
    one-thread time) and in the equal-count blocks of ``checks.runner``'s earlier ``balanced_order``, on the
    dynamic driver with a busy core.
@@ -50,9 +50,9 @@ sys.path.insert(0, str(ROOT))
 import rockdesign as rd  # noqa: E402
 from rockdesign.bench.problems import G, RECORD_ID, housner_block  # noqa: E402
 from rockdesign.bench.timing import machine_info  # noqa: E402
-from rockdesign.dynamics import batch  # noqa: E402
-from rockdesign.dynamics.batch import _job, batch_options, pack_motions, run_packed  # noqa: E402
-from rockdesign.dynamics.model import ModelChoice, system_parameters  # noqa: E402
+from rockdesign.planar.dynamics import batch  # noqa: E402
+from rockdesign.planar.dynamics.batch import _job, batch_options, pack_motions, run_packed  # noqa: E402
+from rockdesign.planar.dynamics.model import ModelChoice, system_parameters  # noqa: E402
 from rockdesign.jsonable import json_ready  # noqa: E402
 from rockdesign.motions.library import load_record  # noqa: E402
 
@@ -255,7 +255,7 @@ def bench_break_even(rounds: int, sizes=(1, 2, 3, 4, 6, 8)) -> dict:
 
 def bench_order(n_jobs: int, rounds: int) -> dict:
     """The dynamic driver with a busy core: jobs in their own order, longest first, or in balanced blocks."""
-    from rockdesign.checks.runner import balanced_order
+    from rockdesign.planar.checks.runner import balanced_order
     sp, packed, opts = _block_batch(n_jobs)
     threads = numba.get_num_threads()
     costs = []

@@ -1,7 +1,7 @@
 """Tolerance study: how the statistics the check's verdict uses change with the integrator tolerance.
 
 For every example project (``examples/*.toml``) the complete design check
-(:func:`rockdesign.checks.check.run_check`, margins included) runs at rtol = 1e-6 … 1e-12 with
+(:func:`rockdesign.planar.checks.check.run_check`, margins included) runs at rtol = 1e-6 … 1e-12 with
 atol = 0.01·rtol, the margins' incremental analyses at the same tolerance (``scan_rtol = rtol``), and
 the suite statistics are compared with those at the tightest tolerance:
 
@@ -32,7 +32,7 @@ sys.path.insert(0, str(ROOT))
 
 from rockdesign.jsonable import json_ready  # noqa: E402
 from rockdesign.bench.timing import machine_info  # noqa: E402
-from rockdesign.checks.check import run_check  # noqa: E402
+from rockdesign.planar.checks.check import run_check  # noqa: E402
 from rockdesign.library import load_project  # noqa: E402
 
 RTOLS = (1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12)
@@ -149,7 +149,7 @@ def markdown(study: dict) -> str:
         "θ_max/θc, the margin median (thesis Ch 5). This study measures how those statistics",
         "move when the integrator's tolerance goes from rtol = 1e-6 to 1e-12 (atol = 0.01·rtol; the margins'",
         "incremental analyses at the same tolerance) on the example projects, with the complete `check`",
-        "(`rockdesign.checks.check.run_check`).",
+        "(`rockdesign.planar.checks.check.run_check`).",
         "",
         f"Run {study['date']} on {m.get('cpu', '?')} ({m.get('nproc', '?')} cores), rockdesign engine: DP5(4),",
         "DOP853 for the 2DOF podium below rtol 5e-8 (docs/engine.md). Reference: the tightest tolerance.",

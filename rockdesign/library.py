@@ -27,24 +27,19 @@ import tomllib
 from collections.abc import Mapping
 from pathlib import Path
 
-from .design.quantities import Quantity
-from .dynamics import compilation
+from .execution import compilation
 from .errors import ProjectError, RockdesignError
 from .execution.executor import make_executor
 from .kinds import kind_of, kind_of_document
-from .kinds.cylinder_simulation import CylinderSimulation  # noqa: F401  (exported: rd.CylinderSimulation)
-from .kinds.planar_simulation import SimulationResult
 from .outdir import OutputFolder
 from .progress import progress_bars
 from .project_tables import Project, read_document
+from .quantity import Quantity
 from .report.pdf_worker import PdfWorker
 from .report.results import json_text  # noqa: F401  (the CLI prints results.json with it)
 
 __all__ = ["load_project", "parse_project", "design_quantities", "simulate", "check", "write_report",
-           "Quantities", "SimulationResponse", "CylinderSimulation"]
-
-SimulationResponse = SimulationResult
-"""The result of :func:`simulate` for a planar structure (for a cylinder: :class:`CylinderSimulation`)."""
+           "Quantities"]
 
 CLI_KEYS = {"records_dir": "--records-dir", "executor": "--dask"}
 """The command-line options of :func:`check`'s parameters (errors of the commands name these)."""
@@ -108,7 +103,7 @@ def parse_project(toml_text: str, name: str = "<string>") -> Project:
 class Quantities(Mapping):
     """The closed-form design quantities of a project (CONTRACT §3 names), by key or attribute.
 
-    Each value is a :class:`~rockdesign.design.quantities.Quantity` with ``value`` in SI units,
+    Each value is a :class:`~rockdesign.planar.design.quantities.Quantity` with ``value`` in SI units,
     ``unit`` (the unit of ``value``: "m", "rad", "1/s", "m/s^2", "-"...), ``symbol``, ``equation``
     (thesis equation number) and ``formula``.  ``q.theta_c.value`` and ``q["theta_c"].value`` are
     the same number; ``lambda`` (a Python keyword) is reached as ``q["lambda"]``.
@@ -306,6 +301,6 @@ def write_report(result, out_dir, *, pdf: bool = True, html: bool = True, pdf_wo
 
 
 def compile_kernels(command: str, say=None) -> float:
-    """Compile the kernels a command needs on its first run (:mod:`rockdesign.dynamics.compilation`),
+    """Compile the kernels a command needs on its first run (:mod:`rockdesign.execution.compilation`),
     announcing it with ``say``; seconds spent (0 when every kernel is cached)."""
     return compilation.prepare(command, say)

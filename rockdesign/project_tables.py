@@ -1,6 +1,6 @@
 """What every project file shares, planar or cylinder: the [project] and [analysis] tables, the
 key-tracking table reader behind the precise error messages, and the loaded :class:`Project`
-(docs/project-file.md).  :mod:`rockdesign.project` (columns, frames, podiums) and
+(docs/project-file.md).  :mod:`rockdesign.planar.project` (columns, frames, podiums) and
 :mod:`rockdesign.cylinder.project` (the 3D cylinder) both build on it.
 """
 from __future__ import annotations
@@ -12,9 +12,7 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .design.quantities import RIGID_SUPERSTRUCTURE_RATIO
 from .errors import ProjectError
-from .systems import RockingSystem
 from .units import G_DEFAULT, QuantityParseError, parse_quantity
 
 PROJECT_KEYS = ("name", "engineer", "checker", "job", "client", "notes")
@@ -57,7 +55,8 @@ class AnalysisSettings:
     margin_precision: float = 0.01
     margin_max_scale: float = 8.0
     free_vibration: float = 10.0
-    rigid_superstructure_ratio: float = RIGID_SUPERSTRUCTURE_RATIO
+    rigid_superstructure_ratio: float = 10.0
+    """ω_s/p at and above which a podium's superstructure is treated as rigid by default (SPEC §6)."""
     scan_rtol: float = 1e-6
     overturn_probability_limit: float = 0.10
     # fragility, collapse margin and perturbation ensembles (SPEC §11; parsed by _parse_fragility)
@@ -82,7 +81,8 @@ class Project:
 
     path: str
     name: str
-    system: RockingSystem
+    system: object
+    """The structure in SI, of the project's kind (a planar ``RockingSystem``, a ``Cylinder``, …)."""
     analysis: AnalysisSettings
     info: dict = field(default_factory=dict)
     excitation_raw: dict | None = None

@@ -40,7 +40,7 @@ g = "9.807 m/s^2"
 
 def free_vibration() -> None:
     from rockdesign.experiments.synthetic import free_rocking_history
-    from rockdesign.systems import block
+    from rockdesign.planar.system import block
     alpha = math.atan(0.1)
     system = block(0.25, 0.025, 0.329, 0.543, g=9.807)
     t, theta = free_rocking_history(system, 0.7 * alpha, c_r_left=0.93 * 1.05, c_r_right=0.93, duration=15.0,
@@ -68,7 +68,7 @@ def validation() -> None:
     project = rd.load_project(EXAMPLES / "shake_table_F02.toml")
     analyses = EXAMPLES / "validation_analyses.csv"
     write_analyses_csv(run_ensemble(project, SUITE, scale=SCALE), analyses)
-    from rockdesign.design.quantities import coefficient_of_restitution
+    from rockdesign.planar.design.quantities import coefficient_of_restitution
     c_r = coefficient_of_restitution(project.system)[0]
     weaker = run_ensemble(project, SUITE, scale=SCALE, restitution=0.95 * c_r)
     rng = np.random.default_rng(11)

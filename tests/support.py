@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import math
 
-from rockdesign.systems import Column, RockingSystem, Superstructure
+from rockdesign.planar.system import Column, RockingSystem, Superstructure
 
 G = 9.81
 

@@ -1,6 +1,6 @@
 """The methods compared in the work-precision study, behind one calling convention.
 
-* ``rockdesign`` — our event-driven engine (:func:`rockdesign.dynamics.simulate.simulate`) solving the
+* ``rockdesign`` — our event-driven engine (:func:`rockdesign.planar.dynamics.simulate.simulate`) solving the
   problem's equations (exact, or linearized for the linearized problems) with the stepper it picks per
   system and tolerance (``method="auto"``: DOP853 for the 2DOF podium at rtol < 5e-8, DP5(4) otherwise).
 * ``rockdesign DP5(4)`` and ``rockdesign DOP853`` — the same engine with one stepper forced: the
@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..dynamics.simulate import simulate
+from ..planar.dynamics.simulate import simulate
 from .baseline.scipy_engine import simulate_scipy
 from .problems import Problem
 

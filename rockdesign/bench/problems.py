@@ -29,10 +29,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from ..dynamics.linear_exact import sampled_pulse
+from ..planar.dynamics.linear_exact import sampled_pulse
 from ..motions.library import load_record
 from ..motions.motion import GroundMotion, no_motion, pulse_motion
-from ..systems import Column, RockingSystem, Superstructure
+from ..planar.system import Column, RockingSystem, Superstructure
 
 G = 9.81
 RECORD_ID = "p695-ff/1a"
@@ -95,7 +95,7 @@ class Problem:
         name: excitation name, with ``-linearized`` appended for the linearized equations.
         system_name: key of :data:`SYSTEMS`.
         system: the rocking system.
-        structure: structural model for :func:`~rockdesign.dynamics.simulate.simulate`.
+        structure: structural model for :func:`~rockdesign.planar.dynamics.simulate.simulate`.
         motion: ground motion (``no_motion()`` for free vibration).
         equations: ``"exact"`` (SPEC §3.1) or ``"linear"`` (SPEC §3.2).
         t_end: end of the analysis [s].

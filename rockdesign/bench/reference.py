@@ -3,7 +3,7 @@
 Two kinds (``ReferenceSolution.kind``):
 
 * ``closed-form`` (linearized SDOF problems): the exact event-driven solution of the linearized
-  equations (SPEC §3.8, :mod:`rockdesign.dynamics.linear_exact`).  Between events it is an explicit
+  equations (SPEC §3.8, :mod:`rockdesign.planar.dynamics.linear_exact`).  Between events it is an explicit
   formula and every event is a bracketed root found to round-off, so its own error is round-off
   (~1e-15 rad).  As an independent check, our engine and scipy DOP853 at rtol 1e-13 are compared
   with it (``checks``).
@@ -22,10 +22,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..dynamics.accuracy import history_at
-from ..dynamics.simulate import simulate
+from ..planar.dynamics.accuracy import history_at
+from ..planar.dynamics.simulate import simulate
 from .baseline.scipy_engine import simulate_scipy
-from ..dynamics import metrics
+from ..planar.dynamics import metrics
 from .problems import Problem
 
 REFERENCE_RTOL = 1e-13
@@ -36,7 +36,7 @@ SELF_CHECK_RTOL = 1e-12
 def engine_history_at(problem: Problem, times, *, model: str = "exact", rtol: float = REFERENCE_RTOL,
                       atol: float = REFERENCE_ATOL, scan_points: int = 8) -> np.ndarray:
     """θ(t) [rad] of our engine (or closed form) for ``problem`` at the given times [s]
-    (:func:`rockdesign.dynamics.accuracy.history_at` on the problem's system, motion and start)."""
+    (:func:`rockdesign.planar.dynamics.accuracy.history_at` on the problem's system, motion and start)."""
     return history_at(problem.system, problem.motion, times, t_end=problem.t_end, structure=problem.structure,
                       theta0=problem.theta0, model=model, rtol=rtol, atol=atol, scan_points=scan_points)
 

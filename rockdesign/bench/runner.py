@@ -19,7 +19,7 @@ from typing import Callable
 
 import numpy as np
 
-from ..dynamics import metrics
+from ..planar.dynamics import metrics
 from .methods import ATOL_OVER_RTOL, CLOSED_FORM_TOLERANCE, METHODS, Method, RunOutput, is_finite_run
 from .problems import Problem, make_problem, problem_set
 from .reference import ReferenceSolution, build_reference

@@ -13,7 +13,7 @@ import time
 from .. import mplfig as plt  # noqa: E402  (pyplot-free Figures: importing never switches the backend)
 import numpy as np  # noqa: E402
 
-from ..dynamics.simulate import simulate  # noqa: E402
+from ..planar.dynamics.simulate import simulate  # noqa: E402
 from ..motions.motion import no_motion, pulse_motion  # noqa: E402
 from .baseline.scipy_engine import simulate_scipy  # noqa: E402
 from ..plots import STYLE  # noqa: E402

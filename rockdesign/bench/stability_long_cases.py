@@ -11,11 +11,11 @@ import time
 import numpy as np
 
 from .. import mplfig as plt  # (pyplot-free Figures: importing never switches the backend)
-from ..dynamics.simulate import simulate
+from ..planar.dynamics.simulate import simulate
 from ..motions.library import load_record
 from ..motions.motion import pulse_motion, record_motion
 from ..plots import STYLE
-from ..systems import Column, RockingSystem
+from ..planar.system import Column, RockingSystem
 from .figures import COLORS, MARKERS
 from .problems import G, Problem, housner_block, make_problem
 from .stability_cases import _diag, _fmt_tols, _ours, _scipy

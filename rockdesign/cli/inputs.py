@@ -1,5 +1,5 @@
 """Validation of command-line options before any work is done (the project file is validated in
-:mod:`rockdesign.project`).
+:mod:`rockdesign.planar.project`).
 
 Every check raises a :class:`~rockdesign.errors.RockdesignError` naming the option, what was expected
 and what was found, so the CLI prints one line and exits with code 2 — never a traceback after
@@ -102,7 +102,7 @@ def refuse_given(ctx, options: dict[str, str], used_by: str, expected: str) -> N
 def compile_kernels(command: str, say=None) -> float:
     """Compile the kernels ``command`` needs on its first run, saying so ("compiling the numerical kernels
     of `check` (…): expect N–M s at the current machine load") with ``say`` (default: print on stderr): the step after the input was
-    checked and before the analyses (:func:`rockdesign.dynamics.compilation.prepare`); seconds spent (0
+    checked and before the analyses (:func:`rockdesign.execution.compilation.prepare`); seconds spent (0
     when all are cached)."""
     from ..library import compile_kernels as prepare
     if say is None:

@@ -1,7 +1,7 @@
 """``rockdesign spectrum P.toml --pulse K ...``: rocking spectra (CONTRACT §2, §4; docs/spectra.md).
 
 Mounted by :mod:`rockdesign.cli` through :func:`register`.  The command only parses options and
-calls :mod:`rockdesign.spectra`.
+calls :mod:`rockdesign.planar.spectra`.
 """
 from __future__ import annotations
 

@@ -140,7 +140,7 @@ def parse_cylinder_excitation(raw: dict | None, *, file: str, g: float, tan_alph
 
 
 def parse_cylinder_project(raw: dict, *, file: str = "<project>", text: str = ""):
-    """Validate a project with a ``[cylinder]`` section into a :class:`~rockdesign.project.Project`.
+    """Validate a project with a ``[cylinder]`` section into a :class:`~rockdesign.planar.project.Project`.
 
     The ``[analysis]`` table is validated by the planar loader, except ``overturn_tilt`` (read here)
     and the planar keys, which are refused.

@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from ..design.quantities import Quantity, _f
+from ..quantity import Quantity, format_number as _f
 from .system import Cylinder
 
 

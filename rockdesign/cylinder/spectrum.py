@@ -3,7 +3,7 @@
 The abscissa is the size R (the cylinder's slenderness tan α is the project's), the ordinate the
 resultant PGA over the uplift acceleration, max|ü_g|/(g tan α) (Eq 5.43); each grid point is one 3D
 analysis (:func:`rockdesign.cylinder.kernel.integrate`), run in parallel over both cores by a numba
-``prange`` loop whose threads take the points one at a time (:mod:`rockdesign.dynamics.scheduling`).
+``prange`` loop whose threads take the points one at a time (:mod:`rockdesign.execution.scheduling`).
 The value is θ_max/α, set to θ_ot/α where the cylinder overturns.  A relative spectrum subtracts the
 same spectrum of a second project (e.g. damped minus undamped, Fig 5.17): where it is negative the
 first project performs better.
@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit, prange
 
-from ..dynamics.scheduling import take, worker_count
+from ..execution.scheduling import take, worker_count
 from ..errors import RockdesignError
 from .eom import parameters
 from .kernel import ST_OVERTURNED, integrate
@@ -55,7 +55,7 @@ def _grid(pars, scales, params0, sx, sy, t_end, t_exc_end, rtol, atol, theta_see
     """All grid points: pars[i] per size, scales[j] per amplitude; θ_max, overturned, quasi-impacts.
 
     ``workers`` workers (one per numba thread) take the points one at a time from a shared counter
-    (:mod:`rockdesign.dynamics.scheduling`), so a busy core does not hold up the grid."""
+    (:mod:`rockdesign.execution.scheduling`), so a busy core does not hold up the grid."""
     nx = pars.shape[0]
     ny = scales.shape[0]
     counter = np.zeros(1, dtype=np.int64)

@@ -1,4 +1,4 @@
-"""First-run compilation of the cylinder's kernels (:mod:`rockdesign.dynamics.compilation` reaches it by
+"""First-run compilation of the cylinder's kernels (:mod:`rockdesign.execution.compilation` reaches it by
 name, so the planar engine's package imports nothing of the cylinder's)."""
 from __future__ import annotations
 

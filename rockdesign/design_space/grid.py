@@ -9,12 +9,12 @@ Shared work:
 - the kernels compile (or load from the cache) once, in this one process;
 - the analyses of all variants run together: each variant's check runs in a thread of its own and its
   batches (a chunk of a suite, a round of a margin scan) wait for the other running variants' to run as
-  one call of the batch driver (:mod:`rockdesign.dynamics.batch_pool`) — as many times more jobs per call
+  one call of the batch driver (:mod:`rockdesign.planar.dynamics.batch_pool`) — as many times more jobs per call
   as there are variants running (:func:`at_once`), so the cores stay busy to the end of each call (on a
   dask cluster the variants run one after the other, each on the whole cluster);
 - each variant runs the check's own stages through its kind's grid hooks (:mod:`rockdesign.kinds`:
-  ``grid_records``, ``grid_check``, ``grid_cell``; planar: :func:`rockdesign.checks.check.run_check`,
-  cylinder: :func:`rockdesign.checks.cylinder_check.run_cylinder_check`, both with ``verdict_only``):
+  ``grid_records``, ``grid_check``, ``grid_cell``; planar: :func:`rockdesign.planar.checks.check.run_check`,
+  cylinder: :func:`rockdesign.cylinder.check.run_cylinder_check`, both with ``verdict_only``):
   model selection, the design-level suite, the margin scans and the demand — so a cell's verdict is the
   check's verdict of that variant;
 - a variant stops once its verdict is decided: when the design-level suite already fails the acceptance
@@ -107,7 +107,7 @@ def run_grid(variant_list: list[Variant], variables, *, records_dir=None, execut
 
     Variants whose analyses can share batches (:attr:`~rockdesign.kinds.base.StructureKind.grid_shared_batches`)
     are checked together, each in a thread of its own, their batches merged into shared calls of the batch
-    driver (:mod:`rockdesign.dynamics.batch_pool`); on a dask cluster (``executor``) one after the other."""
+    driver (:mod:`rockdesign.planar.dynamics.batch_pool`); on a dask cluster (``executor``) one after the other."""
     run = GridRun(list(variables), [])
     records_cache: dict[str, tuple] = {}
     total = len(variant_list)
@@ -168,7 +168,7 @@ def run_grid(variant_list: list[Variant], variables, *, records_dir=None, execut
 
 def _check_variant(variant, variables, kind, records, path, *, records_dir, executor, progress) -> dict:
     """The cell of one variant's check (stored in ``path`` for a resumed run)."""
-    from ..checks.runner import AnalysisCount
+    from ..execution.counting import AnalysisCount
     before = AnalysisCount.mine()
     try:
         result = kind.grid_check(variant.project, records=records, records_dir=records_dir, executor=executor,
@@ -192,10 +192,10 @@ def _check_variant(variant, variables, kind, records, path, *, records_dir, exec
 def _check_together(tasks, check, report, threads: int):
     """Check ``tasks`` in ``threads`` threads (the next task starting as one ends), their analyses in shared
     batches served by this thread; ``report(position)`` here as each one ends.  An error or Ctrl-C cancels
-    the others and is raised.  Returns the :class:`~rockdesign.dynamics.batch_pool.BatchPool` (its counts)."""
+    the others and is raised.  Returns the :class:`~rockdesign.planar.dynamics.batch_pool.BatchPool` (its counts)."""
     from concurrent.futures import ThreadPoolExecutor
 
-    from ..dynamics.batch_pool import BatchPool, PoolCancelled
+    from ..planar.dynamics.batch_pool import BatchPool, PoolCancelled
     pool = BatchPool(len(tasks))
     errors: list[BaseException] = []
     finished: list[int] = []

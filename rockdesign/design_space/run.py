@@ -85,7 +85,7 @@ OPTION_KEYS = {"records_dir": "--records-dir", "executor": "--dask"}
 def design_command(project, vary, out, *, as_json: bool, no_pdf: bool, records_dir, dask, console, stdout) -> int:
     """The CLI's ``design``: run, write DIR (design.json, design.csv, design.html/pdf, figures), print."""
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
-    from ..dynamics.compilation import prepare
+    from ..execution.compilation import prepare
     target = Path(out if out is not None else f"{Path(project).stem}_design").expanduser()
     if target.exists() and not target.is_dir():
         raise RockdesignError("not a folder", key="-o/--out", expected="a folder (created if missing)",

@@ -2,6 +2,6 @@
 dask.distributed (:mod:`.executor`), with fingerprints and resumable chunk files (:mod:`.store`).
 
 It knows nothing of rocking: it calls functions on chunks of tasks.  The spectra
-(:mod:`rockdesign.spectra`) and the checks (:func:`rockdesign.dynamics.parallel.run_motions`) both
+(:mod:`rockdesign.planar.spectra`) and the checks (:func:`rockdesign.planar.dynamics.parallel.run_motions`) both
 run on it.
 """

@@ -1,6 +1,6 @@
 """A project run over a ground-motion ensemble (e.g. ``rockdesign records synth``'s stochastic
 ensemble, thesis Ch. 7): one analysis per motion with the existing batch runner
-(:func:`rockdesign.checks.runner.run_jobs`), written as the ``analyses.csv`` that
+(:func:`rockdesign.planar.checks.runner.run_jobs`), written as the ``analyses.csv`` that
 ``rockdesign validate`` reads (columns ``id``, ``theta_max_over_alpha``, ``overturned``, ...).
 
 The model is the project's full model (``[analysis] model``; exact equations unless
@@ -13,9 +13,9 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..checks.runner import RunSummary, run_jobs
-from ..design.quantities import coefficient_of_restitution
-from ..dynamics.model import ModelChoice, default_structure, resolve_structure
+from ..planar.checks.runner import RunSummary, run_jobs
+from ..planar.design.quantities import coefficient_of_restitution
+from ..planar.dynamics.model import ModelChoice, default_structure, resolve_structure
 from ..errors import ProjectError
 from ..motions.suites import load_suite
 

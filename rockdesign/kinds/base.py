@@ -23,7 +23,7 @@ class StructureKind(abc.ABC):
     systems: tuple[str, ...] = ()
     """``project.system.kind`` values of this kind's systems ("column", "podium"; "cylinder")."""
     simulate_kernels: str = "simulate"
-    """The first-run compilation command (:mod:`rockdesign.dynamics.compilation`) of ``simulate``."""
+    """The first-run compilation command (:mod:`rockdesign.execution.compilation`) of ``simulate``."""
     check_kernels: str = "check"
     """The first-run compilation command of ``check``."""
     spectrum_excitation: str = "pulse"
@@ -39,8 +39,8 @@ class StructureKind(abc.ABC):
     """The recommended design without a superstructure force to rank by: (what is least, why)."""
     grid_shared_batches: bool = False
     """Whether the design grid may check variants of this kind together, their analyses merged into shared
-    batches (:mod:`rockdesign.dynamics.batch_pool`; the analyses run through
-    :func:`rockdesign.checks.runner.run_jobs`)."""
+    batches (:mod:`rockdesign.planar.dynamics.batch_pool`; the analyses run through
+    :func:`rockdesign.planar.checks.runner.run_jobs`)."""
     key_alternatives: dict[str, tuple[str, ...]] | None = None
     """Keys of the kind's project tables that say the same thing two ways: a ``--vary`` of one replaces the
     others (None: :data:`rockdesign.design_space.variants.ALTERNATIVES`)."""
@@ -114,7 +114,7 @@ class StructureKind(abc.ABC):
     # --- the design grid (rockdesign design, SPEC §15): the kind's ``grid`` module does the work --------
     grid = None
     """The module of the kind's design-grid hooks (``records_key``, ``grid_records``, ``grid_check``,
-    ``grid_cell``): :mod:`rockdesign.kinds.planar_grid`, :mod:`rockdesign.kinds.cylinder_grid`."""
+    ``grid_cell``): :mod:`rockdesign.planar.grid`, :mod:`rockdesign.cylinder.grid`."""
 
     def grid_records_key(self, project) -> str:
         """Which variants share the records read and scaled by :meth:`grid_records` (equal keys share)."""

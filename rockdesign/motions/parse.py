@@ -209,11 +209,3 @@ def parse_motion(text: str, scales: SystemScales, *, records_dir: str | None = N
     raise MotionError("unknown motion kind", key="--motion",
                       expected="one of " + ", ".join(list(PULSE_KINDS) + ["free", "record", "file"]),
                       found=f"'{kind}' in '{text}'")
-
-
-def system_scales(system) -> SystemScales:
-    """The reference values of relative units for ``system`` (α, g tan α, p, p̂, g)."""
-    from ..design.quantities import design_quantities
-    q = design_quantities(system)
-    p_hat = q["p_hat"].value if "p_hat" in q else q["p"].value
-    return SystemScales(q["alpha"].value, q["uplift_acceleration"].value, q["p"].value, p_hat, system.g)

@@ -40,7 +40,7 @@ def nigam_jennings_step(omega, zeta, dt):
     For ü + 2ζωu̇ + ω²u = −ü_g with ü_g linear from a_i to a_j over the step,
     u_j = A11 u_i + A12 v_i + B11 a_i + B12 a_j and v_j = A21 u_i + A22 v_i + B21 a_i + B22 a_j
     (Nigam & Jennings 1968).  Used by the elastic spectra and by the engine's exact rest step of a
-    podium (rockdesign.dynamics.rest_step).
+    podium (rockdesign.planar.dynamics.rest_step).
     """
     root = math.sqrt(1.0 - zeta * zeta)
     omega_d = omega * root

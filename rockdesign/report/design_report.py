@@ -49,7 +49,7 @@ def _svg(fig) -> str:
 
 def write_design_report(result, data: dict, out_dir: Path, *, pdf: bool = True, recommended_check=None) -> dict:
     """Write ``design.html``, ``design.pdf`` (``pdf``) and the figures ``design_<name>.svg`` into ``out_dir``;
-    ``recommended_check``: the full :class:`~rockdesign.checks.check.CheckResult` of the recommended variant
+    ``recommended_check``: the full :class:`~rockdesign.planar.checks.check.CheckResult` of the recommended variant
     (its summary goes into the report).  Returns the paths written."""
     out_dir = Path(out_dir)
     figs = {k: f for k, f in design_figures(data).items() if f is not None}

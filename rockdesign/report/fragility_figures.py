@@ -8,7 +8,7 @@ from scipy.stats import norm
 
 from .. import mplfig as plt  # pyplot-free Figures: importing never switches the backend
 
-from ..checks.acceptance import first_overturn_scale  # noqa: E402
+from ..acceptance.rule import first_overturn_scale  # noqa: E402
 from .formatting import fmt  # noqa: E402
 from ..plots import STYLE  # noqa: E402
 

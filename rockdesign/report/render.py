@@ -22,8 +22,7 @@ from pathlib import Path
 import jinja2
 
 from ..paths import templates_dir
-from .context import build_context
-from .formatting import DIGITS, fmt, number
+from .formatting import fmt, number
 from .methods import cite
 
 TEMPLATE = "report.html.j2"
@@ -36,7 +35,7 @@ _SUBSCRIPT = re.compile(r"(?<![A-Za-z]{4})_([A-Za-z0-9α-ωΑ-Ω,]{1,5})(?![A-Za
 def symbols(text) -> str:
     """HTML for a text with thesis symbols: escaped, ``x_ab`` → x<sub>ab</sub> (``SD_max``, ``u_B(θc)``);
     identifiers such as ``mass_distribution`` are left alone; references to the developer documentation
-    become the report's appendix sections (:func:`~rockdesign.report.methods.cite`)."""
+    become the report's appendix sections (:func:`~rockdesign.planar.report.methods.cite`)."""
     if text is None:
         return ""
     escaped = html_lib.escape(cite(str(text)), quote=False)
@@ -72,110 +71,21 @@ def svg_image(svg_text) -> str:
     return jinja2.utils.markupsafe.Markup(f'<img class="figure" alt="figure" src="data:image/svg+xml;base64,{data}">')
 
 
-def _given_inputs(project) -> dict:
-    """The project file's texts of the inputs the structure drawing labels (units as given)."""
-    from .context import given_value
-    return {"cap_beam_mass": given_value(project, "podium", "cap_beam_mass"),
-            "superstructure_mass": given_value(project, "superstructure", "mass"),
-            "superstructure_period": given_value(project, "superstructure", "period"),
-            "superstructure_damping": given_value(project, "superstructure", "damping")}
-
-
-def make_figures(result) -> dict[str, tuple]:
-    """Every report figure as ``name: (matplotlib Figure, id prefix, crop box or None)``, not yet drawn
-    (``history:<record id>`` for time histories).  Each figure lays itself out when drawn and fills its
-    ``figsize``; the structure drawing (to scale) is cropped to its ink (:func:`figures.ink_box`)."""
-    from . import figures
-    from .drawing import structure_drawing
-    system = result.project.system
-    drawing = structure_drawing(system, _given_inputs(result.project))
-    out = {
-        "drawing": (drawing, "drawing", figures.ink_box(drawing)),
-        "pushover": (figures.pushover_figure(system), "pushover", None),
-        "spectra": (figures.spectra_figure(result), "spectra", None),
-        "scatter": (figures.polyakov_scatter_figure(result), "scatter", None),
-        "ecdf": (figures.ecdf_figure(result), "ecdf", None),
-        "margins": (figures.margin_figure(result), "margins", None),
-    }
-    if getattr(result, "fragility", None) and result.fragility.get("capacities"):
-        from .fragility_figures import fragility_figure
-        out["fragility"] = (fragility_figure(result), "fragility", None)
-    from .demand_figures import demand_figure, demand_history_figure
-    for name, make in (("demand", demand_figure), ("demand_history", demand_history_figure)):
-        fig = make(result)
-        if fig is not None:
-            out[name] = (fig, name, None)
-    for k, rid in enumerate(result.histories):
-        out[f"history:{rid}"] = (figures.history_figure(result, rid), f"history{k}", None)
-    return out
-
-
-def figure_boxes(made: dict) -> dict[str, str]:
-    """An empty SVG per figure of :func:`make_figures` with the viewBox its drawing will have (the figure
-    size in points): the report laid out with these has the figures' page layout."""
-    from .figures import view_box_of
-    from .stamped_pdf import empty_svg
-    return {name: empty_svg(view_box_of(fig, crop)) for name, (fig, _, crop) in made.items()}
-
-
-def draw_figures(made: dict) -> dict[str, str]:
-    """The SVG of each figure of :func:`make_figures` (the viewBox :func:`figure_boxes` announced)."""
-    from .figures import svg
-    return {name: svg(fig, prefix, crop=crop if crop is not None else False) for name, (fig, prefix, crop) in made.items()}
-
-
-def render_figures(result) -> dict[str, str]:
-    """Inline SVG of every report figure, keyed by name (``history:<record id>`` for time histories)."""
-    return draw_figures(make_figures(result))
-
-
-def verification_statement(result) -> dict:
-    """The engine's error on a closed-form case at the check's tolerance (see :mod:`.verification`):
-    taken from results.json when the check recorded it (``settings.engine_accuracy`` or
-    ``verification``), else measured now."""
-    from .verification import engine_accuracy_statement, normalise
-    data = result.as_json()
-    recorded = data.get("settings", {}).get("engine_accuracy") or data.get("verification")
-    if isinstance(recorded, dict) and recorded:
-        return normalise(recorded)
-    s = result.settings
-    return engine_accuracy_statement(float(s.get("rtol", 1e-10)), float(s.get("atol", 1e-12)))
-
-
-def render_html(result, *, figures: dict | None = None, date: str | None = None) -> str:
-    """The report as one self-contained HTML document (CSS and SVG figures inline)."""
-    return html_renderer(result, date=date)(figures if figures is not None else render_figures(result))
-
-
-def html_renderer(result, *, date: str | None = None):
-    """``render(figures) -> str``: :func:`render_html` of ``result`` with the context built once, for
-    rendering the same report with different figures (empty boxes first, then the drawings)."""
-    folder = templates_dir()
-    template = environment(folder).get_template(TEMPLATE)
-    ctx = build_context(result, figures={}, verification=verification_statement(result), date=date)
-    ctx["css"] = jinja2.utils.markupsafe.Markup(stylesheet(folder))
-    ctx["digits"] = DIGITS
-
-    def render(figures: dict) -> str:
-        histories = [{**h, "svg": figures.get(f"history:{h['id']}", "")} for h in ctx["histories"]]
-        return template.render(**{**ctx, "figures": figures, "histories": histories})
-    return render
-
-
 def warm_up(pdf: bool = True) -> None:
     """Load the report's libraries, fonts and style sheets (matplotlib with mathtext, typst, and
     WeasyPrint with the report's CSS unless ``pdf`` is False) by rendering a small figure and page into
     memory.  The first report of a process is ≈ 1 s slower without it; ``rockdesign check`` calls this
     while its rocking engine is still compiling on the first run, when this process would otherwise
-    wait (:mod:`rockdesign.dynamics.compilation`)."""
-    from . import figures
+    wait (:mod:`rockdesign.execution.compilation`)."""
+    from .. import mplfig as plt
     from .stamped_pdf import figure_pdfs
-    fig, ax = figures.plt.subplots(figsize=(2.0, 1.5))
+    from .svg import svg
+    fig, ax = plt.subplots(figsize=(2.0, 1.5))
     ax.plot([0.0, 1.0], [0.0, 1.0], "o-", label=r"$F_R/(m_C\,g)$, θ")
     ax.set_xlabel("θ [rad]")
     ax.legend()
     fig.set_layout_engine("tight")
-    figure_pdfs([figures.svg(fig, "warm-up", crop=False)])
+    figure_pdfs([svg(fig, "warm-up", crop=False)])
     if pdf:
         warm_up_pdf()
 
@@ -204,12 +114,11 @@ def html_to_pdf(html_text: str, path: Path, base_url: str | None = None) -> Path
     return stamped(html_text, Path(path), base_url)
 
 
-def write_report(result, out_dir, *, pdf: bool = True, html: bool = True, render=None,
+def write_report(result, out_dir, *, render, pdf: bool = True, html: bool = True,
                  pdf_worker=None) -> dict[str, Path]:
-    """Write ``report.html`` and/or ``report.pdf`` of a check result into ``out_dir``.
+    """Write ``report.html`` and/or ``report.pdf`` of a result into ``out_dir``; ``render(result) -> str`` is
+    the kind's (or command's) HTML.
 
-    ``render(result) -> str`` makes the HTML (default: the planar CheckResult's report, whose pages are
-    laid out — by ``pdf_worker`` when given — while its figures are drawn; see :func:`_planar_report`).
     ``pdf_worker``: a started :class:`~rockdesign.report.pdf_worker.PdfWorker` lays out the PDF (this
     process does if it fails); the file is the same.
 
@@ -220,47 +129,20 @@ def write_report(result, out_dir, *, pdf: bool = True, html: bool = True, render
     out_dir.mkdir(parents=True, exist_ok=True)
     if not (pdf or html):
         return {}
-    if render is None and pdf:
-        return _planar_report(result, out_dir, html=html, pdf_worker=pdf_worker)
-    text = (render or render_html)(result)
+    text = render(result)
     written: dict[str, Path] = {}
     if html:
-        written["html"] = _write_html(text, out_dir)
+        written["html"] = write_html(text, out_dir)
     if pdf:
         written["pdf"] = _pdf(text, out_dir / "report.pdf", pdf_worker)
     return written
 
 
-def _write_html(text: str, out_dir: Path) -> Path:
+def write_html(text: str, out_dir: Path) -> Path:
+    """``report.html`` in ``out_dir``."""
     path = out_dir / "report.html"
     path.write_text(text, encoding="utf-8")
     return path
-
-
-def _planar_report(result, out_dir: Path, *, html: bool, pdf_worker) -> dict[str, Path]:
-    """The check's report with its two halves at once: the pages are laid out with an empty box per
-    figure (each figure's size is known before it is drawn), by the worker when there is one, while
-    this process draws the figures; then the figures are stamped into their boxes."""
-    from . import stamped_pdf
-    made = make_figures(result)
-    render = html_renderer(result)
-    slotted, boxes = stamped_pdf.slot_html(render(figure_boxes(made)))
-    path = out_dir / "report.pdf"
-    job = pdf_worker.begin_layout(slotted, path) if pdf_worker is not None else None
-    text = render(draw_figures(made))
-    written = {"html": _write_html(text, out_dir)} if html else {}
-    _, svgs = stamped_pdf.slot_html(text)
-    same_boxes = [stamped_pdf.view_box(b) for b in boxes] == [stamped_pdf.view_box(s) for s in svgs]
-    figures = stamped_pdf.figure_pdfs_or_none(svgs) if same_boxes else None
-    if figures is None:
-        # a figure drawn at another size than it announced, or one typst refused: the PDF again, whole
-        if job is not None:
-            job.result()        # (the worker writes the same file: wait for it)
-        written["pdf"] = stamped_pdf.html_to_pdf(text, path)
-        return written
-    slots = job.result() if job is not None else stamped_pdf.layout_pdf(slotted, path)
-    written["pdf"] = stamped_pdf.stamp(path, slots, figures)
-    return written
 
 
 def _pdf(text: str, path: Path, pdf_worker) -> Path:

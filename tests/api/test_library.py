@@ -73,7 +73,8 @@ def test_simulate_string_and_object_and_cli_json(small_project_file):
     assert cli.exit_code == 0, cli.output
     assert json.dumps(r.as_json(), indent=2) + "\n" == cli.stdout
     # a motion object gives the same response as its string
-    from rockdesign.motions.parse import parse_motion, system_scales
+    from rockdesign.motions.parse import parse_motion
+    from rockdesign.planar.simulation import system_scales
     motion = parse_motion(PULSE, system_scales(project.system)).motion
     r2 = rd.simulate(project, motion)
     assert r2.theta_max == r.theta_max and r2.impacts == r.impacts
@@ -133,6 +134,6 @@ def test_no_module_switches_the_matplotlib_backend():
 def test_report_figures_are_figure_objects():
     from matplotlib.figure import Figure
 
-    from rockdesign.report.figures import pushover_figure
+    from rockdesign.planar.report.figures import pushover_figure
     fig = pushover_figure(rd.parse_project(SMALL_PODIUM).system)
     assert isinstance(fig, Figure)

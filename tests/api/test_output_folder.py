@@ -31,7 +31,7 @@ def no_analysis(monkeypatch):
     """Fail the test if a design check starts (errors must come before the analyses)."""
     def forbidden(*args, **kwargs):
         raise AssertionError("the analyses ran before the output folder was checked")
-    monkeypatch.setattr("rockdesign.checks.check.run_check", forbidden)
+    monkeypatch.setattr("rockdesign.planar.checks.check.run_check", forbidden)
 
 
 def _one_line_exit_2(result, *words):
@@ -123,7 +123,7 @@ def test_interrupt_while_writing_leaves_the_old_folder(small_check, tmp_path, mo
 
     def interrupted(*args, **kwargs):
         raise KeyboardInterrupt
-    monkeypatch.setattr("rockdesign.report.render.write_report", interrupted)
+    monkeypatch.setattr("rockdesign.planar.kind.write_planar_report", interrupted)
     with pytest.raises(KeyboardInterrupt):
         rd.write_report(small_check, target, pdf=True, html=True)   # results.json already staged, then Ctrl-C
     assert {p.name: p.read_bytes() for p in target.iterdir()} == before

@@ -10,24 +10,31 @@ from pathlib import Path
 
 LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
     ("base", ("rockdesign", "rockdesign.errors", "rockdesign.units", "rockdesign.paths", "rockdesign.kernel_cache",
-              "rockdesign.jsonable", "rockdesign.systems", "rockdesign.mplfig", "rockdesign.plots",
-              "rockdesign.progress", "rockdesign.console", "rockdesign.outdir", "rockdesign.display", "rockdesign.execution")),
-    ("design", ("rockdesign.design", "rockdesign.validity", "rockdesign.cylinder.system",
-                "rockdesign.cylinder.quantities")),
+              "rockdesign.jsonable", "rockdesign.mplfig", "rockdesign.plots", "rockdesign.progress",
+              "rockdesign.console", "rockdesign.outdir", "rockdesign.display", "rockdesign.execution",
+              "rockdesign.quantity", "rockdesign.project_tables")),
+    ("design", ("rockdesign.planar.design", "rockdesign.planar.system", "rockdesign.planar.validity",
+                "rockdesign.cylinder.system", "rockdesign.cylinder.quantities")),
     ("motions", ("rockdesign.motions",)),
-    ("project", ("rockdesign.project", "rockdesign.project_tables", "rockdesign.cylinder.project")),
-    ("dynamics", ("rockdesign.dynamics", "rockdesign.cylinder")),
-    ("analyses", ("rockdesign.spectra", "rockdesign.checks")),
-    ("report", ("rockdesign.report",)),
+    ("project", ("rockdesign.planar.project", "rockdesign.cylinder.project")),
+    ("dynamics", ("rockdesign.planar.dynamics", "rockdesign.cylinder", "rockdesign.execution.compilation",
+                  "rockdesign.execution.compile_plan", "rockdesign.execution.compile_plan_table",
+                  "rockdesign.execution.compile_plan_writer")),
+    ("analyses", ("rockdesign.acceptance", "rockdesign.planar.spectra", "rockdesign.planar.checks",
+                  "rockdesign.cylinder.check", "rockdesign.cylinder.criteria", "rockdesign.cylinder.margins")),
+    ("report", ("rockdesign.report", "rockdesign.planar.report", "rockdesign.cylinder.report", "rockdesign.cylinder.methods",
+                "rockdesign.cylinder.figures")),
     ("experiments", ("rockdesign.experiments",)),
-    ("library", ("rockdesign.library", "rockdesign.kinds", "rockdesign.design_space")),
+    ("library", ("rockdesign.library", "rockdesign.kinds", "rockdesign.design_space", "rockdesign.planar.kind",
+                 "rockdesign.planar.grid", "rockdesign.planar.simulation", "rockdesign.cylinder.kind",
+                 "rockdesign.cylinder.grid", "rockdesign.cylinder.simulation")),
     ("bench", ("rockdesign.bench",)),
     ("cli", ("rockdesign.cli", "rockdesign.templates")),
 )
 """Layers, lowest first, and the modules (prefixes) in each: a module may import only from its own
 layer or a lower one.  The most specific prefix wins (``rockdesign.cylinder.project`` is in *project*
 although ``rockdesign.cylinder`` is in *dynamics*; the first-run compilation warms the pulse-spectrum kernel
-``rockdesign.spectra.kernel`` through its table of warm-up functions, by name); ``rockdesign.cli`` covers
+``rockdesign.planar.spectra.kernel`` through its table of warm-up functions, by name); ``rockdesign.cli`` covers
 every module of the command-line package.
 ``rockdesign`` itself (the package's ``__init__``) imports nothing at import time: its lazy
 ``__getattr__`` names the library modules as strings, which this check does not read."""

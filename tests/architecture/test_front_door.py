@@ -27,9 +27,10 @@ the errors, the console factory and formatting, its siblings and the project tem
 def _kind_words() -> set[str]:
     """The names the registry gives its kinds of structure, and the system kinds of every kind but the
     default one (planar, which claims any document): comparing with these outside the registry is a side door."""
-    from rockdesign.kinds import KINDS
-    words = {k.name for k in KINDS}
-    for k in KINDS[:-1]:
+    from rockdesign.kinds import registered
+    kinds = registered()
+    words = {k.name for k in kinds}
+    for k in kinds[:-1]:
         words |= set(k.systems)
     return words
 
@@ -103,13 +104,20 @@ def test_no_module_over_500_lines():
     assert not split, f"split already (remove from TO_BE_SPLIT): {', '.join(split)}"
 
 
+KIND_PACKAGES = ("rockdesign.planar", "rockdesign.cylinder")
+"""The packages of the built-in kinds of structure: each spans the layers (its system, project parser, engine,
+check, report and entry), so its own parts are the nodes of the package graph."""
+
+
 def package_of(module: str, package_dir: Path = PACKAGE) -> str:
-    """The package a module belongs to (``rockdesign.dynamics.engine`` → ``rockdesign.dynamics``); a
-    top-level module is its own node."""
+    """The package a module belongs to (``rockdesign.motions.spectra`` → ``rockdesign.motions``); a top-level
+    module is its own node, and so is each part of a kind's package (``rockdesign.planar.dynamics``,
+    ``rockdesign.cylinder.check``)."""
     parts = module.split(".")
-    if len(parts) >= 2 and (package_dir / parts[1]).is_dir():
-        return ".".join(parts[:2])
-    return module
+    depth = 3 if ".".join(parts[:2]) in KIND_PACKAGES else 2
+    if len(parts) >= depth and (package_dir.joinpath(*parts[1:depth])).is_dir():
+        return ".".join(parts[:depth])
+    return ".".join(parts[:depth]) if len(parts) >= depth else module
 
 
 def package_cycles(package_dir: Path = PACKAGE) -> list[tuple[str, str]]:
@@ -137,3 +145,42 @@ def package_cycles(package_dir: Path = PACKAGE) -> list[tuple[str, str]]:
 def test_no_import_cycle_between_packages():
     found = package_cycles()
     assert not found, "packages importing each other: " + "; ".join(f"{a} → {b}" for a, b in found)
+
+
+SHARED_EXCEPTIONS: dict[str, tuple[str, ...]] = {
+    "rockdesign.kinds": KIND_PACKAGES,                       # the registry names the built-in kinds
+    "rockdesign.bench": KIND_PACKAGES,                       # measures the kinds' engines
+    "rockdesign.experiments": ("rockdesign.planar",),        # calibrates and validates planar specimens
+    "rockdesign.design_space.grid": ("rockdesign.planar.dynamics.batch_pool",),
+}
+"""Modules outside the kinds' packages allowed to import from a kind's package, and what."""
+KIND_USES: dict[str, tuple[str, ...]] = {
+    "rockdesign.cylinder": ("rockdesign.planar.dynamics.simulate", "rockdesign.planar.system"),
+}
+"""What a kind may import from another kind: the cylinder's check compares with the planar rocking body of
+the same p and α along each component (thesis Ch. 5), through the planar engine's public simulate."""
+
+
+def kind_imports(package_dir: Path = PACKAGE) -> list[str]:
+    """``file:line: a imports b`` for every import of a kind's package from outside it that the tables above
+    do not allow."""
+    known, edges = graph(package_dir)
+    bad = []
+    for module, targets in edges.items():
+        own = next((k for k in KIND_PACKAGES if module == k or module.startswith(k + ".")), None)
+        for target, line in targets:
+            kind = next((k for k in KIND_PACKAGES if target == k or target.startswith(k + ".")), None)
+            if kind is None or kind == own:
+                continue
+            table = KIND_USES if own else SHARED_EXCEPTIONS
+            allowed = [a for prefix, names in table.items() if module == prefix or module.startswith(prefix + ".")
+                       for a in names]
+            if not any(target == a or target.startswith(a + ".") for a in allowed):
+                bad.append(f"{known[module].relative_to(package_dir.parent)}:{line}: {module} imports {target}")
+    return sorted(set(bad))
+
+
+def test_no_shared_module_imports_a_kind():
+    bad = kind_imports()
+    assert not bad, ("a module outside a kind's package imports it (move the code into the kind, or give "
+                     "StructureKind a hook):\n" + "\n".join(bad))

@@ -103,7 +103,7 @@ def test_a_library_check_never_imports_the_benchmarks_or_the_scipy_baseline(tmp_
         import rockdesign as rd
         result = rd.check(rd.load_project("examples/bridge_pier.toml"), margins=False)
         rd.write_report(result, {str(tmp_path / 'out')!r}, pdf=False)
-        import rockdesign.checks.cylinder_check, rockdesign.report.cylinder_report  # noqa: E401
+        import rockdesign.cylinder.check, rockdesign.cylinder.report  # noqa: E401
         print("VERDICT", result.verdict)
         print("LOADED", sorted(m for m in sys.modules if m.startswith("rockdesign.bench")))
         """)

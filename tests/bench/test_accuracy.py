@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import math
 
-from rockdesign.dynamics.accuracy import accuracy_sentence, engine_accuracy
+from rockdesign.planar.dynamics.accuracy import accuracy_sentence, engine_accuracy
 
 
 def test_engine_accuracy_at_the_default_tolerance():

@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from rockdesign.dynamics import metrics
+from rockdesign.planar.dynamics import metrics
 from rockdesign.bench.runner import problem_summary
 from rockdesign.jsonable import json_ready
 from rockdesign.bench.timing import TimingPolicy, time_call

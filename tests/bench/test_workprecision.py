@@ -14,7 +14,7 @@ from rockdesign.bench.reference import build_reference, engine_history_at
 from rockdesign.bench.runner import run_study
 from rockdesign.jsonable import json_ready
 from rockdesign.cli import app
-from rockdesign.dynamics.simulate import simulate
+from rockdesign.planar.dynamics.simulate import simulate
 
 POINT_KEYS = ("tolerance", "seconds", "error_theta", "error_theta_max", "error_impact_times")
 

@@ -14,18 +14,18 @@ import pytest
 from scipy import stats
 from typer.testing import CliRunner
 
-from rockdesign.checks.acceptance import (AcceptanceRule, acceptance_rule, first_overturn_scale,
+from rockdesign.acceptance.rule import (AcceptanceRule, acceptance_rule, first_overturn_scale,
                                           require_suite_size)
-from rockdesign.checks.collapse_margin import collapse_margin
-from rockdesign.checks.criteria import CheckContext, decide, evaluate_criteria
-from rockdesign.checks.fragility import check_fragility
-from rockdesign.checks.margins import Margin
+from rockdesign.acceptance.collapse_margin import collapse_margin
+from rockdesign.acceptance.criteria import CheckContext, decide, evaluate_criteria
+from rockdesign.acceptance.fragility import check_fragility
+from rockdesign.acceptance.scans import Margin
 from rockdesign.cli import app
 from rockdesign.errors import ProjectError
 from rockdesign.motions.grouping import count_ground_motions, earthquake_id, ground_motion_id
 from rockdesign.motions.suites import load_suite
 from rockdesign.kinds import parse_document as parse_project
-from rockdesign.project import AnalysisSettings
+from rockdesign.planar.project import AnalysisSettings
 from support import stocky_podium_toml
 
 runner = CliRunner()
@@ -79,7 +79,8 @@ def test_suite_size_rule(method, limit, n, ok):
 def _outcome(i, scale, intervals, overturned=False, pga=2.0):
     m = Margin(scale, intervals, 8.0, 10)
     return SimpleNamespace(id=f"r{i}", ground_motion=f"g{i}", pga=pga, sd_max=0.1, margin=m, meta={},
-                           run=SimpleNamespace(overturned=overturned, status="completed", theta_max_over_theta_c=0.5),
+                           run=SimpleNamespace(overturned=overturned, status="completed", failed=False,
+                                              theta_max_over_theta_c=0.5),
                            polyakov_ratio=0.3, klass="a1")
 
 

@@ -10,11 +10,11 @@ import pytest
 from scipy.stats import binomtest
 from typer.testing import CliRunner
 
-from rockdesign.checks.margins import overturning_margins
-from rockdesign.checks.polyakov import PolyakovRule, classify
-from rockdesign.checks.statistics import empirical_cdf, overturning_probability
+from rockdesign.planar.checks.margins import overturning_margins
+from rockdesign.planar.checks.polyakov import PolyakovRule, classify
+from rockdesign.acceptance.statistics import empirical_cdf, overturning_probability
 from rockdesign.cli import app
-from rockdesign.dynamics.model import ModelChoice
+from rockdesign.planar.dynamics.model import ModelChoice
 from rockdesign.motions.motion import pulse_motion
 from support import G, block_from_p, stocky_podium_toml
 
@@ -147,11 +147,11 @@ def test_superstructure_demand_from_2dof_when_overturning_uses_the_rigid_model()
     """CONTRACT §6.2: with the rigid-superstructure model chosen, the demand comes from a 2DOF run of the same
     records; the per-record keys are exact and the statistics run over the records that did not overturn."""
     import math
-    from rockdesign.checks.demand import superstructure_demand
-    from rockdesign.checks.runner import run_jobs
-    from rockdesign.dynamics.model import ModelChoice
+    from rockdesign.planar.checks.demand import superstructure_demand
+    from rockdesign.planar.checks.runner import run_jobs
+    from rockdesign.planar.dynamics.model import ModelChoice
     from rockdesign.library import parse_project
-    from rockdesign.checks.check import check_records
+    from rockdesign.planar.checks.check import check_records
     from pathlib import Path
     p = parse_project((Path(__file__).resolve().parents[2] / "examples" / "podium_flat.toml").read_text())
     motions = [r.motion for r in check_records(p).records[:6]]

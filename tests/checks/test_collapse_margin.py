@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from scipy.stats import norm
 
-from rockdesign.checks.collapse_margin import acceptable_acmr, beta_total, collapse_margin, collapse_probability
+from rockdesign.acceptance.collapse_margin import acceptable_acmr, beta_total, collapse_margin, collapse_probability
 from rockdesign.errors import ProjectError
 from rockdesign.kinds import parse_document as parse_project
 

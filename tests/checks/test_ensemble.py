@@ -16,11 +16,11 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from rockdesign.checks.ensemble import (AMPLITUDE_VARIATION, RESTITUTION_VARIATION, ensemble_summary,
+from rockdesign.planar.checks.ensemble import (AMPLITUDE_VARIATION, RESTITUTION_VARIATION, ensemble_summary,
                                         perturbations, run_ensembles)
-from rockdesign.checks.runner import run_jobs
+from rockdesign.planar.checks.runner import run_jobs
 from rockdesign.cli import app
-from rockdesign.dynamics.model import ModelChoice
+from rockdesign.planar.dynamics.model import ModelChoice
 from rockdesign.motions.motion import pulse_motion
 from support import G, block_from_p, stocky_podium_toml
 

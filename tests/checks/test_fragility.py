@@ -13,9 +13,10 @@ import numpy as np
 import pytest
 from scipy import stats
 
-from rockdesign.checks import fragility as F
-from rockdesign.checks.margins import SCAN_RATIO, overturning_margins
-from rockdesign.dynamics.model import ModelChoice
+from rockdesign.acceptance import fragility as F
+from rockdesign.acceptance.scans import SCAN_RATIO
+from rockdesign.planar.checks.margins import overturning_margins
+from rockdesign.planar.dynamics.model import ModelChoice
 from rockdesign.motions.motion import pulse_motion
 from support import G, block_from_p
 
@@ -197,7 +198,7 @@ def test_zhang_makris_suite_gives_the_known_capacities(zhang_makris_suite):
 def test_check_fragility_in_each_intensity_measure(im):
     from types import SimpleNamespace
 
-    from rockdesign.checks.margins import Margin
+    from rockdesign.acceptance.scans import Margin
     from rockdesign.motions.spectra import motion_spectrum
     motions = [pulse_motion("sine", a, 0.6) for a in (1.0, 1.5, 2.0, 2.5)]
     scales = [2.0, 1.6, None, 1.1]

@@ -2,8 +2,8 @@
 criteria.decide)."""
 from __future__ import annotations
 
-from rockdesign.checks.criteria import CheckItem, decide
-from rockdesign.checks.governing import capped_ratio, history_records, model_check_records
+from rockdesign.acceptance.criteria import CheckItem, decide
+from rockdesign.planar.checks.governing import capped_ratio, history_records, model_check_records
 
 
 def test_history_records_are_the_closest_to_capacity_with_overturning_ties_in_suite_order():

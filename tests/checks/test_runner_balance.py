@@ -6,15 +6,15 @@ import itertools
 import math
 import random
 
-from rockdesign.checks.runner import balanced_order, run_jobs
-from rockdesign.dynamics.model import ModelChoice
+from rockdesign.planar.checks.runner import balanced_order, run_jobs
+from rockdesign.planar.dynamics.model import ModelChoice
 from rockdesign.motions.motion import pulse_motion
 from support import G, block_from_p
 
 
 def _makespan(order, costs, threads):
     """When the last thread finishes if each thread takes the next job of ``order`` as it becomes free (the
-    batch driver's shared counter, rockdesign.dynamics.scheduling)."""
+    batch driver's shared counter, rockdesign.execution.scheduling)."""
     free = [0.0] * threads
     for k in order:
         t = min(range(threads), key=lambda i: (free[i], i))

@@ -11,17 +11,19 @@ from types import SimpleNamespace
 import pytest
 from scipy.stats import binomtest, norm
 
-from rockdesign.checks.acceptance import AcceptanceRule, minimum_records, probability_bound
-from rockdesign.checks.criteria import (CRITERIA, GOVERNS, NOT_DECIDED, ROBUSTNESS, CheckContext, Criterion,
+from rockdesign.acceptance.rule import AcceptanceRule, minimum_records, probability_bound
+from rockdesign.acceptance.criteria import (CRITERIA, GOVERNS, NOT_DECIDED, ROBUSTNESS, CheckContext, Criterion,
                                         decide, evaluate_criteria)
-from rockdesign.checks.margins import Margin
-from rockdesign.project import AnalysisSettings
+from rockdesign.acceptance.scans import Margin
+from rockdesign.planar.checks.runner import analysis_failed
+from rockdesign.planar.project import AnalysisSettings
 
 A = AnalysisSettings()
 
 
 def outcome(i, *, overturned=False, margin=None, status="completed", theta=0.5, ratio=0.4, klass="a1", gm=None):
-    run = SimpleNamespace(overturned=overturned, status=status, theta_max_over_theta_c=1.2 if overturned else theta)
+    run = SimpleNamespace(overturned=overturned, status=status, failed=analysis_failed(status),
+                          theta_max_over_theta_c=1.2 if overturned else theta)
     return SimpleNamespace(id=f"r{i}", run=run, margin=margin, polyakov_ratio=ratio, klass=klass,
                            ground_motion=gm or f"gm{i // 2}", meta={})
 

@@ -40,7 +40,7 @@ def invoke(*args):
 
 def refuse_compiling(monkeypatch):
     """Bad input is refused before any kernel is compiled or any analysis runs."""
-    import rockdesign.dynamics.compilation as compilation
+    import rockdesign.execution.compilation as compilation
 
     def boom(*args, **kwargs):
         raise AssertionError("compiled kernels for a bad input")
@@ -187,8 +187,8 @@ def test_a_grid_too_large_for_memory_is_refused_with_the_estimate(tmp_path, monk
 def test_grid_estimates():
     """Memory = points × BYTES_PER_POINT; time = points × CPU_PER_ANALYSIS / cores; both limits refuse."""
     import os
-    from rockdesign.spectra.axes import parse_axis
-    from rockdesign.spectra.spectrum import (BYTES_PER_POINT, CPU_PER_ANALYSIS, MAX_HOURS, SpectrumError,
+    from rockdesign.planar.spectra.axes import parse_axis
+    from rockdesign.planar.spectra.spectrum import (BYTES_PER_POINT, CPU_PER_ANALYSIS, MAX_HOURS, SpectrumError,
                                              check_grid)
     x, y = parse_axis("omega_p/p:0.5:12:801", "x"), parse_axis("ap/up:0:12:401", "y")
     memory, seconds = check_grid(x, y, available=1e12)
@@ -217,7 +217,7 @@ def test_unreachable_dask_scheduler_is_refused_at_once_without_a_folder(tmp_path
 
 
 def test_a_failed_spectrum_leaves_no_empty_folder(tmp_path, monkeypatch):
-    import rockdesign.spectra.spectrum as spectrum
+    import rockdesign.planar.spectra.spectrum as spectrum
     from rockdesign.errors import RockdesignError
 
     def fail(*args, **kwargs):

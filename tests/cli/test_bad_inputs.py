@@ -97,7 +97,7 @@ def test_simulate_bad_motions(motion):
 ])
 def test_simulate_refuses_bad_input_before_compiling(args, fragments, monkeypatch):
     # a first run compiles the engine (≈ 30 s): a typo must not wait for it
-    import rockdesign.dynamics.compilation as compilation
+    import rockdesign.execution.compilation as compilation
 
     def compile_first(*a, **k):  # pragma: no cover - must not run
         raise AssertionError("the kernels were prepared before the input was checked")
@@ -140,7 +140,7 @@ def test_simulate_shows_the_resolved_pulse():
     r = invoke("simulate", "examples/podium_flat.toml", "--motion", "ricker-anti:ap=2.5up,wp=3p", "--json")
     assert r.exit_code == 0, r.output
     data = json.loads(r.stdout)
-    from rockdesign.design.quantities import design_quantities
+    from rockdesign.planar.design.quantities import design_quantities
     from rockdesign.library import load_project
     q = design_quantities(load_project("examples/podium_flat.toml").system)
     assert data["motion_parameters"]["a_p"] == pytest.approx(2.5 * q["uplift_acceleration"].value, rel=1e-12)
@@ -397,11 +397,11 @@ def test_usage_errors_stay_exit_2():
 def test_first_run_stops_on_a_missing_record_before_compiling(tmp_path, monkeypatch):
     """On a first run (kernels not in numba's cache) `check` reads its records before it compiles for
     ≈ 30 s: a record file that does not exist is exit 2 at once, and nothing is compiled."""
-    from rockdesign.dynamics import compilation
+    from rockdesign.execution import compilation
     text = (REPO_ROOT / "examples" / "podium_flat.toml").read_text(encoding="utf-8")
     assert 'suites = ["p695-farfield"]' in text
     project = write(tmp_path, text.replace('suites = ["p695-farfield"]', 'records = ["file:missing.AT2"]'))
-    monkeypatch.setattr(compilation, "missing_kernels", lambda command: ["rockdesign.dynamics.batch._run_batch"])
+    monkeypatch.setattr(compilation, "missing_kernels", lambda command: ["rockdesign.planar.dynamics.batch._run_batch"])
     monkeypatch.setattr(compilation, "prepare", lambda *a, **k: pytest.fail("compiled before reading the records"))
     result = invoke("check", project, "-o", tmp_path / "out")
     assert_one_line_error(result, "missing.AT2", "record file not found")

@@ -9,7 +9,7 @@ import pytest
 from typer.testing import CliRunner
 
 from rockdesign.cli import app
-from rockdesign.dynamics import compilation
+from rockdesign.execution import compilation
 from rockdesign.paths import REPO_ROOT
 
 PIER = str(REPO_ROOT / "examples" / "bridge_pier.toml")

@@ -41,7 +41,7 @@ def test_model_doc_exists_and_cites_thesis_equations():
 
 
 def test_polyakov_line_is_labelled_with_the_capacity():
-    from rockdesign.spectra.figures import polyakov_label
+    from rockdesign.planar.spectra.figures import polyakov_label
     assert polyakov_label(1.2) == "Polyakov: SD_max = u_B(θc) = 1.2 m"
     assert "2B" not in polyakov_label(None)
 

@@ -9,7 +9,7 @@ from scipy.stats import binomtest
 from typer.testing import CliRunner
 
 from casedata import expected
-from rockdesign.checks.cylinder_check import planar_block
+from rockdesign.cylinder.check import planar_block
 from rockdesign.cli import app
 from rockdesign.cylinder.engine import simulate_cylinder
 from rockdesign.errors import ProjectError

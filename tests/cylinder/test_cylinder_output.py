@@ -8,7 +8,7 @@ import tomllib
 import pytest
 from typer.testing import CliRunner
 
-from rockdesign.checks import cylinder_check
+from rockdesign.cylinder import check as cylinder_check
 from rockdesign.cli import app
 from rockdesign.motions import pairs
 from rockdesign.library import load_project
@@ -80,7 +80,7 @@ def test_failed_run_leaves_the_previous_folder(project, tmp_path, monkeypatch):
     out = tmp_path / "out"
     assert runner.invoke(app, ["check", str(project), "-o", str(out), "--no-pdf"]).exit_code in (0, 1)
     before = {p.name: p.read_bytes() for p in out.iterdir()}
-    from rockdesign.report import cylinder_report
+    from rockdesign.cylinder import report as cylinder_report
 
     def broken(*args, **kwargs):
         raise RuntimeError("renderer broke")

@@ -11,10 +11,10 @@ import pytest
 from rockdesign.cylinder.engine import simulate_cylinder
 from rockdesign.cylinder.quantities import frequency_parameter, restitution_root
 from rockdesign.cylinder.system import cylinder
-from rockdesign.dynamics.simulate import simulate
+from rockdesign.planar.dynamics.simulate import simulate
 from rockdesign.motions.motion import pulse_motion
 from rockdesign.motions.pairs import pulse_pair
-from rockdesign.systems import Column, RockingSystem
+from rockdesign.planar.system import Column, RockingSystem
 
 
 def housner_block(cyl, c_r):

@@ -13,7 +13,7 @@ import pytest
 from typer.testing import CliRunner
 
 import rockdesign as rd
-from rockdesign.checks.cylinder_check import MAX_HISTORIES, CylinderCheckResult, governing_ids
+from rockdesign.cylinder.check import MAX_HISTORIES, CylinderCheckResult, governing_ids
 from rockdesign.cli import app
 from rockdesign.motions import pairs
 from rockdesign.report.formatting import fmt

@@ -9,14 +9,14 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from rockdesign.design.equivalence import frame_size_factor
-from rockdesign.design.frequencies import frame_frequency_parameter, frequency_parameter, uplifted_frequency_ratio
-from rockdesign.design.geometry import (critical_curvature, displacement_capacity, rocking_geometry,
+from rockdesign.planar.design.equivalence import frame_size_factor
+from rockdesign.planar.design.frequencies import frame_frequency_parameter, frequency_parameter, uplifted_frequency_ratio
+from rockdesign.planar.design.geometry import (critical_curvature, displacement_capacity, rocking_geometry,
                                         rotation_capacity_curved, wedge_angle)
-from rockdesign.design.pushover import post_uplift_stiffness_linear, restoring_force_ratio, restoring_stiffness_ratio
-from rockdesign.design.quantities import design_quantities
-from rockdesign.design.restitution import restitution_block, restitution_frame, restitution_podium
-from rockdesign.systems import Column, RockingSystem, Superstructure
+from rockdesign.planar.design.pushover import post_uplift_stiffness_linear, restoring_force_ratio, restoring_stiffness_ratio
+from rockdesign.planar.design.quantities import design_quantities
+from rockdesign.planar.design.restitution import restitution_block, restitution_frame, restitution_podium
+from rockdesign.planar.system import Column, RockingSystem, Superstructure
 
 SET = settings(max_examples=60, deadline=None)
 tan_a = st.floats(0.03, 0.5)

@@ -9,17 +9,17 @@ import math
 import pytest
 
 from casedata import case, expected
-from rockdesign.design.equivalence import equivalent_size, equivalent_size_from_spectra, frame_size_factor
-from rockdesign.design.frequencies import (critical_rolling_frequency_parameter, frame_frequency_parameter,
+from rockdesign.planar.design.equivalence import equivalent_size, equivalent_size_from_spectra, frame_size_factor
+from rockdesign.planar.design.frequencies import (critical_rolling_frequency_parameter, frame_frequency_parameter,
                                            frequency_parameter, rocking_period, uplifted_frequency_ratio)
-from rockdesign.design.geometry import (critical_curvature, rocking_geometry, rotation_capacity_curved,
+from rockdesign.planar.design.geometry import (critical_curvature, rocking_geometry, rotation_capacity_curved,
                                         wedge_angle)
-from rockdesign.design.pushover import restoring_force_ratio, restoring_stiffness_ratio
-from rockdesign.design.quantities import design_quantities
-from rockdesign.design.restitution import (restitution_block, restitution_flat_extensions, restitution_frame,
+from rockdesign.planar.design.pushover import restoring_force_ratio, restoring_stiffness_ratio
+from rockdesign.planar.design.quantities import design_quantities
+from rockdesign.planar.design.restitution import (restitution_block, restitution_flat_extensions, restitution_frame,
                                            restitution_podium)
-from rockdesign.design.uplift import podium_uplift_thresholds
-from rockdesign.systems import Column, RockingSystem, Superstructure
+from rockdesign.planar.design.uplift import podium_uplift_thresholds
+from rockdesign.planar.system import Column, RockingSystem, Superstructure
 
 G = 9.81
 

@@ -14,7 +14,7 @@ import re
 
 import pytest
 
-from rockdesign.design.quantities import design_quantities
+from rockdesign.planar.design.quantities import design_quantities
 from rockdesign.paths import REPO_ROOT
 from rockdesign.library import load_project
 

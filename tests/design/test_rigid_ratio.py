@@ -8,8 +8,8 @@ from pathlib import Path
 import pytest
 
 import rockdesign as rd
-from rockdesign.design.quantities import RIGID_SUPERSTRUCTURE_RATIO
-from rockdesign.dynamics.model import default_structure
+from rockdesign.planar.design.quantities import RIGID_SUPERSTRUCTURE_RATIO
+from rockdesign.planar.dynamics.model import default_structure
 from rockdesign.project_tables import DEFAULTS
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "podium_flat.toml"   # ω_s/p = 7.5

@@ -195,7 +195,7 @@ def test_a_suite_too_small_for_the_rule_stops_the_grid(two_pairs, tmp_path):
 def test_the_pairs_are_read_once_for_all_variants(two_pairs, tmp_path, monkeypatch):
     """Variants of one [excitation] share the read and scaled pairs: the suite is read once for four
     variants; a variant whose target differs (the default excitation moves with tan α) reads its own."""
-    from rockdesign.checks import cylinder_check
+    from rockdesign.cylinder import check as cylinder_check
     from rockdesign.design_space.run import design
     reads = []
     real = cylinder_check.suite_pairs

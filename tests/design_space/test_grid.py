@@ -137,7 +137,7 @@ def test_design_report_and_files(grid, tmp_path):
 def test_variants_checked_together_equal_variants_checked_one_after_the_other(small, grid, monkeypatch, tmp_path):
     """The grid's shared batches (every variant's analyses merged into shared calls of the batch driver)
     change nothing in a cell: the same grid checked one variant after the other gives the same cells."""
-    from rockdesign.kinds.planar import Planar
+    from rockdesign.planar.kind import Planar
     shared = grid.grid.shared_batches
     assert shared["variants"] == 2 and shared["driver_calls"] < shared["batches"]
     assert shared["analyses"] == grid.grid.analyses_run
@@ -151,7 +151,7 @@ def test_variants_checked_together_equal_variants_checked_one_after_the_other(sm
 def test_an_error_in_one_variant_stops_the_grid_without_hanging(small, monkeypatch, tmp_path):
     """A variant that raises (a bug, Ctrl-C in its thread) cancels the others at their next batch and the
     error reaches the caller; nothing waits forever for the failed variant's batches."""
-    from rockdesign.kinds import planar_grid
+    from rockdesign.planar import grid as planar_grid
     real = planar_grid.grid_check
     calls = []
 

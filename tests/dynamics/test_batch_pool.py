@@ -1,4 +1,4 @@
-"""Shared batches of the design grid (rockdesign.dynamics.batch_pool): the batches of member threads run
+"""Shared batches of the design grid (rockdesign.planar.dynamics.batch_pool): the batches of member threads run
 together, and every thread gets exactly what its batch gives alone."""
 from __future__ import annotations
 
@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 
 from support import G, reference_podium, table34_column
-from rockdesign.dynamics.batch import batch_options, run_batch
-from rockdesign.dynamics.batch_pool import BatchPool, PoolCancelled, current_pool
-from rockdesign.dynamics.model import ModelChoice, system_parameters
+from rockdesign.planar.dynamics.batch import batch_options, run_batch
+from rockdesign.planar.dynamics.batch_pool import BatchPool, PoolCancelled, current_pool
+from rockdesign.planar.dynamics.model import ModelChoice, system_parameters
 from rockdesign.motions.motion import pulse_motion
 
 

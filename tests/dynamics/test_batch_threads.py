@@ -10,12 +10,12 @@ import numpy as np
 import pytest
 
 from support import G, reference_podium, table34_column
-from rockdesign.dynamics import batch
-from rockdesign.dynamics.batch import batch_options, pack_motions, run_batch, run_history, use_threads
-from rockdesign.dynamics.engine import integrate
-from rockdesign.dynamics.layout import D_EVENTS_STORED, O_T_END
-from rockdesign.dynamics.model import ModelChoice, system_parameters
-from rockdesign.dynamics.simulate import simulate
+from rockdesign.planar.dynamics import batch
+from rockdesign.planar.dynamics.batch import batch_options, pack_motions, run_batch, run_history, use_threads
+from rockdesign.planar.dynamics.engine import integrate
+from rockdesign.planar.dynamics.layout import D_EVENTS_STORED, O_T_END
+from rockdesign.planar.dynamics.model import ModelChoice, system_parameters
+from rockdesign.planar.dynamics.simulate import simulate
 from rockdesign.motions.library import load_record
 from rockdesign.motions.motion import pulse_motion
 

@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 
 from support import G, block_from_p, table34_column
-from rockdesign.dynamics.linear_exact import sampled_pulse
-from rockdesign.dynamics.simulate import simulate
+from rockdesign.planar.dynamics.linear_exact import sampled_pulse
+from rockdesign.planar.dynamics.simulate import simulate
 from rockdesign.motions.motion import pulse_motion, record_motion
 
 
@@ -65,7 +65,7 @@ def test_record_history_agrees_with_closed_form():
 
 def test_curved_regimes_of_table_3_3():
     # every ρ regime: ρ < ρc, ρ = ρc, ρc < ρ < ½, ρ = ½, ρ > ½ (tan α 0.1, tan α' 0.2: ρc = 0.25)
-    from rockdesign.systems import Column, RockingSystem
+    from rockdesign.planar.system import Column, RockingSystem
     motion = sampled_pulse(pulse_motion("ricker-anti", 0.4 * G, 1.0), 200)
     for rho in (0.1, 0.25, 0.4, 0.5, 0.8):
         col = Column(1.5, 0.15, 1000.0, 1 / 3, "curved", 0.3, rho * 3.0)

@@ -1,8 +1,8 @@
 """First-run compilation: detection of numba's cache index, the announcement, per-command kernels."""
 from __future__ import annotations
 
-from rockdesign.dynamics import compilation
-from rockdesign.dynamics.engine import integrate
+from rockdesign.execution import compilation
+from rockdesign.planar.dynamics.engine import integrate
 
 
 def test_kernels_of_each_command_exist_and_are_cacheable():
@@ -11,16 +11,16 @@ def test_kernels_of_each_command_exist_and_are_cacheable():
             d = compilation._dispatcher(module, name)
             assert d._cache is not None, f"{module}.{name} is not cache=True"
     # simulate never needs the closed-form linear integrator, records never the rocking engine
-    assert ("rockdesign.dynamics.linear_exact", "integrate_linear_exact") not in compilation.KERNELS["simulate"]
-    assert all(module != "rockdesign.dynamics.batch" for module, _ in compilation.KERNELS["records"])
+    assert ("rockdesign.planar.dynamics.linear_exact", "integrate_linear_exact") not in compilation.KERNELS["simulate"]
+    assert all(module != "rockdesign.planar.dynamics.batch" for module, _ in compilation.KERNELS["records"])
 
 
 def test_compiled_kernel_is_detected_as_cached():
-    from rockdesign.dynamics.simulate import simulate
+    from rockdesign.planar.dynamics.simulate import simulate
     from support import block_from_p
     simulate(block_from_p(2.0, 0.15), None, theta0=0.01, t_end=0.2)   # compiled or loaded from the cache
     assert compilation.is_cached(integrate)
-    assert "rockdesign.dynamics.engine.integrate" not in compilation.missing_kernels("simulate")
+    assert "rockdesign.planar.dynamics.engine.integrate" not in compilation.missing_kernels("simulate")
     assert compilation.prepare("simulate", say=lambda s: (_ for _ in ()).throw(AssertionError(s))) == 0.0
     for command in compilation.KERNELS:      # the warm-up problems run (kernels loaded from the cache)
         compilation._warm(command)
@@ -40,8 +40,8 @@ def test_the_real_calls_use_the_warm_up_machine_code():
     from rockdesign.motions.pairs import load_pair
     from rockdesign.paths import REPO_ROOT
     from rockdesign.library import load_project
-    from rockdesign.spectra.spectrum import compute_spectrum, request_from_project
-    from rockdesign.spectra.axes import parse_axis
+    from rockdesign.planar.spectra.spectrum import compute_spectrum, request_from_project
+    from rockdesign.planar.spectra.axes import parse_axis
     pier = load_project(REPO_ROOT / "examples" / "bridge_pier.toml")
     cyl = load_project(REPO_ROOT / "examples" / "cylinder.toml")
     cases = {
@@ -100,7 +100,7 @@ class _Helper:
 def test_two_processes_share_the_work_and_a_failed_helper_costs_only_time(monkeypatch):
     """This process compiles its half of the callees, lets the helper go on to the integrator and compiles
     the side kernels meanwhile; a failed helper's engine is compiled here."""
-    from rockdesign.dynamics import compile_plan
+    from rockdesign.execution import compile_plan
     monkeypatch.delenv("ROCKDESIGN_NO_WARMUP", raising=False)
     monkeypatch.setattr(compilation, "is_cached", lambda d: False)
     for code, expected in ((0, [("side",)]), (1, [("side",), ("engine",)])):
@@ -114,7 +114,7 @@ def test_two_processes_share_the_work_and_a_failed_helper_costs_only_time(monkey
 
 
 def test_background_compilation_is_waited_for_before_the_engine_runs(monkeypatch):
-    from rockdesign.dynamics import compile_plan
+    from rockdesign.execution import compile_plan
     monkeypatch.delenv("ROCKDESIGN_NO_WARMUP", raising=False)
     monkeypatch.setattr(compilation, "is_cached", lambda d: False)
     log, said = [], []
@@ -134,7 +134,7 @@ def test_background_compilation_is_waited_for_before_the_engine_runs(monkeypatch
 
 
 def test_split_keeps_every_callee_and_balances_the_two_processes():
-    from rockdesign.dynamics.compile_plan import callee_table, split
+    from rockdesign.execution.compile_plan import callee_table, split
     entries = callee_table()
     assert len(entries) >= 20
     for head_start in (0.0, 5.0, 12.0):
@@ -148,10 +148,10 @@ def test_compile_plan_names_the_signatures_the_integrator_calls():
     """After the real warm-up every entry of the plan loads from numba's cache or memory: none compiles.
 
     A stale entry (a kernel whose argument types changed) would make the helper compile a specialisation
-    that the integrator never calls; rewrite the table with ``python -m rockdesign.dynamics.compile_plan_writer``.
+    that the integrator never calls; rewrite the table with ``python -m rockdesign.execution.compile_plan_writer``.
     """
     from numba.core import event
-    from rockdesign.dynamics.compile_plan import callee_table, compile_entries
+    from rockdesign.execution.compile_plan import callee_table, compile_entries
     compilation._warm("check")
     compiled = []
 
@@ -172,9 +172,9 @@ def test_compile_plan_names_the_signatures_the_integrator_calls():
 
 
 def test_a_stale_plan_entry_costs_time_not_the_command():
-    from rockdesign.dynamics.compile_plan import compile_entries
-    compile_entries([("rockdesign.dynamics.engine", "_step_to", "(float64,)", 0.1),      # other arguments
-                     ("rockdesign.dynamics.no_such_module", "kernel", "()", 0.1)])       # renamed
+    from rockdesign.execution.compile_plan import compile_entries
+    compile_entries([("rockdesign.planar.dynamics.engine", "_step_to", "(float64,)", 0.1),      # other arguments
+                     ("rockdesign.planar.dynamics.no_such_module", "kernel", "()", 0.1)])       # renamed
 
 
 def test_estimate_scales_with_the_load_and_with_measurements(monkeypatch, tmp_path):

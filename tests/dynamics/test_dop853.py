@@ -1,4 +1,4 @@
-"""The DOP853 stepper (rockdesign/dynamics/dop853.py) against closed forms, published numbers and DP5(4).
+"""The DOP853 stepper (rockdesign/planar/dynamics/dop853.py) against closed forms, published numbers and DP5(4).
 
 The same event-driven integrator runs either Runge–Kutta pair; these tests force DOP853 and hold it to
 the tolerances of the DP5(4) tests (test_closed_form.py, test_published_histories.py), including its
@@ -12,11 +12,11 @@ import numpy as np
 import pytest
 
 from support import G, block_from_p, reference_podium, table34_column
-from rockdesign.dynamics.dop853 import A853, B853, C853
-from rockdesign.dynamics.engine import resolve_method
-from rockdesign.dynamics.layout import DOP853_BELOW_RTOL, METHOD_DOP853, METHOD_DP5
-from rockdesign.dynamics.linear_exact import sampled_pulse
-from rockdesign.dynamics.simulate import simulate
+from rockdesign.planar.dynamics.dop853 import A853, B853, C853
+from rockdesign.planar.dynamics.engine import resolve_method
+from rockdesign.planar.dynamics.layout import DOP853_BELOW_RTOL, METHOD_DOP853, METHOD_DP5
+from rockdesign.planar.dynamics.linear_exact import sampled_pulse
+from rockdesign.planar.dynamics.simulate import simulate
 from rockdesign.errors import ModelError
 from rockdesign.motions.motion import pulse_motion, record_motion
 

@@ -9,11 +9,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from support import G, block_from_p
-from rockdesign.dynamics.eom import total_energy
-from rockdesign.dynamics.model import ModelChoice, system_parameters
-from rockdesign.dynamics.simulate import simulate
+from rockdesign.planar.dynamics.eom import total_energy
+from rockdesign.planar.dynamics.model import ModelChoice, system_parameters
+from rockdesign.planar.dynamics.simulate import simulate
 from rockdesign.motions.motion import pulse_motion, record_motion
-from rockdesign.systems import Column, RockingSystem
+from rockdesign.planar.system import Column, RockingSystem
 
 SETTINGS = settings(max_examples=25, deadline=None)
 
@@ -46,7 +46,7 @@ def test_energy_never_increases_in_free_rocking(tan_a, theta_frac, lam):
 def test_energy_conserved_without_impacts_curved(rho, theta_frac):
     col = Column(1.5, 0.15, 1000.0, 1 / 3, "curved", 0.3, rho * 3.0)
     s = RockingSystem("c", "column", col, g=G).with_restitution(1.0)
-    from rockdesign.design.geometry import rocking_geometry
+    from rockdesign.planar.design.geometry import rocking_geometry
     theta_c = rocking_geometry(col).theta_c
     r = simulate(s, None, theta0=theta_frac * theta_c, t_end=4.0, output_dt=0.01)
     e = _energy_series(s, r, "block")

@@ -28,7 +28,7 @@ from rockdesign.report.context import software_versions
 # Block (r = 0, γ = 0): W(θ) = cos(α − θ), so the energy is g/R · (cos(α − θ) − cos α) (Eq 3.2).
 PROBE = """
 import json, rockdesign
-from rockdesign.dynamics.eom import pack_parameters, potential_energy
+from rockdesign.planar.dynamics.eom import pack_parameters, potential_energy
 sp = pack_parameters({"r": 1.0, "alpha": 0.2, "g": 9.81})
 value = potential_energy(0.05, 1.0, 1, sp)
 print(json.dumps({"package": rockdesign.__file__, "value": value,
@@ -57,7 +57,7 @@ def test_edited_inlined_helper_runs_in_a_new_process(tmp_path, user_cache):
     shutil.copytree(Path(rockdesign.__file__).parent, package,
                     ignore=shutil.ignore_patterns("__pycache__", "*.nbi", "*.nbc"))
     cache_dir = tmp_path / "numba-cache" if user_cache else None
-    dynamics = package / "dynamics"
+    dynamics = package / "planar" / "dynamics"
     expected_cache = (cache_dir / f"dynamics_{hashlib.sha1(str(dynamics).encode()).hexdigest()}"
                       if user_cache else dynamics / "__pycache__")
 
@@ -69,7 +69,7 @@ def test_edited_inlined_helper_runs_in_a_new_process(tmp_path, user_cache):
     again = _run(src, cache_dir)
     assert again["cache_hits"] > 0 and again["value"] == first["value"]   # the cache is really used
 
-    helper = package / "design" / "kinematics.py"
+    helper = package / "planar" / "design" / "kinematics.py"
     text = helper.read_text()
     assert text.count(HELPER_LINE) == 1
     helper.write_text(text.replace(HELPER_LINE, EDITED_LINE))
@@ -81,7 +81,7 @@ def test_edited_inlined_helper_runs_in_a_new_process(tmp_path, user_cache):
 def test_refresh_deletes_only_rockdesign_kernels(tmp_path, monkeypatch):
     monkeypatch.setattr(numba.config, "CACHE_DIR", str(tmp_path))
     folders = kernel_cache.cache_folders()
-    dynamics = kernel_cache.PACKAGE / "dynamics"
+    dynamics = kernel_cache.PACKAGE / "planar" / "dynamics"
     cache = folders[dynamics]
     assert cache == tmp_path / f"dynamics_{hashlib.sha1(str(dynamics).encode()).hexdigest()}"
     ours = [cache / "engine.integrate-100.py311.nbi", cache / "engine.integrate-100.py311.0.nbc"]
@@ -108,7 +108,7 @@ def test_refresh_deletes_only_rockdesign_kernels(tmp_path, monkeypatch):
 
 def test_digest_covers_modules_whose_constants_kernels_read():
     names = {str(p.relative_to(kernel_cache.PACKAGE)) for p in kernel_cache.digested_sources()}
-    assert {"dynamics/engine.py", "design/kinematics.py", "dynamics/layout.py", "motions/defaults.py"} <= names
+    assert {"planar/dynamics/engine.py", "planar/design/kinematics.py", "planar/dynamics/layout.py", "motions/defaults.py"} <= names
     assert "cli.py" not in names and "report/results.py" not in names
 
 

@@ -15,8 +15,8 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 from support import G, table34_column
-from rockdesign.dynamics import linear_exact
-from rockdesign.dynamics.simulate import simulate
+from rockdesign.planar.dynamics import linear_exact
+from rockdesign.planar.dynamics.simulate import simulate
 from rockdesign.motions.motion import pulse_motion
 
 A_P, T_P = 0.38 * G, 0.95

@@ -11,9 +11,9 @@ import math
 import numpy as np
 import pytest
 
-from rockdesign.dynamics.layout import (N_SUMMARY, S_DYNAMIC, S_IMPACTS_BEFORE_EXCEEDED, S_IMPACTS_BEFORE_OVERTURN,
+from rockdesign.planar.dynamics.layout import (N_SUMMARY, S_DYNAMIC, S_IMPACTS_BEFORE_EXCEEDED, S_IMPACTS_BEFORE_OVERTURN,
                                         S_THETA_MAX)
-from rockdesign.dynamics.overturning import CRITERIA, capacity_exceeded, classify, overturned_by
+from rockdesign.planar.dynamics.overturning import CRITERIA, capacity_exceeded, classify, overturned_by
 
 THETA_C = 0.2   # [rad]
 

@@ -14,9 +14,9 @@ import pytest
 
 from casedata import case, expected
 from support import G, block_from_p, reference_podium, table34_column
-from rockdesign.dynamics.simulate import simulate
+from rockdesign.planar.dynamics.simulate import simulate
 from rockdesign.motions.motion import pulse_motion
-from rockdesign.systems import Column, RockingSystem
+from rockdesign.planar.system import Column, RockingSystem
 
 
 def test_example_2_1_free_vibration_exact():

@@ -12,8 +12,8 @@ import math
 import numpy as np
 import pytest
 
-from rockdesign.dynamics import quiet_steps
-from rockdesign.dynamics.simulate import simulate
+from rockdesign.planar.dynamics import quiet_steps
+from rockdesign.planar.dynamics.simulate import simulate
 from rockdesign.motions.motion import pulse_motion
 from support import block_from_p
 

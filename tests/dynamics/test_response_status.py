@@ -6,8 +6,8 @@ import ast
 from pathlib import Path
 
 from support import G, table34_column
-from rockdesign.dynamics.layout import ST_OK, ST_OVERTURNED, ST_TOO_MANY_STEPS
-from rockdesign.dynamics.simulate import simulate
+from rockdesign.planar.dynamics.layout import ST_OK, ST_OVERTURNED, ST_TOO_MANY_STEPS
+from rockdesign.planar.dynamics.simulate import simulate
 from rockdesign.motions.motion import pulse_motion
 
 PACKAGE = Path(__file__).resolve().parents[2] / "rockdesign"
@@ -34,7 +34,7 @@ def test_an_overturning_run_is_a_successful_analysis_that_says_so():
 
 
 def test_a_run_stopped_by_the_step_limit_fails_loudly():
-    from rockdesign.dynamics import simulate as sim_module
+    from rockdesign.planar.dynamics import simulate as sim_module
     system, motion = table34_column("B1"), pulse_motion("ricker-anti", 0.3 * G, 0.95)
     r = sim_module.simulate(system, motion, t_end=6.0, max_steps=20)
     assert r.status_code == ST_TOO_MANY_STEPS and not r.success
@@ -70,7 +70,7 @@ def test_events_made_in_bulk_are_ordinary_frozen_events():
     import dataclasses
 
     import pytest
-    from rockdesign.dynamics.response import Event
+    from rockdesign.planar.dynamics.response import Event
     bulk = Event.many(["impact", "uplift"], [1.5, 2.0], [[0.0, -0.1, 0.01, 0.2], (0.001, 0.0, 0.0, 0.0)])
     one_by_one = [Event("impact", 1.5, (0.0, -0.1, 0.01, 0.2)), Event("uplift", 2.0, (0.001, 0.0, 0.0, 0.0))]
     assert bulk == one_by_one and [hash(e) for e in bulk] == [hash(e) for e in one_by_one]

@@ -1,4 +1,4 @@
-"""The exact step of a resting podium (rockdesign.dynamics.rest_step, Eq 4.3 under a piecewise-linear record).
+"""The exact step of a resting podium (rockdesign.planar.dynamics.rest_step, Eq 4.3 under a piecewise-linear record).
 
 Checked against independent numbers: scipy's solve_ivp on the same oscillator at rtol 1e-12, and
 scipy.signal.lsim (a matrix exponential with a first-order hold, i.e. the same exact solution computed
@@ -11,10 +11,10 @@ import pytest
 from scipy import signal
 from scipy.integrate import solve_ivp
 
-from rockdesign.dynamics.eom import P_HYST, P_OMEGA, P_ZETA, uplift_condition
-from rockdesign.dynamics.model import ModelChoice, system_parameters
-from rockdesign.dynamics.rest_step import TAYLOR_BELOW, rest_state, rest_substeps
-from rockdesign.dynamics.simulate import simulate
+from rockdesign.planar.dynamics.eom import P_HYST, P_OMEGA, P_ZETA, uplift_condition
+from rockdesign.planar.dynamics.model import ModelChoice, system_parameters
+from rockdesign.planar.dynamics.rest_step import TAYLOR_BELOW, rest_state, rest_substeps
+from rockdesign.planar.dynamics.simulate import simulate
 from rockdesign.motions.motion import record_motion
 from support import reference_podium
 

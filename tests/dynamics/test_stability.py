@@ -12,9 +12,9 @@ import pytest
 from casedata import expected
 
 from support import G, block_from_p, reference_podium
-from rockdesign.dynamics.simulate import simulate
+from rockdesign.planar.dynamics.simulate import simulate
 from rockdesign.motions.motion import pulse_motion, record_motion
-from rockdesign.systems import Column, RockingSystem
+from rockdesign.planar.system import Column, RockingSystem
 
 
 def test_zeno_free_rocking_ends_in_rest():

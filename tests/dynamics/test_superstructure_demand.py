@@ -101,7 +101,7 @@ def _scipy_demand(system, motion, rtol):
 
 @pytest.fixture(scope="module")
 def podium():
-    from rockdesign.checks.check import check_records
+    from rockdesign.planar.checks.check import check_records
     from rockdesign.library import load_project
     from pathlib import Path
     p = load_project(str(Path(__file__).resolve().parents[2] / "examples" / "podium_flat.toml"))
@@ -109,7 +109,7 @@ def podium():
 
 
 def test_podium_demand_matches_scipy_on_converged_records(podium):
-    from rockdesign.dynamics.simulate import simulate
+    from rockdesign.planar.dynamics.simulate import simulate
     p, motions = podium
     checked = 0
     for m in motions[:12]:
@@ -133,9 +133,9 @@ def test_podium_fixed_base_and_ratio(podium):
     """simulate's fixed-base reference is eqsig's absolute acceleration of the same record (0.5 %), and a
     record too weak to uplift the storey gives a force ratio of exactly 1 (same oscillator, same damping)."""
     eqsig = pytest.importorskip("eqsig.sdof")
-    from rockdesign.dynamics.eom import P_OMEGA, P_ZETA
-    from rockdesign.dynamics.model import ModelChoice, system_parameters
-    from rockdesign.dynamics.simulate import simulate
+    from rockdesign.planar.dynamics.eom import P_OMEGA, P_ZETA
+    from rockdesign.planar.dynamics.model import ModelChoice, system_parameters
+    from rockdesign.planar.dynamics.simulate import simulate
     p, motions = podium
     sp = system_parameters(p.system, ModelChoice("podium-2dof", "exact"))
     m = motions[0]
@@ -174,8 +174,8 @@ def test_frame_cap_beam_between_impacts_and_velocity_jump():
     """Linearized free rocking of a frame from θ0 (Eq 3.75 linearized): θ̈ = −p̂²(sα − θ), u_B = 2Rθ, so the
     cap beam's largest acceleration is 2R p̂² α (at θ = 0, just before an impact; p̂ of Eq 3.76), and the
     largest velocity jump is 2R(1 − √c_r)|θ̇⁻| at the first impact (θ̇⁺ = √c_r θ̇⁻, Eq 2.15)."""
-    from rockdesign.design.frequencies import frame_frequency_parameter
-    from rockdesign.dynamics.simulate import simulate
+    from rockdesign.planar.design.frequencies import frame_frequency_parameter
+    from rockdesign.planar.dynamics.simulate import simulate
     from rockdesign.library import parse_project
     p = parse_project(FRAME)
     s = p.system

@@ -5,7 +5,7 @@ import math
 
 import pytest
 
-from rockdesign.systems import block
+from rockdesign.planar.system import block
 
 SPECIMEN_TOML = """
 [project]

@@ -11,7 +11,7 @@ from conftest import ALPHA, SPECIMEN_TOML, write_tilt_csv
 from rockdesign.cli import app
 from rockdesign.experiments.synthetic import free_rocking_history
 from rockdesign.experiments.validate import read_results_csv, validate
-from rockdesign.systems import block
+from rockdesign.planar.system import block
 
 runner = CliRunner()
 TESTS = "id,theta_max_over_alpha,overturned\na,0.5,false\nb,0.7,false\nc,inf,true\nd,0.2,false\n"
@@ -40,7 +40,7 @@ def write(tmp_path, name, data):
 
 
 def no_compiling(monkeypatch):
-    import rockdesign.dynamics.compilation as compilation
+    import rockdesign.execution.compilation as compilation
 
     def boom(*args, **kwargs):
         raise AssertionError("compiled kernels (or ran analyses) for a bad input")

@@ -10,8 +10,8 @@ from typer.testing import CliRunner
 
 from conftest import ALPHA, C_R_LEFT, C_R_RIGHT, SPECIMEN_TOML, write_tilt_csv
 from rockdesign.cli import app
-from rockdesign.design.frequencies import frequency_parameter, rocking_period
-from rockdesign.design.quantities import system_frequency_parameter
+from rockdesign.planar.design.frequencies import frequency_parameter, rocking_period
+from rockdesign.planar.design.quantities import system_frequency_parameter
 from rockdesign.experiments.calibrate import (calibrate, frequency_parameter_from_period, mass_distribution_from_p,
                                               peak_potential_energy)
 from rockdesign.experiments.free_vibration import ExperimentError, TiltHistory, read_tilt_csv
@@ -89,7 +89,7 @@ def test_eq_2_8_inversion_and_lambda_closed_form(specimen):
 
 
 def test_theoretical_restitution_ignores_a_measured_value(specimen):
-    from rockdesign.design.restitution import restitution_block
+    from rockdesign.planar.design.restitution import restitution_block
     cal = calibrate(specimen.with_restitution(0.9), TiltHistory(*_measurement(specimen, 0, noise=0.0), "x"))
     assert cal.c_r_theory == pytest.approx(restitution_block(ALPHA, 0.543), rel=1e-12)
 
@@ -148,7 +148,7 @@ def test_cli_json_and_plot(specimen, tmp_path):
 
 def test_measured_restitution_goes_into_the_project(tmp_path):
     """The calibrated values are project keys: restitution = 0.9417 (a measured number in (0, 1])."""
-    from rockdesign.design.quantities import coefficient_of_restitution
+    from rockdesign.planar.design.quantities import coefficient_of_restitution
     from rockdesign.library import load_project
     path = tmp_path / "measured.toml"
     path.write_text(SPECIMEN_TOML.replace("mass_distribution = 0.543", "mass_distribution = 0.54\nrestitution = 0.9417"))
@@ -159,7 +159,7 @@ def test_measured_restitution_goes_into_the_project(tmp_path):
 def test_cli_compiles_the_engine_only_for_the_plot(specimen, tmp_path, monkeypatch):
     """`calibrate` fits without the engine; `--plot` simulates the calibrated free vibration, so on a
     first run it announces and compiles the engine's kernels first (docs/engine.md, "First run")."""
-    from rockdesign.dynamics import compilation
+    from rockdesign.execution import compilation
     asked = []
     monkeypatch.setattr(compilation, "prepare", lambda command, say=None, **k: asked.append(command) or 0.0)
     project = tmp_path / "specimen.toml"

@@ -7,7 +7,7 @@ import pytest
 from typer.testing import CliRunner
 
 from rockdesign.cli import app
-from rockdesign.dynamics.simulate import simulate
+from rockdesign.planar.dynamics.simulate import simulate
 from rockdesign.experiments.ensemble import run_ensemble, write_analyses_csv
 from rockdesign.experiments.validate import read_results_csv
 from rockdesign.motions.library import load_record

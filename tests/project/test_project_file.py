@@ -71,7 +71,7 @@ def test_mass_from_density_and_lambda_from_end_plates(tmp_path):
 
 
 def test_lambda_table_3_1_and_figure_3_6():
-    from rockdesign.design.mass import composite_column
+    from rockdesign.planar.design.mass import composite_column
     # Table 3.1 (b): rectangles 0.385/0.383 (d_s/2H = 0.02), 0.422/0.420 (0.04) for tan α = 0.1/0.2
     for tan_a, ds, lam in ((0.1, 0.02, 0.385), (0.2, 0.02, 0.383), (0.1, 0.04, 0.422), (0.2, 0.04, 0.420)):
         assert composite_column("rectangular", tan_a, 1.0, ds * 2.0)[0] == pytest.approx(lam, abs=6e-4)

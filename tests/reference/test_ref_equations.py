@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from casedata import expected
-from rockdesign.design.restitution import restitution_flat_extensions
+from rockdesign.planar.design.restitution import restitution_flat_extensions
 
 from rockdesign.motions.motion import no_motion
 from rockdesign.bench.baseline import simulate_scipy
@@ -20,7 +20,7 @@ from rockdesign.bench.baseline.equations import (accelerations_exact, accelerati
 from rockdesign.bench.baseline.parameters import (model_parameters, restitution_coefficient,
                                              rotation_capacity, uplift_thresholds,
                                              uplifted_frequency_ratio, wedge_angle)
-from rockdesign.systems import Column, RockingSystem, Superstructure
+from rockdesign.planar.system import Column, RockingSystem, Superstructure
 
 G = 9.81
 

@@ -14,7 +14,7 @@ from casedata import case, expected
 from rockdesign.motions.motion import pulse_motion
 from rockdesign.bench.baseline import simulate_scipy
 from rockdesign.bench.baseline.parameters import uplift_thresholds, model_parameters
-from rockdesign.systems import Column, RockingSystem, Superstructure
+from rockdesign.planar.system import Column, RockingSystem, Superstructure
 
 G, H, TAN_A, GAMMA, ETA, N, M_C = 9.81, 1.5, 0.15, 10.0, 5.0, 4, 1000.0
 COLUMN = Column(H, TAN_A * H, M_C, 1 / 3)

@@ -11,11 +11,11 @@ import pytest
 
 from casedata import case as case_data
 from casedata import expected
-from rockdesign.design.restitution import restitution_flat_extensions
+from rockdesign.planar.design.restitution import restitution_flat_extensions
 
 from rockdesign.motions.motion import no_motion, pulse_motion
 from rockdesign.bench.baseline import model_parameters, simulate_scipy
-from rockdesign.systems import Column, RockingSystem, block
+from rockdesign.planar.system import Column, RockingSystem, block
 
 G = 9.81
 

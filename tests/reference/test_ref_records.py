@@ -12,7 +12,7 @@ import pytest
 
 from rockdesign.motions.motion import record_motion
 from rockdesign.bench.baseline import simulate_scipy
-from rockdesign.systems import Column, RockingSystem, Superstructure, block
+from rockdesign.planar.system import Column, RockingSystem, Superstructure, block
 
 G = 9.81
 ALPHA = math.atan(0.15)

@@ -6,10 +6,10 @@ import math
 
 import pytest
 
-from rockdesign.design.quantities import design_quantities
+from rockdesign.planar.design.quantities import design_quantities
 from rockdesign.paths import REPO_ROOT
 from rockdesign.library import load_project
-from rockdesign.design.substitutions import substitution
+from rockdesign.planar.design.substitutions import substitution
 from rockdesign.report.context import pretty_exponents
 from rockdesign.report.formatting import fmt, number
 
@@ -67,7 +67,7 @@ def test_every_quantity_carries_formula_and_substitution_that_evaluate_to_the_re
 
 def test_verification_statement():
     """The report's statement: the engine against the closed form at the check's tolerance (SPEC §3.8)."""
-    from rockdesign.report.verification import engine_accuracy_statement
+    from rockdesign.planar.report.verification import engine_accuracy_statement
     s = engine_accuracy_statement(1e-10)
     for key in ("theta_error", "impact_time_error", "impacts", "impacts_engine", "theta_error_over_alpha", "rtol"):
         assert key in s, key
@@ -81,8 +81,8 @@ def test_verification_statement():
 
 @pytest.mark.parametrize("path", EXAMPLES, ids=lambda p: p.stem)
 def test_structure_drawing_svg(path):
-    from rockdesign.report.drawing import structure_drawing
-    from rockdesign.report.figures import svg
+    from rockdesign.planar.report.drawing import structure_drawing
+    from rockdesign.report.svg import svg
     project = load_project(path)
     text = svg(structure_drawing(project.system), "d")
     assert text.startswith("<svg")
@@ -92,8 +92,8 @@ def test_structure_drawing_svg(path):
 
 def test_curved_extension_outline_is_true_arc():
     """The drawn extension lies on the circle of radius r tangent to the ground at x = B, ends at B'."""
-    from rockdesign.design.geometry import rocking_geometry
-    from rockdesign.report.drawing import extension_outline
+    from rockdesign.planar.design.geometry import rocking_geometry
+    from rockdesign.planar.report.drawing import extension_outline
     project = load_project(REPO_ROOT / "examples" / "bridge_pier.toml")
     c = project.system.column
     geo = rocking_geometry(c)
@@ -105,8 +105,8 @@ def test_curved_extension_outline_is_true_arc():
 
 
 def test_svg_is_deterministic():
-    from rockdesign.report.drawing import structure_drawing
-    from rockdesign.report.figures import svg
+    from rockdesign.planar.report.drawing import structure_drawing
+    from rockdesign.report.svg import svg
     system = load_project(REPO_ROOT / "examples" / "podium_curved.toml").system
     assert svg(structure_drawing(system), "a") == svg(structure_drawing(system), "a")
 
@@ -115,8 +115,8 @@ def test_slim_svg_draws_the_same_pdf():
     """slim_svg (style declarations as presentation attributes, no metadata, matplotlib's ``*`` rule on
     the root) changes nothing WeasyPrint draws: the PDF drawing operators of the figure are identical."""
     from weasyprint import HTML
-    from rockdesign.report import figures
-    from rockdesign.report.drawing import structure_drawing
+    from rockdesign.planar.report.drawing import structure_drawing
+    from rockdesign.report import svg as figures
     from rockdesign.report.render import svg_image
     system = load_project(REPO_ROOT / "examples" / "podium_curved.toml").system
     slim = figures.svg(structure_drawing(system), "a")
@@ -152,8 +152,8 @@ def test_symbols_subscripts():
 def test_report_warm_up_writes_nothing_and_changes_no_figure(tmp_path, monkeypatch):
     """render.warm_up (run by `check` while its engine compiles on the first run) only loads libraries:
     no file appears and a figure drawn afterwards is the same markup as before."""
-    from rockdesign.report.drawing import structure_drawing
-    from rockdesign.report.figures import svg
+    from rockdesign.planar.report.drawing import structure_drawing
+    from rockdesign.report.svg import svg
     from rockdesign.report.render import warm_up
     monkeypatch.chdir(tmp_path)
     system = load_project(REPO_ROOT / "examples" / "podium_flat.toml").system

@@ -196,7 +196,7 @@ def test_podium_solver_and_versions(podium_out):
         assert re.search(rf"\b{name}\b \d", text), name
     assert "closed-form" in text
     assert "impact times" in text
-    from rockdesign.report.render import verification_statement
+    from rockdesign.planar.report.report import verification_statement
     v = verification_statement(podium_out.result)
     assert v["rtol"] == podium_out.data["settings"]["rtol"]
     for key in ("theta_error", "impact_time_error", "impacts"):
@@ -284,7 +284,7 @@ def test_suite_table_rows_equal_results_json(which, request):
 
 def test_html_is_deterministic(curved_out):
     """Same result, same date → byte-identical HTML (no randomness, no timestamps in the figures)."""
-    from rockdesign.report.render import render_html
+    from rockdesign.planar.report.report import render_html
     first = render_html(curved_out.result, date="2000-01-01")
     assert first == render_html(curved_out.result, date="2000-01-01")
     assert "2000-01-01" in first
@@ -293,7 +293,7 @@ def test_html_is_deterministic(curved_out):
 def test_missing_records_listed_with_reasons(curved_out):
     from dataclasses import replace
 
-    from rockdesign.report.render import render_html
+    from rockdesign.planar.report.report import render_html
     result = replace(curved_out.result, missing=[("rsn:1602:BOL090", "no AT2 file for RSN 1602 in ~/peer",
                                                   "thesis-table-4.2")])
     html = render_html(result, figures={}, date="2000-01-01")

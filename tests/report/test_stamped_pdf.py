@@ -16,6 +16,8 @@ import pytest
 
 from rockdesign.report import render, stamped_pdf
 
+from rockdesign.planar.report import report as planar_report
+
 DPI = 96
 
 
@@ -96,9 +98,9 @@ def test_a_figure_without_its_box_is_refused(tmp_path):
 def test_the_check_report_announces_each_figure_size_before_drawing_it(curved_out):
     """The check's report lays out its pages while its figures are drawn: that needs each figure's box
     before the drawing, and a box that differs from the drawing would lay out the pages again."""
-    made = render.make_figures(curved_out.result)
-    boxes = render.figure_boxes(made)
-    drawn = render.draw_figures(made)
+    made = planar_report.make_figures(curved_out.result)
+    boxes = planar_report.figure_boxes(made)
+    drawn = planar_report.draw_figures(made)
     assert list(boxes) == list(drawn) and len(drawn) >= 8
     assert [stamped_pdf.view_box(b) for b in boxes.values()] == [stamped_pdf.view_box(s) for s in drawn.values()]
 
@@ -139,12 +141,12 @@ def test_the_check_report_survives_a_figure_it_cannot_stamp(curved_out, tmp_path
     """A figure drawn at another size than announced, or one typst refuses: the check's report is laid out
     again, whole, with every figure in it (slower, same content)."""
     if failure == "size":
-        boxes = render.figure_boxes
-        monkeypatch.setattr(render, "figure_boxes", lambda made: {
+        boxes = planar_report.figure_boxes
+        monkeypatch.setattr(planar_report, "figure_boxes", lambda made: {
             name: stamped_pdf.empty_svg("0 0 100 100") if name == "pushover" else svg
             for name, svg in boxes(made).items()})
     else:
         monkeypatch.setattr(stamped_pdf, "figure_pdfs", lambda svgs: (_ for _ in ()).throw(RuntimeError("typst")))
-    written = render.write_report(curved_out.result, tmp_path, html=False)
+    written = planar_report.write_planar_report(curved_out.result, tmp_path, html=False)
     text = "".join(page.extract_text() for page in pypdf.PdfReader(str(written["pdf"])).pages)
     assert "Pushover curve" in text and "θ [rad]" in text      # the section and its figure's axis label

@@ -8,7 +8,7 @@ import pytest
 
 from support import reference_podium, table34_column
 from rockdesign.errors import RockdesignError
-from rockdesign.spectra.axes import (Axis, parse_axis, pulse_amplitudes, pulse_periods, spectrum_scales,
+from rockdesign.planar.spectra.axes import (Axis, parse_axis, pulse_amplitudes, pulse_periods, spectrum_scales,
                                      x_from_periods)
 
 

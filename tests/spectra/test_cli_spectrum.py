@@ -10,7 +10,7 @@ from casedata import expected
 from typer.testing import CliRunner
 
 from rockdesign.cli import app
-from rockdesign.spectra import spectrum as spectrum_module
+from rockdesign.planar.spectra import spectrum as spectrum_module
 
 runner = CliRunner()
 

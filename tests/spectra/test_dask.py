@@ -11,9 +11,9 @@ import numpy as np
 import pytest
 
 from support import reference_podium, table34_column
-from rockdesign.spectra import (ChunkStore, DaskExecutor, SpectrumRequest, compute_spectrum, make_executor,
+from rockdesign.planar.spectra import (ChunkStore, DaskExecutor, SpectrumRequest, compute_spectrum, make_executor,
                                 parse_axis)
-from rockdesign.spectra.kernel import warm_up
+from rockdesign.planar.spectra.kernel import warm_up
 
 distributed = pytest.importorskip("distributed")
 
@@ -84,10 +84,10 @@ def test_interrupted_distributed_run_resumes(cluster, tmp_path):
 
 def test_suite_batches_on_the_cluster(cluster):
     # the same executor serves record suites: run_batch chunked over dask, identical arrays
-    from rockdesign.dynamics.batch import batch_options, run_batch
-    from rockdesign.dynamics.model import ModelChoice, system_parameters
+    from rockdesign.planar.dynamics.batch import batch_options, run_batch
+    from rockdesign.planar.dynamics.model import ModelChoice, system_parameters
     from rockdesign.motions.library import load_record
-    from rockdesign.dynamics.parallel import run_motions
+    from rockdesign.planar.dynamics.parallel import run_motions
     system = table34_column("B1")
     sp = system_parameters(system, ModelChoice("block", "exact"))
     rec = load_record("p695-ff/11a")

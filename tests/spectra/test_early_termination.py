@@ -16,16 +16,16 @@ import numpy as np
 import pytest
 
 from support import reference_podium, table34_column
-from rockdesign.dynamics.batch import batch_options, run_batch
-from rockdesign.dynamics.engine import integrate
-from rockdesign.dynamics.layout import (D_STATUS, D_STEPS, N_OPTIONS, O_ATOL, O_H_MAX, O_MAX_EVENTS, O_MAX_STEPS,
+from rockdesign.planar.dynamics.batch import batch_options, run_batch
+from rockdesign.planar.dynamics.engine import integrate
+from rockdesign.planar.dynamics.layout import (D_STATUS, D_STEPS, N_OPTIONS, O_ATOL, O_H_MAX, O_MAX_EVENTS, O_MAX_STEPS,
                                         O_RTOL, O_SCAN, O_T_END, ST_ENERGY_BOUND, S_DYNAMIC, S_EXCEEDED,
                                         S_IMPACTS_BEFORE_EXCEEDED, S_IMPACTS_BEFORE_OVERTURN, S_THETA_MAX, S_T_END)
-from rockdesign.dynamics.eom import P_BETA, P_RADIUS, P_TWO_DOF, total_energy
-from rockdesign.dynamics.model import ModelChoice, system_parameters
+from rockdesign.planar.dynamics.eom import P_BETA, P_RADIUS, P_TWO_DOF, total_energy
+from rockdesign.planar.dynamics.model import ModelChoice, system_parameters
 from rockdesign.motions.library import load_record
 from rockdesign.motions.motion import PULSE_KINDS, no_motion, pulse_motion
-from rockdesign.systems import Column, RockingSystem
+from rockdesign.planar.system import Column, RockingSystem
 
 SYSTEMS = {
     "block-exact": (lambda: table34_column("B1"), "block", "exact"),
@@ -97,7 +97,7 @@ def _energy_history(system, structure, theta0, t_end=8.0):
     m = no_motion()
     y0 = np.array([theta0, 0.0, 0.0, 0.0])
     if sp[P_TWO_DOF] != 0.0:
-        from rockdesign.dynamics.transitions import top_displacements
+        from rockdesign.planar.dynamics.transitions import top_displacements
         y0[2] = top_displacements(np.array([theta0]), sp)[0]  # released with an undeformed superstructure
     summary, diag, n = integrate(sp, m.kind, m.params, m.samples, y0, 1.0, 0.0, opts, t_out, out_y, *ev)
     energies = []

@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from support import table34_column
-from rockdesign.spectra import (ChunkStore, LocalExecutor, SpectrumRequest, compute_spectrum, fingerprint,
+from rockdesign.planar.spectra import (ChunkStore, LocalExecutor, SpectrumRequest, compute_spectrum, fingerprint,
                                 parse_axis, run_chunks)
-from rockdesign.spectra import spectrum as spectrum_module
+from rockdesign.planar.spectra import spectrum as spectrum_module
 
 
 def square_rows(offset, values, power):
@@ -127,11 +127,11 @@ def test_chunking_does_not_change_results(uninterrupted):
 
 def test_record_suite_batches_equal_run_batch(tmp_path):
     # the executor serves suite analyses: run_batch cut into chunks gives the same arrays, resumably
-    from rockdesign.dynamics.batch import batch_options, run_batch
+    from rockdesign.planar.dynamics.batch import batch_options, run_batch
     from rockdesign.motions.library import load_record
     from rockdesign.motions.motion import pulse_motion
-    from rockdesign.dynamics.model import ModelChoice, system_parameters
-    from rockdesign.dynamics.parallel import run_motions
+    from rockdesign.planar.dynamics.model import ModelChoice, system_parameters
+    from rockdesign.planar.dynamics.parallel import run_motions
     system = table34_column("B2ec")
     sp = system_parameters(system, ModelChoice("block", "exact"))
     rec = load_record("p695-ff/11a")

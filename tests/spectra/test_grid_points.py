@@ -16,10 +16,10 @@ import pytest
 from casedata import expected
 
 from support import block_from_p, reference_podium, table34_column
-from rockdesign.dynamics.simulate import simulate
+from rockdesign.planar.dynamics.simulate import simulate
 from rockdesign.motions.motion import pulse_motion
-from rockdesign.spectra import SpectrumRequest, compute_spectrum, parse_axis
-from rockdesign.systems import Column, RockingSystem
+from rockdesign.planar.spectra import SpectrumRequest, compute_spectrum, parse_axis
+from rockdesign.planar.system import Column, RockingSystem
 
 CASES = [
     # (id, system factory, structure, equations, pulse, x axis, y axis, overturn)
@@ -71,8 +71,8 @@ def test_grid_points_equal_simulate(case):
 
 def test_scattered_points_equal_grid_points():
     # the pointwise kernel (margins, samples) runs exactly the analyses of the grid kernel
-    from rockdesign.spectra.kernel import pulse_points
-    from rockdesign.spectra.spectrum import prepare
+    from rockdesign.planar.spectra.kernel import pulse_points
+    from rockdesign.planar.spectra.spectrum import prepare
     system = table34_column("B2ec")
     req = SpectrumRequest("cycloidal-a", parse_axis("omega_p/p:1:9:7", "x"), parse_axis("ap/up:0.5:8:6", "y"))
     spec = compute_spectrum(system, req)
@@ -104,7 +104,7 @@ def test_table_3_4_point_read_from_a_spectrum():
 
 
 def test_stop_at_capacity_keeps_the_static_verdict():
-    from rockdesign.spectra.kernel import OUT_IMPACTS_BEFORE_EXCEEDED
+    from rockdesign.planar.spectra.kernel import OUT_IMPACTS_BEFORE_EXCEEDED
     system = table34_column("B2ec")
     base = dict(pulse="ricker-sym", x=parse_axis("omega_p/p:0.6:8:15", "x"), y=parse_axis("ap/up:0:9:10", "y"))
     full = compute_spectrum(system, SpectrumRequest(**base))

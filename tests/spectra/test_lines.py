@@ -12,12 +12,12 @@ from casedata import case, expected
 from support import table34_column
 from rockdesign.motions.motion import pulse_motion
 from rockdesign.motions.spectra import sd_max
-from rockdesign.spectra import SpectrumRequest, compute_spectrum, parse_axis
-from rockdesign.spectra.lines import (capped_ratio, contour_paths, crossing_abscissa, display_cap, equivalent_size,
+from rockdesign.planar.spectra import SpectrumRequest, compute_spectrum, parse_axis
+from rockdesign.planar.spectra.lines import (capped_ratio, contour_paths, crossing_abscissa, display_cap, equivalent_size,
                                       first_crossing_line, limit_state_lines, minimum_overturning_line,
                                       overturning_classes, overturning_line, relative_spectrum)
-from rockdesign.spectra.output import analyse
-from rockdesign.spectra.polyakov import polyakov_amplitudes, unit_pulse_sd_max
+from rockdesign.planar.spectra.output import analyse
+from rockdesign.planar.spectra.polyakov import polyakov_amplitudes, unit_pulse_sd_max
 
 
 def test_overturning_classes_split_by_impacts():

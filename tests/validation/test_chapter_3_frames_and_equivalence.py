@@ -6,14 +6,14 @@ from __future__ import annotations
 import math
 
 from casedata import case_tests
-from rockdesign.design.equivalence import equivalent_size, equivalent_size_from_spectra, frame_size_factor
-from rockdesign.design.frequencies import (critical_rolling_frequency_parameter, frame_frequency_parameter,
+from rockdesign.planar.design.equivalence import equivalent_size, equivalent_size_from_spectra, frame_size_factor
+from rockdesign.planar.design.frequencies import (critical_rolling_frequency_parameter, frame_frequency_parameter,
                                            frequency_parameter)
-from rockdesign.design.geometry import rotation_capacity_curved, wedge_angle
-from rockdesign.design.restitution import restitution_block, restitution_frame
-from rockdesign.dynamics.simulate import simulate
+from rockdesign.planar.design.geometry import rotation_capacity_curved, wedge_angle
+from rockdesign.planar.design.restitution import restitution_block, restitution_frame
+from rockdesign.planar.dynamics.simulate import simulate
 from rockdesign.motions.motion import pulse_motion
-from rockdesign.systems import Column, RockingSystem
+from rockdesign.planar.system import Column, RockingSystem
 from support import G
 
 

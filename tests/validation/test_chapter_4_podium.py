@@ -6,9 +6,9 @@ from __future__ import annotations
 import math
 
 from casedata import case_tests
-from rockdesign.design.frequencies import frequency_parameter, uplifted_frequency_ratio
-from rockdesign.design.restitution import restitution_podium
-from rockdesign.design.uplift import podium_uplift_thresholds
+from rockdesign.planar.design.frequencies import frequency_parameter, uplifted_frequency_ratio
+from rockdesign.planar.design.restitution import restitution_podium
+from rockdesign.planar.design.uplift import podium_uplift_thresholds
 from support import G
 
 ALPHA = math.atan(0.15)

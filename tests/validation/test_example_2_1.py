@@ -8,9 +8,9 @@ import math
 from functools import lru_cache
 
 from casedata import case_tests
-from rockdesign.design.frequencies import rocking_period
-from rockdesign.design.restitution import restitution_block
-from rockdesign.dynamics.simulate import simulate
+from rockdesign.planar.design.frequencies import rocking_period
+from rockdesign.planar.design.restitution import restitution_block
+from rockdesign.planar.dynamics.simulate import simulate
 from support import block_from_p
 
 

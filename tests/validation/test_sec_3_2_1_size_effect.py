@@ -6,8 +6,8 @@ from __future__ import annotations
 import math
 
 from casedata import case_tests
-from rockdesign.design.frequencies import frequency_parameter
-from rockdesign.dynamics.simulate import simulate
+from rockdesign.planar.design.frequencies import frequency_parameter
+from rockdesign.planar.dynamics.simulate import simulate
 from support import G, block_from_p
 
 ALPHA = math.atan(0.2)

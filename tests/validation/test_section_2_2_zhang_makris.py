@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from casedata import assert_case, case, expected
-from rockdesign.spectra import Axis, SpectrumRequest, compute_spectrum, parse_axis
+from rockdesign.planar.spectra import Axis, SpectrumRequest, compute_spectrum, parse_axis
 from support import block_from_p
 
 INPUTS = case("sec2.2_ZM_safe_upper")["inputs"]

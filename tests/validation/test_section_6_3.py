@@ -7,8 +7,8 @@ from __future__ import annotations
 import math
 
 from casedata import case_tests
-from rockdesign.design.frequencies import uplifted_frequency_ratio
-from rockdesign.design.restitution import restitution_block, restitution_frame
+from rockdesign.planar.design.frequencies import uplifted_frequency_ratio
+from rockdesign.planar.design.restitution import restitution_block, restitution_frame
 
 
 def _lambda_from_p(p, R, g):

@@ -7,9 +7,9 @@ import math
 from functools import lru_cache
 
 from casedata import case_tests
-from rockdesign.design.quantities import design_quantities
-from rockdesign.design.restitution import restitution_flat_extensions
-from rockdesign.dynamics.simulate import simulate
+from rockdesign.planar.design.quantities import design_quantities
+from rockdesign.planar.design.restitution import restitution_flat_extensions
+from rockdesign.planar.dynamics.simulate import simulate
 from rockdesign.motions.motion import pulse_motion
 from support import G, table34_column
 

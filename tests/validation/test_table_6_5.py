@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 
 from casedata import case_tests
-from rockdesign.design.geometry import critical_curvature, half_diagonal, rotation_capacity_curved, wedge_angle
+from rockdesign.planar.design.geometry import critical_curvature, half_diagonal, rotation_capacity_curved, wedge_angle
 
 
 def _beta_theta_c(tan_alpha, rho):

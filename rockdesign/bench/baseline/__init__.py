@@ -2,7 +2,7 @@
 
 ``simulate_scipy`` integrates the generic Lagrangian equation of SPEC §3.1 (or the linearized
 equations of §3.2) with ``scipy.integrate.solve_ivp``, restarted at every event.  It shares no code
-with :mod:`rockdesign.dynamics` on purpose: it is the accuracy cross-check of the numba engine and
+with :mod:`rockdesign.planar.dynamics` on purpose: it is the accuracy cross-check of the numba engine and
 the scipy baseline of the benchmarks.
 """
 from .equations import accelerations_exact, accelerations_linear, cap_beam_kinematics

@@ -1,15 +1,15 @@
 """Closed-form quantities the reference integrator needs, computed from SPEC §2 alone.
 
-Deliberately independent of ``rockdesign.design`` and ``rockdesign.dynamics``: the reference
+Deliberately independent of ``rockdesign.planar.design`` and ``rockdesign.planar.dynamics``: the reference
 implementation must not share code with the engine it checks.  Every function takes plain numbers
-(SI, radians); :func:`model_parameters` collects them for one :class:`~rockdesign.systems.RockingSystem`.
+(SI, radians); :func:`model_parameters` collects them for one :class:`~rockdesign.planar.system.RockingSystem`.
 """
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
 
-from rockdesign.systems import RockingSystem
+from rockdesign.planar.system import RockingSystem
 
 RESTITUTION_RULES = ("theory", "measured", "thesis-eq-3.39")
 

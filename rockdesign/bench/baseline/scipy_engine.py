@@ -1,7 +1,7 @@
 """Reference rocking integrator: scipy ``solve_ivp`` restarted at every event (SPEC §3).
 
 A straightforward, clearly-correct implementation of the event-driven rocking problem, independent
-of :mod:`rockdesign.dynamics`.  It is the accuracy cross-check of the numba engine and the scipy
+of :mod:`rockdesign.planar.dynamics`.  It is the accuracy cross-check of the numba engine and the scipy
 baseline of the speed benchmarks ("the same equations and events, restarted at impacts").
 
 Event loop (one ``solve_ivp`` call per event-free stretch; records split at samples, SPEC §9):
@@ -24,7 +24,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from rockdesign.motions.motion import GroundMotion
-from rockdesign.systems import RockingSystem
+from rockdesign.planar.system import RockingSystem
 
 from .equations import cap_beam_state, fixed_base_rhs, phase_of, rocking_rhs
 from .ground import GroundInput

@@ -1,0 +1,244 @@
+"""The design criteria of ``rockdesign check`` and the one verdict that combines them.
+
+Pattern of concreteproperties' ``DesignCode``: one class per criterion, each citing its source and
+returning a typed :class:`CheckItem`; :func:`evaluate_criteria` runs a list of them and
+:func:`decide` turns the items into the :class:`Verdict`.  Adding a criterion is one class: subclass
+:class:`Criterion`, set ``key``, ``role`` and ``source``, implement :meth:`Criterion.evaluate`, and
+append the class to :data:`CRITERIA` (or pass your own list).  Data a criterion needs beyond the
+suite run (e.g. perturbation ensembles) travels in :attr:`CheckContext.extra`.
+
+The overturning criteria of the acceptance rule (ASCE 7-22 §16.4 count per ground motion, FEMA P695
+collapse margin at the risk category's target, the binomial bound) are in
+:mod:`rockdesign.acceptance.overturning_criteria`; the rule itself in :mod:`rockdesign.acceptance.rule`.
+
+Roles (documented for users in ``docs/model.md``, "Verdict"):
+
+- ``governs``: decides.  PASS only when every governing criterion was evaluated and passed; FAIL when
+  an evaluated one fails; otherwise NOT DECIDED (a governing criterion skipped, e.g. ``--no-margins``).
+- ``robustness``: does not change the word but says whether it survives a perturbation of an uncertain
+  input (``verdict_robust``; "PASS, not robust: fails with c_r − 2 %").
+- ``informative``: reported for comparison (Polyakov's rules of thumb, largest rotation, the other rule).
+"""
+from __future__ import annotations
+
+import math
+import statistics
+from dataclasses import dataclass
+
+from .rule import AcceptanceRule, acceptance_rule, minimum_records, probability_bound  # noqa: F401 (re-export)
+from .criterion_base import (FAIL, GOVERNS, INFORMATIVE, NOT_DECIDED, PASS, ROBUSTNESS, UTILISATION_CAP,  # noqa: F401
+                             CheckContext, CheckItem, Criterion)
+from .overturning_criteria import (BinomialBound, CollapseMarginAtTarget, CollapseMarginInformative,
+                                   EnsembleRobustness, GoverningBinomialBound, GoverningIncrementalMargin,
+                                   IncrementalMargin, RestitutionRobustness, UnacceptableResponses,
+                                   UnacceptableResponsesInformative)
+
+
+def _criterion_text(a) -> str:
+    return "θ_max ≥ θc" if a.overturn == "static" else "|θ| = π/2"
+
+
+class AnalysesCompleted(Criterion):
+    """Every analysis ran to a conclusion; a failed one is never counted as safe."""
+
+    key = "analyses_completed"
+    name = "RHA: every analysis completed"
+    role = GOVERNS
+    source = "docs/engine.md (engine statuses); a failed analysis proves nothing about the design"
+
+    def evaluate(self, ctx):
+        failed = ctx.failed
+        n = len(ctx.outcomes)
+        # an incremental analysis that failed at or below the design level leaves the first overturning
+        # intensity (the fragility's capacity) unknown there
+        scans = [(min(o.margin.failed_scales), o.id) for o in ctx.valid
+                 if getattr(o, "margin", None) is not None and getattr(o.margin, "failed_scales", None)
+                 and min(o.margin.failed_scales) <= 1.0]
+        if not failed and not scans:
+            return self.item(0.0, True, f"all {n} analyses ran to a conclusion", f"all {n} analyses completed")
+        parts, reasons = [], []
+        if failed:
+            listing = ", ".join(f"{o.id} ({o.run.status})" for o in failed)
+            parts.append(f"{len(failed)} of {n} analyses failed: {listing}")
+            reasons.append(f"{len(failed)} analysis(es) failed ({listing})")
+        if scans:
+            listing = ", ".join(f"{i} at {f:.3g}×" for f, i in scans)
+            parts.append(f"incremental analyses failed below the design level: {listing}")
+            reasons.append(f"incremental analyses failed below the design level ({listing})")
+        return self.item(1.0 + (len(failed) + len(scans)) / max(n, 1), False, "; ".join(parts), "; ".join(reasons))
+
+
+class PolyakovRule2(Criterion):
+    """Polyakov's rule 2: median SD_max below the displacement capacity u_B(θc)."""
+
+    key = "polyakov_rule_2"
+    role = INFORMATIVE
+    name = "Polyakov rule 2: median SD_max < u_B(θc)"
+    source = "thesis Sec 4.2.5 and Fig 4.9 (rule of thumb; class b records are its false negatives)"
+
+    def applies(self, ctx):
+        return all(getattr(o, "polyakov_ratio", None) is not None for o in ctx.valid)
+
+    def evaluate(self, ctx):
+        valid = ctx.valid
+        ratios = sorted(o.polyakov_ratio for o in valid)
+        if not ratios:
+            return self.item(math.inf, False, "no completed analysis", "no completed analysis")
+        median = statistics.median(ratios)
+        n_b = sum(o.klass == "b" for o in valid)
+        detail = (f"{sum(x >= 1 for x in ratios)} of {len(ratios)} records with SD_max ≥ capacity; "
+                  f"{n_b} false negative(s) (class b)")
+        return self.item(median, median < 1.0, detail, f"median SD_max/u_B(θc) = {median:.3g}")
+
+
+class PolyakovRule1(Criterion):
+    """Polyakov's rule 1: the superstructure may be treated as rigid (ω_s/p ≥ the ratio)."""
+
+    key = "polyakov_rule_1"
+    role = INFORMATIVE
+    source = "thesis Sec 1.2.4, 4.2.1, 4.2.4 (deformability negligible for large ω_s/p)"
+
+    def applies(self, ctx):
+        return "omega_s_over_p" in ctx.quantities
+
+    def evaluate(self, ctx):
+        need = ctx.analysis.rigid_superstructure_ratio
+        ratio = ctx.quantities["omega_s_over_p"].value
+        passed = ratio >= need
+        detail = ("the superstructure may be treated as rigid" if passed else
+                  "the flexible superstructure is analysed (2DOF model) because this fails")
+        return self.item(need / ratio, passed, detail, f"ω_s/p = {ratio:.3g}",
+                         name=f"Polyakov rule 1: rigid superstructure (ω_s/p ≥ {need:g})")
+
+
+class LargestRotation(Criterion):
+    """The largest θ_max/θc of the suite at the design level (how close the worst record comes)."""
+
+    key = "largest_rotation"
+    role = INFORMATIVE
+    name = "RHA: largest θ_max/θc of the suite"
+    source = "thesis Eq 3.56 (rotation capacity θc)"
+
+    def evaluate(self, ctx):
+        valid = ctx.valid
+        worst = max((o.run.theta_max_over_theta_c for o in valid), default=math.inf)
+        n_cap = sum(o.run.theta_max_over_theta_c >= 1.0 or o.run.overturned for o in valid)
+        passed = n_cap == 0 and worst < 1.0
+        detail = "every record below capacity" if passed else f"{n_cap} record(s) reach the capacity θc"
+        return self.item(min(worst, 1e300), passed, detail, f"largest θ_max/θc = {worst:.3g}")
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """PASS, FAIL or NOT DECIDED, the sentence that says why, and whether it survives the perturbations."""
+
+    verdict: str
+    reason: str
+    robust: bool
+    not_covered: tuple[str, ...] = ()
+    governing: str | None = None     # key of the governing check: the largest utilisation among those that decide
+    method: str = ""                 # the acceptance rule that decided ("ASCE 7-22 §16.4, risk category II")
+
+    @property
+    def exit_code(self) -> int:
+        """0 PASS, 1 FAIL, 4 NOT DECIDED (CONTRACT §6.1)."""
+        return {PASS: 0, FAIL: 1}.get(self.verdict, 4)
+
+    def as_json(self) -> dict:
+        return {"verdict": self.verdict, "verdict_reason": self.reason, "verdict_robust": self.robust}
+
+
+CRITERIA: list[type[Criterion]] = [AnalysesCompleted, UnacceptableResponses, CollapseMarginAtTarget,
+                                   RestitutionRobustness, EnsembleRobustness, BinomialBound, IncrementalMargin,
+                                   PolyakovRule2, PolyakovRule1, LargestRotation]
+"""The criteria of ``acceptance = "asce7"`` (the default) in evaluation order."""
+
+BINOMIAL_CRITERIA: list[type[Criterion]] = [AnalysesCompleted, GoverningBinomialBound, GoverningIncrementalMargin,
+                                            RestitutionRobustness, EnsembleRobustness,
+                                            UnacceptableResponsesInformative, CollapseMarginInformative,
+                                            PolyakovRule2, PolyakovRule1, LargestRotation]
+"""The criteria of ``acceptance = "binomial"``."""
+
+
+def criteria_for(rule: AcceptanceRule | None = None) -> list:
+    """The criteria of a check under an acceptance rule (default: asce7): :data:`CRITERIA` or
+    :data:`BINOMIAL_CRITERIA`."""
+    return BINOMIAL_CRITERIA if rule is not None and rule.method == "binomial" else CRITERIA
+
+
+def evaluate_criteria(ctx: CheckContext, criteria=None) -> tuple[list[CheckItem], list[str]]:
+    """Evaluate ``criteria`` (default: those of the context's acceptance rule): (items, keys of the
+    required criteria that could not be evaluated — the verdict says what is missing)."""
+    items, skipped = [], []
+    for cls in (criteria_for(ctx.rule) if criteria is None else criteria):
+        crit = cls()
+        if crit.applies(ctx):
+            items.append(crit.evaluate(ctx))
+        elif crit.required(ctx):
+            skipped.append(crit.key)
+    return items, skipped
+
+
+NOT_COVERED = {
+    "collapse_margin": "collapse margin not evaluated (no incremental analysis: --no-margins)",
+    "incremental_margin": "intensities below the design level not analysed (--no-margins)",
+    "restitution_robustness": "c_r sensitivity not analysed",
+    "ensemble_robustness": "perturbation ensembles not analysed",
+}
+QUALIFIERS = {"restitution_robustness", "ensemble_robustness"}
+"""Skipped criteria that qualify the verdict (named as not covered) but leave it decided."""
+
+
+def decide(items: list[CheckItem], skipped=(), rule: AcceptanceRule | None = None) -> Verdict:
+    """The one verdict of the check (SPEC §14: a criterion that was not evaluated cannot pass).
+
+    FAIL when an evaluated governing item fails (the reason quotes each); otherwise NOT DECIDED when a
+    governing criterion was skipped or could not be decided (the reason says what is missing);
+    otherwise PASS.  The reason names the rule: "PASS (ASCE 7-22 §16.4, risk category II): 0 of 22
+    ground motions unacceptable (1 allowed); ACMR 2.41 ≥ 1.96 (P(collapse) 4.7 % ≤ 10 %)".  A PASS
+    whose design-level rule fails under a robustness perturbation adds "; not robust: fails with c_r − 2 %"; a FAIL
+    that only the design-level rule decides and that some perturbation would pass is flagged too.
+    """
+    governing = [i for i in items if i.governs_verdict]
+    failing = [i for i in governing if i.evaluated and not i.passed]
+    undecided = [i for i in governing if not i.evaluated]
+    robustness = [i for i in items if i.role == ROBUSTNESS]
+    not_covered = tuple(NOT_COVERED.get(k, f"{k} not evaluated") for k in skipped)
+    missing = [NOT_COVERED.get(k, f"{k} not evaluated") for k in skipped if k not in QUALIFIERS] \
+        + [i.verdict_reason for i in undecided]
+    qualifiers = [NOT_COVERED[k] for k in skipped if k in QUALIFIERS]
+    label = f" ({rule.label})" if rule is not None else ""
+    design_level = {"unacceptable_responses", "overturning_probability"}
+    if failing:
+        word = FAIL
+        reason = f"FAIL{label}: " + "; ".join(i.verdict_reason for i in failing)
+        flips = []
+        if all(i.key in design_level for i in failing):
+            flips = [lab for i in robustness for lab, holds in i.perturbations if holds]
+        robust = not flips
+        if flips:
+            reason += "; not robust: passes with " + " and ".join(flips)
+        else:
+            reason += "".join(f"; also {i.verdict_reason}" for i in robustness if not i.passed)
+        if missing:
+            reason += " (not evaluated: " + "; ".join(missing) + ")"
+    elif missing:
+        word = NOT_DECIDED
+        robust = all(i.passed for i in robustness)
+        done = [i.verdict_reason for i in governing if i.evaluated]
+        reason = (f"NOT DECIDED{label}: " + "; ".join(missing)
+                  + ("; evaluated: " + "; ".join(done) if done else ""))
+    else:
+        word = PASS
+        fragile = [i.verdict_reason for i in robustness if not i.passed]
+        robust = not fragile
+        quoted = [i for i in governing if i.key != AnalysesCompleted.key] or governing
+        reason = f"PASS{label}: " + "; ".join(i.verdict_reason for i in quoted)
+        if fragile:
+            reason += "; not robust: " + "; ".join(fragile)
+    if qualifiers:
+        reason += " (not covered: " + "; ".join(qualifiers) + ")"
+    deciding = [i for i in governing if i.evaluated]
+    key = max(deciding, key=lambda i: i.utilisation).key if deciding else None
+    return Verdict(word, reason, robust, not_covered, key, rule.label if rule is not None else "")
+

@@ -1,0 +1,471 @@
+"""``check`` for a cylinder (thesis Ch. 5): the statistical verdict over a suite of record pairs, and
+whether a planar analysis would have sufficed — judged like every other check.
+
+For every record pair of the suite (default ``p695-farfield-pairs``, scaled as ``[excitation]`` says,
+Table 5.4's scaling):
+
+* the 3D model of the project (undamped or damped) gives θ_max/α, quasi-impacts and overturning
+  (θ reaching θ_ot = overturn_tilt·α);
+* the planar Housner model of the same cylinder (a rocking block of equal inertia,
+  λ = (3 + cos²α)/12, c_r of Eq 5.41) runs along each component alone — the planar analysis an engineer
+  would make; it overturns when θ_max ≥ α (the static capacity of the non-spinning cylinder);
+* Polyakov's rule 2 per component, SD_max/2B, is reported as information only.
+
+Each pair is one typed :class:`PairOutcome` (one ground motion: ``ground_motion`` is the pair id).  The
+verdict is :func:`~rockdesign.acceptance.criteria.decide` over the criteria of :func:`cylinder_criteria`
+(:mod:`rockdesign.cylinder.criteria`): every analysis completed, and the one-sided 95 % upper
+bound of the 3D P(overturn) (Clopper–Pearson) within ``[analysis] overturn_probability_limit``, at the
+design level and at every intensity below it (each pair scanned, :mod:`rockdesign.cylinder.margins`;
+``--no-margins`` skips the scan and the verdict says so).  Its
+robustness: a seeded perturbation ensemble (``[analysis] ensemble_size`` runs of the whole suite, each
+pair's amplitude × (1 ± 0.1 %), tolerances one decade tighter).
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from .. import __version__
+from .engine import simulate_cylinder
+from .kernel import ST_COMPLETED, ST_OVERTURNED
+from .engine import STATUS
+from .quantities import cylinder_quantities, restitution_root
+from ..planar.dynamics.simulate import simulate
+from ..kernel_cache import sources_digest
+from ..motions.motion import record_motion
+from ..motions.pairs import suite_pairs
+from ..motions.spectra import sd_max_of_samples
+from ..planar.system import Column, RockingSystem
+from ..acceptance.rule import (AcceptanceRule, acceptance_rule, acceptance_summary, count_rule, minimum_records,
+                         require_suite_size)
+from ..acceptance.criteria import CheckContext, decide, evaluate_criteria
+from .criteria import cylinder_criteria
+from .margins import pair_margins
+from ..acceptance.perturbations import AMPLITUDE_VARIATION, TOLERANCE_FACTOR, perturbations
+from ..acceptance.scans import Margin
+from ..execution.counting import AnalysisCount
+from ..acceptance.statistics import overturning_probability
+
+GOVERNING_PAIRS = 2
+"""θ(t)/orbit histories kept for the report: the pairs with the largest 3D θ_max/α."""
+
+COMPLETED = (STATUS[ST_COMPLETED], STATUS[ST_OVERTURNED])
+"""Statuses of a cylinder analysis that ran to a conclusion."""
+
+
+def planar_block(cyl) -> RockingSystem:
+    """The planar Housner model of the cylinder: a block with λ = I1*/R² = (3 + cos²α)/12 (Eq 5.20) and
+    c_r of Eq 5.41."""
+    lam = (3.0 + math.cos(cyl.alpha) ** 2) / 12.0
+    system = RockingSystem(f"{cyl.name} (planar)", "column", Column(cyl.half_height, cyl.base_radius, cyl.mass, lam),
+                           g=cyl.g)
+    return system.with_restitution(restitution_root(cyl.alpha) ** 2)
+
+
+@dataclasses.dataclass(frozen=True)
+class PairRun:
+    """The 3D response to one pair in the terms the criteria read (:class:`~rockdesign.acceptance.criteria.CheckContext`).
+
+    ``status`` is "completed" for an analysis that ran to a conclusion (overturned or not:
+    ``overturned`` says which) and the engine's status otherwise; ``engine_status`` is the engine's own
+    word (results.json ``status``).  ``theta_max_over_theta_c`` is θ_max/θ_ot (θ_ot: the 3D overturning tilt).
+    """
+
+    theta_max_over_alpha: float
+    theta_max_over_theta_c: float
+    overturned: bool
+    overturn_mode: str
+    quasi_impacts: int
+    uplift_time: float | None
+    engine_status: str
+    min_contact_force_over_weight: float | None = None
+
+    @property
+    def status(self) -> str:
+        return "completed" if self.engine_status in COMPLETED else self.engine_status
+
+    @property
+    def failed(self) -> bool:
+        """True when the 3D analysis did not run to a conclusion (step size collapsed, step limit)."""
+        return self.engine_status not in COMPLETED
+
+
+@dataclasses.dataclass
+class PairOutcome:
+    """One record pair of the suite — one ground motion — with its 3D run, the planar runs along each
+    component and Polyakov's ratio per component.
+
+    Units: ``scale`` [-] (factor on the pair as recorded), ``resultant_pga`` [m/s²] (scaled); the planar
+    dicts hold θ_max/α [-], overturned, impacts.
+    """
+
+    id: str
+    suite: str
+    meta: dict
+    scale: float
+    resultant_pga: float
+    run: PairRun
+    planar_x: dict
+    planar_y: dict
+    polyakov_ratio_x: float
+    polyakov_ratio_y: float
+    damped: bool = False
+    ensemble_fraction: float | None = None
+    outcome_robust: bool | None = None
+    margin: Margin | None = None  # overturning factors at and below the design level (checks/cylinder_margins.py)
+    klass: str = ""               # (Fig 4.9 classes are planar)
+
+    @property
+    def ground_motion(self) -> str:
+        """The ground motion this outcome belongs to: for a cylinder, the record pair itself."""
+        return self.id
+
+    @property
+    def polyakov_ratio(self) -> float:
+        """SD_max/2B of the worse component [-] (information only)."""
+        return max(self.polyakov_ratio_x, self.polyakov_ratio_y)
+
+    @property
+    def planar_theta_max_over_alpha(self) -> float | None:
+        """θ_max/α of the worse planar component [-] (None: the planar runs were skipped, design grid)."""
+        if self.planar_x is None:
+            return None
+        return max(self.planar_x["theta_max_over_alpha"], self.planar_y["theta_max_over_alpha"])
+
+    @property
+    def planar_overturned(self) -> bool | None:
+        if self.planar_x is None:
+            return None
+        return self.planar_x["overturned"] or self.planar_y["overturned"]
+
+    def as_json(self) -> dict:
+        r = self.run
+        row = {"id": self.id, "ground_motion": self.ground_motion, "suite": self.suite,
+               "event": self.meta.get("event"), "station": self.meta.get("station"), "scale": self.scale,
+               "resultant_pga": self.resultant_pga, "theta_max_over_alpha": r.theta_max_over_alpha,
+               "overturned": r.overturned, "overturn_mode": r.overturn_mode, "quasi_impacts": r.quasi_impacts,
+               "uplift_time": r.uplift_time, "status": r.engine_status}
+        if self.damped:
+            row["min_contact_force_over_weight"] = r.min_contact_force_over_weight
+        row.update(polyakov_ratio_x=self.polyakov_ratio_x, planar_x=self.planar_x,
+                   polyakov_ratio_y=self.polyakov_ratio_y, planar_y=self.planar_y,
+                   planar_theta_max_over_alpha=self.planar_theta_max_over_alpha,
+                   planar_overturned=self.planar_overturned, theta_max_over_theta_ot=r.theta_max_over_theta_c,
+                   analysis_failed=r.status != "completed", ensemble_overturn_fraction=self.ensemble_fraction,
+                   outcome_robust=self.outcome_robust)
+        m = self.margin
+        row.update(overturn_scale=None if m is None else m.overturn_scale,
+                   overturn_intervals=None if m is None else [list(iv) for iv in m.intervals],
+                   margin_scanned_up_to=None if m is None else m.scanned_up_to)
+        return row
+
+
+def _run_3d(cyl, pair, a, *, rtol=None, atol=None) -> PairRun:
+    r = simulate_cylinder(cyl, pair, free_vibration=a.free_vibration, rtol=rtol or a.rtol, atol=atol or a.atol,
+                          rest_velocity=a.rest_velocity)
+    AnalysisCount.add(1)
+    return PairRun(r.theta_max / cyl.alpha, r.theta_max / cyl.theta_overturn, r.overturned, r.overturn_mode,
+                   r.quasi_impacts, r.uplift_time, r.status,
+                   r.min_contact_force_over_weight if cyl.damped else None)
+
+
+def _planar_component(block, samples, dt, a) -> dict:
+    motion = record_motion("component", samples, dt)
+    r = simulate(block, motion, model="exact", rtol=a.rtol, atol=a.atol, t_end=motion.duration + a.free_vibration,
+                 overturn="static", rest_velocity=a.rest_velocity)
+    AnalysisCount.add(1)
+    return {"theta_max_over_alpha": r.theta_max_over_alpha, "overturned": bool(r.overturned), "impacts": r.impacts}
+
+
+def _median(values) -> float | None:
+    """The median, None for no values (a suite where nothing rocks has no ratio to take the median of)."""
+    values = list(values)
+    return float(np.median(values)) if values else None
+
+
+@dataclasses.dataclass
+class CylinderCheckResult:
+    """The check of a cylinder project: ``as_json()`` is results.json (``check --json``), with the sections
+    of a planar check (project, quantities, model, excitation, records, summary, sensitivity, verdict,
+    verdict_reason, verdict_robust, failed_records, checks, settings, fragility, collapse_margin,
+    ensemble) and the cylinder's own (cylinder, units, suites).
+
+    ``histories`` maps the ids of the governing pairs (largest 3D θ_max/α) to
+    ``(CylinderResponse, scaled MotionPair)`` for the report's θ(t)/orbit figures.
+    """
+
+    project: object
+    records: list[PairOutcome]
+    summary: dict
+    checks: list[dict]
+    verdict: str
+    verdict_reason: str
+    verdict_robust: bool
+    governing_check: str | None
+    ensemble: dict | None
+    acceptance: dict | None = None
+    histories: dict = dataclasses.field(default_factory=dict)
+    decided_at_design_level: bool | None = None   # verdict_only (design grid): the incremental scan was not needed
+
+    @property
+    def statistics(self) -> dict:
+        return self.summary
+
+    @property
+    def failed_records(self) -> list[PairOutcome]:
+        return [o for o in self.records if o.run.status != "completed"]
+
+    def as_json(self) -> dict:
+        p, cyl, a = self.project, self.project.system, self.project.analysis
+        e = p.excitation
+        cylinder = {"height": 2.0 * cyl.half_height, "diameter": 2.0 * cyl.base_radius, "slenderness": cyl.tan_alpha,
+                    "mass": cyl.mass, "contact": cyl.contact, "overturn_tilt": cyl.overturn_tilt, "g": cyl.g}
+        if cyl.damped:
+            cylinder.update(contact_frequency=cyl.contact_frequency, contact_damping=cyl.contact_damping)
+        settings = {"rtol": a.rtol, "atol": a.atol, "rest_velocity": a.rest_velocity,
+                    "free_vibration": a.free_vibration, "overturn_probability_limit": a.overturn_probability_limit,
+                    "sd_max_damping": a.sdmax_damping, "sd_max_band": list(a.sdmax_band)}
+        quantities = {k: q.as_json() for k, q in cylinder_quantities(cyl).items()}
+        return {"project": {"name": p.name, "file": p.path, "system": "cylinder", "contact": cyl.contact,
+                            "kind": "cylinder", "sha256": p.sha256, "kernels_sha256": sources_digest(),
+                            **{k: v for k, v in p.info.items() if k != "name"}, "tool_version": __version__,
+                            "warnings": list(p.warnings)},
+                "cylinder": cylinder, "units": CYLINDER_UNITS, "suites": list(e.suites), "settings": settings,
+                "quantities": quantities,
+                "model": {"chosen": "cylinder-" + ("damped" if cyl.damped else "undamped"),
+                          "reason": "[cylinder] project: the 3D rocking and wobbling model of thesis Ch. 5"},
+                "excitation": {"suites": list(e.suites), "scaling": e.as_json(), "default_used": e.default_used,
+                               "missing": [], "record_warnings": []},
+                "records": [o.as_json() for o in self.records], "summary": self.summary,
+                "sensitivity": dict(SENSITIVITY),
+                "checks": self.checks, "verdict": self.verdict, "verdict_reason": self.verdict_reason,
+                "verdict_robust": self.verdict_robust,
+                "failed_records": [{"id": o.id, "status": o.run.engine_status} for o in self.failed_records],
+                "fragility": None, "collapse_margin": None, "ensemble": self.ensemble,
+                "acceptance": self.acceptance}
+
+
+SENSITIVITY = {"variation": None, "runs": {}, "verdict_flips": 0,
+               "note": "no c_r ± variation for a cylinder under record pairs: the 3D model has no impact law "
+                       "(quasi-impacts are resolved by the step control, docs/cylinder.md); its robustness is "
+                       "the perturbation ensemble"}
+"""results.json ``sensitivity`` of a cylinder check (the section of a planar check, saying why it is empty)."""
+
+
+def _summary(records: list[PairOutcome], e, ensemble: dict | None, planar_run: bool = True) -> dict:
+    valid = [o for o in records if o.run.status == "completed"]
+    n = len(valid)
+    k3 = sum(o.run.overturned for o in valid)
+    p3, lo3, hi3 = overturning_probability(k3, n, 0.90)
+    out = {
+        "n_records": n, "n_overturned": k3, "p_overturn": p3, "p_overturn_ci90": [lo3, hi3],
+        "median_theta_max_over_alpha": _median(o.run.theta_max_over_alpha for o in valid),
+        "total_quasi_impacts": sum(o.run.quasi_impacts for o in valid),
+        "planar": None, "difference_p_overturn": None, "n_planar_unconservative": None,
+        "planar_unconservative_records": None, "median_theta_ratio_3d_over_planar": None,
+        "max_polyakov_ratio": max((o.polyakov_ratio for o in valid), default=None),
+        "scaling": e.as_json(),
+        "overturn_criterion": "θ reaching θ_ot",
+        "n_failed": len(records) - n,
+        "p_overturn_ensemble": None if ensemble is None else ensemble["p_overturn"],
+    }
+    if planar_run:        # (the design grid skips the planar runs: information only)
+        kp = sum(o.planar_overturned for o in valid)
+        pp, lop, hip = overturning_probability(kp, n, 0.90)
+        unconservative = [o.id for o in valid if o.run.overturned and not o.planar_overturned]
+        survived = [o for o in valid if not o.run.overturned and not o.planar_overturned]
+        out.update({
+            "planar": {"n_overturned": kp, "p_overturn": pp, "p_overturn_ci90": [lop, hip],
+                       "median_theta_max_over_alpha": _median(o.planar_theta_max_over_alpha for o in valid),
+                       "criterion": "θ_max ≥ α along either component (Housner block of equal inertia, c_r Eq 5.41)"},
+            "difference_p_overturn": p3 - pp,
+            "n_planar_unconservative": len(unconservative), "planar_unconservative_records": unconservative,
+            "median_theta_ratio_3d_over_planar": _median(
+                o.run.theta_max_over_alpha / o.planar_theta_max_over_alpha for o in survived
+                if o.planar_theta_max_over_alpha > 0)})
+    return out
+
+
+def _ensembles(cyl, pairs, factors, nominal: list[PairRun], a, progress) -> dict | None:
+    """The perturbation ensemble (thesis Ch. 7): ``ensemble_size`` runs of the whole suite, each pair's
+    amplitude × (1 ± 0.1 %) and the tolerances one decade tighter; None for ``ensemble_size = 0``."""
+    size, n = a.ensemble_size, len(pairs)
+    if not size:
+        return None
+    amplitude, _ = perturbations(n, size, a.seed)
+    overturned = np.zeros((size, n), dtype=bool)
+    for m in range(size):
+        for i, pair in enumerate(pairs):
+            run = _run_3d(cyl, pair.scaled(factors[i] * amplitude[m, i]), a, rtol=a.rtol * TOLERANCE_FACTOR,
+                          atol=a.atol * TOLERANCE_FACTOR)
+            overturned[m, i] = run.overturned
+            if progress is not None:
+                progress(f"perturbation ensembles ({size} runs per pair)", m * n + i + 1, size * n)
+    nominal_ot = np.array([r.overturned for r in nominal], dtype=bool)
+    fractions = overturned.mean(axis=0)
+    robust = (overturned == nominal_ot[None, :]).all(axis=0)
+    return {"overturned": overturned, "restitution": np.ones(size), "robust": robust, "fractions": fractions,
+            "size": size, "seed": a.seed, "amplitude_variation": AMPLITUDE_VARIATION,
+            "tolerance_factor": TOLERANCE_FACTOR, "p_overturn": float(fractions.mean()),
+            "n_not_robust": int((~robust).sum())}
+
+
+def cylinder_rule(analysis) -> AcceptanceRule:
+    """The rule that decides a cylinder's verdict (CONTRACT §6.1): the project's acceptance rule
+    (``[analysis] risk_category``, ``acceptance``) over the record pairs, each pair one ground motion,
+    without a collapse margin (the 3D check has no fragility fit): under ``asce7`` the ASCE 7-22
+    §16.4.1.1 count decides, at the design level and on each pair's first overturning intensity."""
+    return acceptance_rule(analysis).with_collapse_margin(False)
+
+
+@dataclasses.dataclass(frozen=True)
+class SuitePairs:
+    """The record pairs of a cylinder's excitation as its check analyses them (the ``records`` hook of
+    :func:`run_cylinder_check`): read and scaled once, e.g. for every variant of a design grid that shares
+    the excitation (:func:`suite_pairs_key`).
+
+    Units: ``factors`` [-] (on each pair as recorded), ``accel`` the scaled components [m/s²],
+    ``sd_max`` SD_max [m] of each scaled component (the ``[analysis]`` damping and band).
+    """
+
+    pairs: tuple            # ((suite, MotionPair as recorded), ...)
+    factors: tuple[float, ...]
+    accel: tuple            # ((x, y) scaled samples, ...)
+    sd_max: tuple           # ((SD_max x, SD_max y), ...)
+
+
+def suite_pairs_key(project) -> str:
+    """Which projects share their :class:`SuitePairs`: the same typed excitation (suites, scaling rule and
+    target), g and SD_max settings — a variant that changes the geometry keeps them, unless the default
+    excitation (1.5 g tan α, Table 5.4) ties the target to its slenderness."""
+    a = project.analysis
+    return repr((project.excitation, project.system.g, a.sdmax_damping, tuple(a.sdmax_band)))
+
+
+def suite_pair_records(project) -> SuitePairs:
+    """The :class:`SuitePairs` of a cylinder project (the suites of ``[excitation]``, scaled as it says);
+    a suite too small for the acceptance rule raises a :class:`~rockdesign.errors.ProjectError` first."""
+    cyl, a, e = project.system, project.analysis, project.excitation
+    pairs = tuple((s, p) for s in e.suites for p in suite_pairs(s, gravity=cyl.g))
+    require_suite_size(cylinder_rule(a), len(pairs), len(pairs), e.suites, file=getattr(project, "path", None),
+                       key="excitation")
+    factors = tuple(e.factor(p.resultant_pga) for _, p in pairs)
+    accel = tuple((f * p.x, f * p.y) for (_, p), f in zip(pairs, factors))
+    sd = tuple(tuple(sd_max_of_samples(c, p.dt, a.sdmax_damping, a.sdmax_band)[0] for c in xy)
+               for (_, p), xy in zip(pairs, accel))
+    return SuitePairs(pairs, factors, accel, sd)
+
+
+def decided_at_design_level(rule, outcomes: list[PairOutcome]) -> bool:
+    """True when the design-level runs alone already make the verdict FAIL (SPEC §15): an analysis
+    failed, or the design-level rule fails (the §16.4.1.1 count, or the binomial bound); the incremental
+    scan can only add a failing criterion, never remove one."""
+    if any(o.run.status != "completed" for o in outcomes):
+        return True
+    return not count_rule(rule, outcomes, {o.id for o in outcomes if o.run.overturned})[0]
+
+
+def run_cylinder_check(project, progress=None, margins: bool = True, *, records: SuitePairs | None = None,
+                       verdict_only: bool = False) -> CylinderCheckResult:
+    """The cylinder check (see module docstring): typed outcomes, the criteria and the one verdict.
+    ``margins``: scan each pair below the design level for overturning (the incremental criterion).
+
+    Hooks of the design grid (:mod:`rockdesign.design_space.grid`): ``records`` — the
+    :class:`SuitePairs` of :func:`suite_pair_records`, read and scaled once for many variants;
+    ``verdict_only`` — compute only what the verdict's word and the design table need: no planar runs
+    along the components and no perturbation ensemble (informative and robustness criteria), and no
+    incremental scan when the design-level runs already decide FAIL (:func:`decided_at_design_level`).
+    """
+    cyl, a, e = project.system, project.analysis, project.excitation
+    sp = suite_pair_records(project) if records is None else records
+    pairs = sp.pairs
+    rule = cylinder_rule(a)
+    # the acceptance rule's suite size, before any analysis (a record pair is one ground motion)
+    require_suite_size(rule, len(pairs), len(pairs), e.suites, file=getattr(project, "path", None),
+                       key="excitation")
+    block = planar_block(cyl)
+    records_out = []
+    for i, ((suite, pair), factor) in enumerate(zip(pairs, sp.factors)):
+        scaled = pair.scaled(factor)
+        planar = {"x": None, "y": None}
+        if not verdict_only:
+            for comp, accel in zip(("x", "y"), sp.accel[i]):
+                planar[comp] = _planar_component(block, accel, pair.dt, a)
+        ratios = [sd / (2.0 * cyl.base_radius) for sd in sp.sd_max[i]]
+        records_out.append(PairOutcome(pair.meta.get("id", pair.name), suite, pair.meta, factor, scaled.resultant_pga,
+                                       _run_3d(cyl, scaled, a), planar["x"], planar["y"], ratios[0], ratios[1],
+                                       cyl.damped))
+        if progress is not None:
+            progress("cylinder and planar analyses" if not verdict_only else "cylinder analyses", i + 1, len(pairs))
+    records = records_out
+    decided = verdict_only and decided_at_design_level(rule, records)
+    margins = margins and not decided
+    if margins:
+        found = pair_margins(cyl, [p.scaled(f) for (_, p), f in zip(pairs, sp.factors)], [o.run for o in records], a,
+                             lambda pair, rtol: _run_3d(cyl, pair, a, rtol=rtol), progress)
+        for o, m in zip(records, found):
+            o.margin = m
+    ens = None if verdict_only else _ensembles(cyl, [p for _, p in pairs], sp.factors, [o.run for o in records], a,
+                                               progress)
+    if ens is not None:
+        for i, o in enumerate(records):
+            o.ensemble_fraction, o.outcome_robust = float(ens["fractions"][i]), bool(ens["robust"][i])
+    summary = _summary(records, e, ens, planar_run=not verdict_only)
+    summary["min_records_for_bound"] = minimum_records(a.overturn_probability_limit)
+    summary["min_margin"] = min((o.margin.overturn_scale for o in records
+                                 if o.margin is not None and o.margin.overturn_scale is not None), default=None)
+    summary["n_margin_below_design"] = sum(1 for o in records if o.margin is not None
+                                           and o.margin.overturn_scale is not None and o.margin.overturn_scale < 1.0)
+    context = CheckContext(records, a, {}, {}, margins_run=margins,
+                           extra={"ensemble": ens, "cylinder": cyl, "summary": summary}, rule=rule)
+    items, skipped = evaluate_criteria(context, cylinder_criteria(rule))
+    decision = decide(items, skipped, rule)
+    acceptance = acceptance_summary(rule, items, decision, context.valid, None)
+    checks = [i.as_json() for i in items]
+    checks.sort(key=lambda c: (not c["governs_verdict"], -c["utilisation"]))
+    ensemble_json = None if ens is None else {
+        k: ens[k] for k in ("size", "seed", "amplitude_variation", "tolerance_factor", "p_overturn", "n_not_robust")}
+    return CylinderCheckResult(project, records, summary, checks, decision.verdict, decision.reason,
+                               decision.robust, decision.governing, ensemble_json, acceptance,
+                               decided_at_design_level=decided if verdict_only else None)
+
+
+MAX_HISTORIES = 8
+"""At most this many time histories in the report (every overturning pair up to it)."""
+
+
+def governing_ids(data: dict, n: int = GOVERNING_PAIRS) -> list[str]:
+    """Ids of the pairs whose histories the report shows: every overturning pair (up to MAX_HISTORIES),
+    at least ``n`` pairs, by decreasing 3D θ_max/α (overturned pairs first; stable order)."""
+    rows = sorted(data["records"], key=lambda r: (not r["overturned"], -r["theta_max_over_alpha"]))
+    count = min(max(n, sum(r["overturned"] for r in rows)), MAX_HISTORIES)
+    return [r["id"] for r in rows[:count]]
+
+
+def cylinder_check(project, progress=None, margins: bool = True) -> CylinderCheckResult:
+    """:func:`run_cylinder_check` plus the histories of the governing pairs (re-analysed: the engine is
+    deterministic, so they are the histories behind the rows of results.json)."""
+    result = run_cylinder_check(project, progress=progress, margins=margins)
+    cyl, a = project.system, project.analysis
+    by_id = {o.id: o for o in result.records}
+    pairs = {p.meta.get("id", p.name): p for s in project.excitation.suites for p in suite_pairs(s, gravity=cyl.g)}
+    for rid in governing_ids(result.as_json()):
+        pair = pairs[rid].scaled(by_id[rid].scale)
+        result.histories[rid] = (simulate_cylinder(cyl, pair, free_vibration=a.free_vibration, rtol=a.rtol,
+                                                   atol=a.atol, rest_velocity=a.rest_velocity), pair)
+    return result
+
+
+CYLINDER_UNITS = {"height": "m", "diameter": "m", "slenderness": "-", "mass": "kg", "overturn_tilt": "-",
+                  "g": "m/s^2", "contact_frequency": "rad/s", "contact_damping": "-", "scale": "-",
+                  "resultant_pga": "m/s^2", "theta_max_over_alpha": "-", "uplift_time": "s", "rtol": "-",
+                  "atol": "-", "rest_velocity": "rad/s", "free_vibration": "s", "sd_max_band": "s"}
+"""Units of the numbers of results.json's ``cylinder``, ``records`` and ``settings`` (SI)."""
+
+CSV_COLUMNS = ["id", "suite", "event", "station", "scale", "resultant_pga", "theta_max_over_alpha", "overturned",
+               "overturn_mode", "quasi_impacts", "uplift_time", "planar_theta_max_over_alpha", "planar_overturned",
+               "polyakov_ratio_x", "polyakov_ratio_y", "min_contact_force_over_weight",
+               "ensemble_overturn_fraction", "outcome_robust", "status", "analysis_failed"]
+"""Columns of a cylinder check's results.csv (one row per record pair)."""

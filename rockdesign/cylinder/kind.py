@@ -1,0 +1,88 @@
+"""The cylinder kind of structure: the 3D rocking and wobbling cylinder (thesis Ch. 5): ``[cylinder]``
+projects."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from . import check as cylinder_check
+from .project import claims, parse_cylinder_project
+from .quantities import cylinder_quantities, wobbling_curve
+from ..execution import compilation
+from ..errors import RockdesignError
+from ..plots import save
+from .figures import wobbling_figure
+from .report import FIGURE_FILES, write_cylinder_files
+from . import grid as cylinder_grid, simulation as cylinder_simulation
+from ..kinds.base import StructureKind
+
+
+class Cylinder(StructureKind):
+    """The 3D cylinder: its engine, the check over suites of record pairs against a planar analysis."""
+
+    name = "cylinder"
+    systems = ("cylinder",)
+    simulate_kernels = "cylinder"
+    check_kernels = "cylinder-check"
+    report_files = frozenset(FIGURE_FILES)
+    spectrum_excitation = "record pair"
+    grid = cylinder_grid
+    design_rule = cylinder_grid.RULE
+    design_skipped = cylinder_grid.SKIPPED
+    design_material = ("material: the cylinder's mass", "a free-standing cylinder carries no superstructure")
+    key_alternatives = {"height": ("half_height",), "half_height": ("height",), "diameter": ("slenderness",),
+                        "slenderness": ("diameter",), "mass": ("density",), "density": ("mass",)}
+
+    def claims(self, raw):
+        return claims(raw)
+
+    def parse(self, raw, *, file, text):
+        return parse_cylinder_project(raw, file=file, text=text)
+
+    def quantities(self, project):
+        return cylinder_quantities(project.system)
+
+    def quantities_title(self, project):
+        return f"{project.name} — design quantities (cylinder, {project.system.contact} contact)"
+
+    def write_curve(self, project, path):
+        """The wobbling-period curve (Fig 5.2): CSV (theta_over_alpha, Tw_p, T_housner_p) or a figure."""
+        path = Path(path)
+        if path.suffix.lower() == ".csv":
+            ratio, tw, th = wobbling_curve(project.system)
+            np.savetxt(path, np.column_stack([ratio, tw, th]), delimiter=",", fmt="%.12g",
+                       header="theta_over_alpha,Tw_p,T_housner_p", comments="")
+        elif path.suffix.lower() in (".png", ".svg", ".pdf"):
+            save(wobbling_figure(project.system), path)
+        else:
+            raise RockdesignError("unknown file type", key="--pushover", expected=".csv, .png, .svg or .pdf",
+                                  found=f"'{path.name}'")
+
+    def simulation_request(self, project, motion, *, model, t_end, rtol, records_dir):
+        return cylinder_simulation.simulation_request(project, motion, model=model, t_end=t_end, rtol=rtol,
+                                                      records_dir=records_dir)
+
+    def run_simulation(self, request):
+        return cylinder_simulation.run_simulation(request)
+
+    def simulate_motion(self, project, motion, *, model, t_end, rtol):
+        return cylinder_simulation.simulate_motion(project, motion, model=model, t_end=t_end, rtol=rtol)
+
+    def check_options(self, project, *, records_dir, executor, keys):
+        for option, value in (("records_dir", records_dir), ("executor", executor)):
+            if value is not None:
+                key = keys.get(option, option)
+                raise RockdesignError("not used by the check of a cylinder (built-in suites of record pairs, "
+                                      "analysed in this process)", key=key,
+                                      expected="no " + key if key.startswith("-") else "None",
+                                      found=repr(str(value)) if isinstance(value, (str, Path)) else type(value).__name__)
+
+    def prepare_check(self, project, *, records_dir, say, report, pdf_in_process):
+        compilation.prepare(self.check_kernels, say)
+
+    def check(self, project, *, progress, records_dir, margins, executor):
+        return cylinder_check.cylinder_check(project, progress=progress, margins=margins)
+
+    def write_report(self, result, folder, *, pdf, html, pdf_worker):
+        write_cylinder_files(result, folder, pdf=pdf, html=html, pdf_worker=pdf_worker)

@@ -1,0 +1,135 @@
+"""The planar kind's calculation report (columns, frames, podiums): its figures, its HTML from the
+``report.html.j2`` template, and the PDF (:mod:`rockdesign.report.render`)."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import jinja2
+
+from ...paths import templates_dir
+from ...report.formatting import DIGITS
+from ...report import stamped_pdf
+from ...report.render import TEMPLATE, environment, stylesheet, write_html, write_report
+from ...report.svg import ink_box, svg, view_box_of
+from . import figures
+from .demand_figures import demand_figure, demand_history_figure
+from .drawing import structure_drawing
+from .verification import engine_accuracy_statement, normalise
+from .context import build_context, given_value
+
+
+def _given_inputs(project) -> dict:
+    """The project file's texts of the inputs the structure drawing labels (units as given)."""
+    return {"cap_beam_mass": given_value(project, "podium", "cap_beam_mass"),
+            "superstructure_mass": given_value(project, "superstructure", "mass"),
+            "superstructure_period": given_value(project, "superstructure", "period"),
+            "superstructure_damping": given_value(project, "superstructure", "damping")}
+
+
+def make_figures(result) -> dict[str, tuple]:
+    """Every report figure as ``name: (matplotlib Figure, id prefix, crop box or None)``, not yet drawn
+    (``history:<record id>`` for time histories).  Each figure lays itself out when drawn and fills its
+    ``figsize``; the structure drawing (to scale) is cropped to its ink (:func:`figures.ink_box`)."""
+    system = result.project.system
+    drawing = structure_drawing(system, _given_inputs(result.project))
+    out = {
+        "drawing": (drawing, "drawing", ink_box(drawing)),
+        "pushover": (figures.pushover_figure(system), "pushover", None),
+        "spectra": (figures.spectra_figure(result), "spectra", None),
+        "scatter": (figures.polyakov_scatter_figure(result), "scatter", None),
+        "ecdf": (figures.ecdf_figure(result), "ecdf", None),
+        "margins": (figures.margin_figure(result), "margins", None),
+    }
+    if getattr(result, "fragility", None) and result.fragility.get("capacities"):
+        from ...report.fragility_figures import fragility_figure
+        out["fragility"] = (fragility_figure(result), "fragility", None)
+    for name, make in (("demand", demand_figure), ("demand_history", demand_history_figure)):
+        fig = make(result)
+        if fig is not None:
+            out[name] = (fig, name, None)
+    for k, rid in enumerate(result.histories):
+        out[f"history:{rid}"] = (figures.history_figure(result, rid), f"history{k}", None)
+    return out
+
+
+def figure_boxes(made: dict) -> dict[str, str]:
+    """An empty SVG per figure of :func:`make_figures` with the viewBox its drawing will have (the figure
+    size in points): the report laid out with these has the figures' page layout."""
+    return {name: stamped_pdf.empty_svg(view_box_of(fig, crop)) for name, (fig, _, crop) in made.items()}
+
+
+def draw_figures(made: dict) -> dict[str, str]:
+    """The SVG of each figure of :func:`make_figures` (the viewBox :func:`figure_boxes` announced)."""
+    return {name: svg(fig, prefix, crop=crop if crop is not None else False) for name, (fig, prefix, crop) in made.items()}
+
+
+def render_figures(result) -> dict[str, str]:
+    """Inline SVG of every report figure, keyed by name (``history:<record id>`` for time histories)."""
+    return draw_figures(make_figures(result))
+
+
+def verification_statement(result) -> dict:
+    """The engine's error on a closed-form case at the check's tolerance (see :mod:`.verification`):
+    taken from results.json when the check recorded it (``settings.engine_accuracy`` or
+    ``verification``), else measured now."""
+    data = result.as_json()
+    recorded = data.get("settings", {}).get("engine_accuracy") or data.get("verification")
+    if isinstance(recorded, dict) and recorded:
+        return normalise(recorded)
+    s = result.settings
+    return engine_accuracy_statement(float(s.get("rtol", 1e-10)), float(s.get("atol", 1e-12)))
+
+
+def render_html(result, *, figures: dict | None = None, date: str | None = None) -> str:
+    """The report as one self-contained HTML document (CSS and SVG figures inline)."""
+    return html_renderer(result, date=date)(figures if figures is not None else render_figures(result))
+
+
+def html_renderer(result, *, date: str | None = None):
+    """``render(figures) -> str``: :func:`render_html` of ``result`` with the context built once, for
+    rendering the same report with different figures (empty boxes first, then the drawings)."""
+    folder = templates_dir()
+    template = environment(folder).get_template(TEMPLATE)
+    ctx = build_context(result, figures={}, verification=verification_statement(result), date=date)
+    ctx["css"] = jinja2.utils.markupsafe.Markup(stylesheet(folder))
+    ctx["digits"] = DIGITS
+
+    def render(figures: dict) -> str:
+        histories = [{**h, "svg": figures.get(f"history:{h['id']}", "")} for h in ctx["histories"]]
+        return template.render(**{**ctx, "figures": figures, "histories": histories})
+    return render
+
+
+def _planar_report(result, out_dir: Path, *, html: bool, pdf_worker) -> dict[str, Path]:
+    """The check's report with its two halves at once: the pages are laid out with an empty box per
+    figure (each figure's size is known before it is drawn), by the worker when there is one, while
+    this process draws the figures; then the figures are stamped into their boxes."""
+    made = make_figures(result)
+    render = html_renderer(result)
+    slotted, boxes = stamped_pdf.slot_html(render(figure_boxes(made)))
+    path = out_dir / "report.pdf"
+    job = pdf_worker.begin_layout(slotted, path) if pdf_worker is not None else None
+    text = render(draw_figures(made))
+    written = {"html": write_html(text, out_dir)} if html else {}
+    _, svgs = stamped_pdf.slot_html(text)
+    same_boxes = [stamped_pdf.view_box(b) for b in boxes] == [stamped_pdf.view_box(s) for s in svgs]
+    figures = stamped_pdf.figure_pdfs_or_none(svgs) if same_boxes else None
+    if figures is None:
+        # a figure drawn at another size than it announced, or one typst refused: the PDF again, whole
+        if job is not None:
+            job.result()        # (the worker writes the same file: wait for it)
+        written["pdf"] = stamped_pdf.html_to_pdf(text, path)
+        return written
+    slots = job.result() if job is not None else stamped_pdf.layout_pdf(slotted, path)
+    written["pdf"] = stamped_pdf.stamp(path, slots, figures)
+    return written
+
+
+def write_planar_report(result, out_dir, *, pdf: bool = True, html: bool = True, pdf_worker=None) -> dict[str, Path]:
+    """``report.html`` and/or ``report.pdf`` of a planar check into ``out_dir``: with a PDF, its pages are laid
+    out (by ``pdf_worker`` when given) while its figures are drawn (:func:`_planar_report`)."""
+    out_dir = Path(out_dir)
+    if pdf:
+        out_dir.mkdir(parents=True, exist_ok=True)
+        return _planar_report(result, out_dir, html=html, pdf_worker=pdf_worker)
+    return write_report(result, out_dir, render=render_html, pdf=False, html=html)
