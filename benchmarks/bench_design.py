@@ -140,19 +140,20 @@ def shared_vs_one_by_one(base: Path, tmp: Path, rounds: int) -> dict:
 
     from rockdesign.design_space.run import design
     from rockdesign.planar.kind import Planar
+    shared_batches = Planar.grid_batches
     times = {"together": [], "one_by_one": []}
     cells = {}
     shared = None
     for k in range(rounds):
         for how in ("together", "one_by_one"):
-            Planar.grid_shared_batches = how == "together"
+            Planar.grid_batches = shared_batches if how == "together" else (lambda self: None)
             t0 = time.perf_counter()
             res = design(base, [WIDTH, HEIGHT], store=None)
             times[how].append(time.perf_counter() - t0)
             cells[how] = [{key: v for key, v in c.items() if key != "resumed"} for c in res.as_json()["cells"]]
             shared = res.grid.shared_batches or shared
             print(f"in-process 3 × 3, {how.replace('_', ' ')}: {times[how][-1]:.1f} s")
-    Planar.grid_shared_batches = True
+    Planar.grid_batches = shared_batches
     med = {how: statistics.median(v) for how, v in times.items()}
     return {"seconds": times, "ratio_together_over_one_by_one": med["together"] / med["one_by_one"],
             "shared_batches": shared, "cells_equal": cells["together"] == cells["one_by_one"]}

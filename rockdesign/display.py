@@ -123,8 +123,10 @@ def demand_rows(r, g: float) -> list[tuple[str, str, str]]:
 
 def check_summary(data: dict, out_dir, console: Console) -> None:
     """Print the checks, what the run found (failed analyses, missing records), the verdict and its
-    reason, and where the report went (``out_dir``; None: not yet, the caller says it)."""
-    s = data["summary"]
+    reason, and where the report went (``out_dir``; None: not yet, the caller says it).  Reads the sections
+    every kind's results.json has (``project``, ``checks``, ``verdict``) and, where present, the summary of
+    the records analysed."""
+    s = data.get("summary")
     table = Table(title=escape(f"{data['project']['name']} — design check"), title_justify="left")
     for col in ("check", "utilisation or ratio", "result"):
         table.add_column(col, justify="right" if col == "utilisation or ratio" else "left")
@@ -149,18 +151,8 @@ def check_summary(data: dict, out_dir, console: Console) -> None:
     for f in data.get("failed_records", []):
         console.print(f"[bold red]analysis failed:[/] {escape(f['id'])} — {escape(f['status'])} (not counted as "
                       "safe)", highlight=False)
-    if s["n_records"]:
-        ci = s["p_overturn_ci90"]
-        prob = f"P(overturn) = {s['p_overturn']:.3f}, 90 % interval [{ci[0]:.3f}, {ci[1]:.3f}]"
-    else:
-        prob = "P(overturn) not estimated"
-    console.print(f"model: {escape(data['model']['chosen'])} — records analysed: {s['n_records']}"
-                  + (f" (+{s.get('n_failed')} failed)" if s.get("n_failed") else "")
-                  + (f", missing: {len(exc.get('missing', []))}" if exc.get("missing") else "")
-                  + (f" from {s['n_ground_motions']} ground motions" if s.get("n_ground_motions") else "")
-                  + f", overturned: {s['n_overturned']} ({s['overturn_criterion']} criterion)"
-                  + (f", false negatives (class b): {s['n_false_negative']}" if "n_false_negative" in s else "")
-                  + f", {prob}", highlight=False)
+    if s is not None:
+        _suite_line(data, s, exc, console)
     if exc.get("intensity_analysed"):
         console.print(f"intensity analysed: {escape(exc['intensity_analysed'])}", highlight=False)
     colour = "green" if data["verdict"] == "PASS" and data.get("verdict_robust", True) else (
@@ -168,3 +160,19 @@ def check_summary(data: dict, out_dir, console: Console) -> None:
     console.print(f"verdict: [bold {colour}]{escape(data.get('verdict_reason') or data['verdict'])}[/]", highlight=False)
     if out_dir is not None:
         console.print(f"output: {escape(str(out_dir))}", highlight=False)
+
+
+def _suite_line(data: dict, s: dict, exc: dict, console: Console) -> None:
+    """The line of what the suite found: model, records, overturned, P(overturn)."""
+    prob = "P(overturn) not estimated"
+    if s["n_records"]:
+        ci = s["p_overturn_ci90"]
+        prob = f"P(overturn) = {s['p_overturn']:.3f}, 90 % interval [{ci[0]:.3f}, {ci[1]:.3f}]"
+    console.print(f"model: {escape(data['model']['chosen'])} — records analysed: {s['n_records']}"
+                  + (f" (+{s.get('n_failed')} failed)" if s.get("n_failed") else "")
+                  + (f", missing: {len(exc.get('missing', []))}" if exc.get("missing") else "")
+                  + (f" from {s['n_ground_motions']} ground motions" if s.get("n_ground_motions") else "")
+                  + f", overturned: {s['n_overturned']} ({s['overturn_criterion']} criterion)"
+                  + (f", false negatives (class b): {s['n_false_negative']}" if "n_false_negative" in s else "")
+                  + f", {prob}", highlight=False)
+

@@ -35,15 +35,11 @@ from .outdir import OutputFolder
 from .progress import progress_bars
 from .project_tables import Project, read_document
 from .quantity import Quantity
-from .report.pdf_worker import PdfWorker
-from .report.results import json_text  # noqa: F401  (the CLI prints results.json with it)
+from .report.document import write_document
+from .report.results import json_text, write_results_csv, write_results_json  # noqa: F401 (json_text: the CLI)
 
 __all__ = ["load_project", "parse_project", "design_quantities", "simulate", "check", "write_report",
            "Quantities"]
-
-CLI_KEYS = {"records_dir": "--records-dir", "executor": "--dask"}
-"""The command-line options of :func:`check`'s parameters (errors of the commands name these)."""
-
 
 def _parameter_names(func):
     """Re-key errors raised below with a command-line flag (``--t-end``) to the parameter (``t_end``)."""
@@ -162,10 +158,10 @@ def spectrum_excitation(project: Project) -> str:
 
 
 # --- one time-history analysis -------------------------------------------------------------------
-def simulation_request(project: Project, motion: str, *, model: str = "auto", t_end: float | None = None,
+def simulation_request(project: Project, motion, *, model: str = "auto", t_end: float | None = None,
                        rtol: float | None = None, records_dir: str | Path | None = None):
-    """Parse a CONTRACT §2 motion string and validate the whole request, analysing (and compiling)
-    nothing: bad input is reported at once, also on a first run."""
+    """Parse a CONTRACT §2 motion string (or take a motion object) and validate the whole request, analysing
+    (and compiling) nothing: bad input is reported at once, also on a first run."""
     _require_project(project, "simulate")
     return kind_of(project).simulation_request(project, motion, model=model, t_end=t_end, rtol=rtol,
                                                records_dir=str(records_dir) if records_dir else None)
@@ -201,29 +197,28 @@ def simulate(project: Project, motion, *, model: str = "auto", t_end: float | No
         A :class:`SimulationResponse` (planar) or :class:`CylinderSimulation`; ``as_json()`` is
         ``simulate --json``.
     """
-    _require_project(project, "simulate")
-    if isinstance(motion, str):
-        return run_simulation(simulation_request(project, motion, model=model, t_end=t_end, rtol=rtol,
-                                                 records_dir=records_dir))
-    if records_dir is not None:
-        raise RockdesignError("records_dir applies to a motion string", key="records_dir", expected="None",
-                              found=repr(str(records_dir)))
-    return kind_of(project).simulate_motion(project, motion, model=model, t_end=t_end, rtol=rtol)
+    return run_simulation(simulation_request(project, motion, model=model, t_end=t_end, rtol=rtol,
+                                             records_dir=records_dir))
 
 
 # --- the design check ----------------------------------------------------------------------------
-def check_options(project: Project, *, records_dir=None, dask=None) -> None:
-    """Refuse ``--records-dir`` / ``--dask`` where the project's kind has no use for them (exit 2)."""
-    kind_of(project).check_options(project, records_dir=records_dir, executor=dask, keys=CLI_KEYS)
+def check_options(project: Project, *, records_dir=None, executor=None) -> None:
+    """Refuse ``records_dir`` / ``executor`` where the project's kind has no use for them."""
+    kind_of(project).check_options(project, records_dir=records_dir, executor=executor)
 
 
-def prepare_check(project: Project, *, records_dir=None, say=None, report: bool = True,
-                  pdf_in_process: bool = True) -> None:
-    """Before the analyses of ``check``: stop on input errors that only reading the records shows, and
-    compile the kernels on a first run (announced with ``say``); ``report``: the report will be
-    written (its libraries are loaded while the engine compiles), ``pdf_in_process``: by this process."""
-    kind_of(project).prepare_check(project, records_dir=str(records_dir) if records_dir else None, say=say,
-                                   report=report, pdf_in_process=pdf_in_process)
+def prepare_check(project: Project, *, records_dir=None, say=None, report: bool = True) -> None:
+    """Before the analyses of ``check``, on a first run: stop on input errors that only reading the records
+    shows, then compile the kernels (announced with ``say``); ``report``: a report will be written (its
+    libraries are loaded here while the engine compiles in a second process)."""
+    kind = kind_of(project)
+    if not compilation.missing_kernels(kind.check_kernels):
+        return
+    kind.prepare_check(project, records_dir=str(records_dir) if records_dir else None)
+    compilation.prepare(kind.check_kernels, say, background=kind.check_compiles_in_background)
+    if compilation.compilation_pending() and report:      # this process would wait: load the report's libraries
+        from .report.render import warm_up
+        warm_up()
 
 
 def run_check(project: Project, *, progress: bool = False, records_dir=None, margins: bool = True,
@@ -263,7 +258,7 @@ def check(project: Project, *, progress: bool = False, records_dir: str | Path |
         results.json (the same sections for every kind; docs/model.md, docs/cylinder.md).
     """
     _require_project(project, "check")
-    kind_of(project).check_options(project, records_dir=records_dir, executor=executor, keys={})
+    kind_of(project).check_options(project, records_dir=records_dir, executor=executor)
     return run_check(project, progress=progress, records_dir=records_dir, margins=margins, executor=executor)
 
 
@@ -272,31 +267,25 @@ def check_output_folder(project: Project, target, *, key: str = "out_dir") -> Ou
     return kind_of(project).output_folder(target, key=key)
 
 
-def start_pdf_worker() -> PdfWorker | None:
-    """A second process that loads WeasyPrint while the check runs and writes the PDF at the end
-    (:mod:`rockdesign.report.pdf_worker`); None when it cannot start.  ``close()`` it afterwards."""
-    return PdfWorker.start()
-
-
 @_parameter_names
-def write_report(result, out_dir, *, pdf: bool = True, html: bool = True, pdf_worker=None) -> Path:
+def write_report(result, out_dir, *, pdf: bool = True, html: bool = True) -> Path:
     """Write a check's ``report.pdf``, ``report.html``, ``results.json``, ``results.csv`` (and its
     figures) into ``out_dir``.
 
     The folder is written all or nothing (a temporary folder beside it is moved into place when
     complete), holds only this run's files afterwards, and is locked against concurrent runs (see
     :mod:`rockdesign.outdir`).  ``out_dir`` may also be a locked :class:`~rockdesign.outdir.OutputFolder`.
-    ``pdf_worker``: a started :class:`rockdesign.report.pdf_worker.PdfWorker` (:func:`start_pdf_worker`,
-    ``close()`` it afterwards) writes the PDF in a second process, as ``rockdesign check`` does; the
-    files are the same without it.
 
     Returns:
         The output folder.
     """
     kind = kind_of(result)
     folder = out_dir if isinstance(out_dir, OutputFolder) else kind.output_folder(out_dir, key="out_dir")
+    data = result.as_json()
     with folder.staging() as tmp:
-        kind.write_report(result, tmp, pdf=pdf, html=html, pdf_worker=pdf_worker)
+        write_results_json(data, tmp / "results.json")
+        write_results_csv(data, tmp / "results.csv", columns=kind.csv_columns)
+        write_document(kind.report(result), tmp, pdf=pdf, html=html)
     return folder.target
 
 

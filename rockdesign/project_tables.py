@@ -320,3 +320,9 @@ def project_info(raw: dict, file: str, g: float, example: str = "5-storey block"
                 raise info_t.error(k, "wrong type", expected="a string", found=info_t.data[k])
             info[k] = info_t.data[k]
     return info
+
+
+parse_analysis = _parse_analysis
+"""The ``[analysis]`` table every kind's project file shares (the name a kind's parser uses)."""
+TableReader = _Table
+"""The key-tracking reader of one TOML table (the name a kind's parser uses)."""

@@ -60,9 +60,15 @@ _CLICK_EXCEPTION = next(c for c in typer.BadParameter.__mro__ if c.__name__ == "
 """click's ClickException (typer vendors click): usage errors stay click's to report (exit 2)."""
 
 
-def handle_errors(func):
+def handle_errors(func=None, /, **aliases):
     """Convert user-input errors to a clean message and exit code 2; Ctrl-C to one line and exit 130; any
-    other exception (a bug) to its traceback, one line saying so and exit code 3 (never 1, which means FAIL)."""
+    other exception (a bug) to its traceback, one line saying so and exit code 3 (never 1, which means FAIL).
+
+    The library names the parameter an error is about (``key="motion"``); the message names the command's
+    option instead (``--motion``): a parameter named like an option of the command maps to it, others through
+    ``aliases`` (``@handle_errors(executor="--dask")``)."""
+    if func is None:
+        return lambda f: handle_errors(f, **aliases)
 
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
@@ -73,15 +79,40 @@ def handle_errors(func):
             if getattr(exc, "exit_code", getattr(exc, "code", 1)) not in (0, None):
                 discard_unfinished()
             raise
-    return _report_errors(wrapper)
+    return _report_errors(wrapper, {**command_options(func), **aliases})
 
 
-def _report_errors(func):
+def command_options(func) -> dict[str, str]:
+    """Parameter name → its option as the user types it (``records_dir`` → ``--records-dir``,
+    ``out`` → ``-o/--out``), read from the command function's typer options."""
+    import inspect
+    out = {}
+    for name, param in inspect.signature(func).parameters.items():
+        decls = getattr(param.default, "param_decls", None)
+        if isinstance(param.default, typer.models.OptionInfo) and decls:
+            out[name] = "/".join(sorted((d for d in decls if d.startswith("-")), key=len))
+    return out
+
+
+def option_of(key: str | None, options: dict[str, str]) -> str | None:
+    """The command-line option that the library parameter ``key`` (``records_dir``, ``scale.target``) stands
+    for, or None when it names none."""
+    if not key:
+        return None
+    head, dot, rest = key.partition(".")
+    return options[head] + dot + rest if head in options else None
+
+
+def _report_errors(func, options: dict[str, str] | None = None):
     @functools.wraps(func)
     def wrapper(*args, **kwargs):
         try:
             return func(*args, **kwargs)
         except RockdesignError as exc:
+            flag = option_of(exc.key, options or {})
+            if flag is not None:
+                exc.key = flag
+                exc.args = (exc.format(),)
             err_console.print(f"[bold red]error:[/] {escape(str(exc))}", highlight=False, markup=True, soft_wrap=True)
             raise typer.Exit(2) from None
         except (KeyboardInterrupt, SystemError) as exc:

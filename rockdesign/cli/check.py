@@ -1,7 +1,6 @@
 """``rockdesign check``: the design check and its calculation report (CONTRACT §2, §4)."""
 from __future__ import annotations
 
-import os
 import sys
 from pathlib import Path
 from typing import Optional
@@ -13,7 +12,7 @@ from ..console import make_console
 
 def register(app: typer.Typer, handle_errors) -> None:
     @app.command()
-    @handle_errors
+    @handle_errors(executor="--dask", out_dir="-o/--out")
     def check(project: Path = typer.Argument(..., help="Project file (TOML)"),
               out: Optional[Path] = typer.Option(None, "-o", "--out", help="Output folder (default: <project>_check)"),
               as_json: bool = typer.Option(False, "--json", metavar=" ", help="Print results.json to stdout."),
@@ -26,36 +25,26 @@ def register(app: typer.Typer, handle_errors) -> None:
         """Polyakov design check over record suites, with a PDF calculation report (exit 0 = PASS,
         1 = FAIL, 2 = input error or failed analyses, 4 = not decided: a governing criterion was not
         evaluated, e.g. --no-margins; 130 = interrupted)."""
-        # a second process loads WeasyPrint on the core this one leaves idle while it starts, and writes
-        # the PDF at the end (report.pdf_worker)
         from .. import library as rd      # (lazy: mounting the commands loads no numerical library)
-        pdf_worker = None
-        if not no_pdf and not os.environ.get("ROCKDESIGN_NO_PDF_WORKER"):
-            pdf_worker = rd.start_pdf_worker()
-        try:
-            _check(rd, project, out, as_json, no_pdf, html, no_margins, records_dir, dask, pdf_worker)
-        finally:
-            if pdf_worker is not None:
-                pdf_worker.close()
+        _check(rd, project, out, as_json, no_pdf, html, no_margins, records_dir, dask)
 
 
-def _check(rd, project, out, as_json, no_pdf, html, no_margins, records_dir, dask, pdf_worker) -> None:
+def _check(rd, project, out, as_json, no_pdf, html, no_margins, records_dir, dask) -> None:
     from rich.markup import escape
 
     from ..display import check_summary
     proj = rd.load_project(project)
-    rd.check_options(proj, records_dir=records_dir, dask=dask)
+    rd.check_options(proj, records_dir=records_dir, executor=dask)
     folder = rd.check_output_folder(proj, out if out is not None else Path(f"{Path(project).stem}_check"),
                                     key="-o/--out")
     with folder.locked():   # before the analyses: a file, a read-only or busy folder stops here (exit 2)
-        rd.prepare_check(proj, records_dir=records_dir, say=make_console(stderr=True).print, report=not no_pdf,
-                         pdf_in_process=pdf_worker is None)
+        rd.prepare_check(proj, records_dir=records_dir, say=make_console(stderr=True).print, report=not no_pdf)
         result = rd.run_check(proj, records_dir=records_dir, margins=not no_margins,
                               progress=not as_json or make_console(stderr=True).is_terminal, executor=dask)
         data = result.as_json()
         if not as_json:     # the verdict first: the engineer reads it while the report is being written
             check_summary(data, None, make_console())
-        _report(rd.write_report, result, folder, no_pdf, html, pdf_worker)
+        _report(rd.write_report, result, folder, no_pdf, html)
     if as_json:
         sys.stdout.write(rd.json_text(data))
     else:
@@ -69,11 +58,11 @@ def _exit_code(verdict: str) -> int:
     return {"PASS": 0, "FAIL": 1}.get(verdict, 4)
 
 
-def _report(write_report, result, folder, no_pdf: bool, html: bool, pdf_worker=None) -> None:
+def _report(write_report, result, folder, no_pdf: bool, html: bool) -> None:
     """Write the output folder (results.json/csv and the report), with a spinner on a terminal (plain lines
     elsewhere): the figures and the PDF take seconds after the analyses' progress bars have ended."""
     what = ("results and calculation report (figures, PDF)" if not no_pdf
             else "results and HTML report" if html else "results")
     from .. import working
     with working(f"writing the {what}"):
-        write_report(result, folder, pdf=not no_pdf, html=html or not no_pdf, pdf_worker=pdf_worker)
+        write_report(result, folder, pdf=not no_pdf, html=html or not no_pdf)

@@ -11,7 +11,7 @@ from ..console import make_console
 
 def register(app: typer.Typer, handle_errors) -> None:
     @app.command()
-    @handle_errors
+    @handle_errors(executor="--dask")
     def design(project: Path = typer.Argument(..., help="Project file (TOML)"),
                vary: List[str] = typer.Option(..., "--vary", metavar="TABLE.KEY=FROM:TO:N", help="In the key's units, e.g. "
                                               "podium.width=0.36m:0.60m:7 (once or twice)."),

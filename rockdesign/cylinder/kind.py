@@ -9,11 +9,10 @@ import numpy as np
 from . import check as cylinder_check
 from .project import claims, parse_cylinder_project
 from .quantities import cylinder_quantities, wobbling_curve
-from ..execution import compilation
 from ..errors import RockdesignError
 from ..plots import save
 from .figures import wobbling_figure
-from .report import FIGURE_FILES, write_cylinder_files
+from .report import FIGURE_FILES, cylinder_report_parts
 from . import grid as cylinder_grid, simulation as cylinder_simulation
 from ..kinds.base import StructureKind
 
@@ -26,6 +25,7 @@ class Cylinder(StructureKind):
     simulate_kernels = "cylinder"
     check_kernels = "cylinder-check"
     report_files = frozenset(FIGURE_FILES)
+    csv_columns = tuple(cylinder_check.CSV_COLUMNS)
     spectrum_excitation = "record pair"
     grid = cylinder_grid
     design_rule = cylinder_grid.RULE
@@ -66,23 +66,15 @@ class Cylinder(StructureKind):
     def run_simulation(self, request):
         return cylinder_simulation.run_simulation(request)
 
-    def simulate_motion(self, project, motion, *, model, t_end, rtol):
-        return cylinder_simulation.simulate_motion(project, motion, model=model, t_end=t_end, rtol=rtol)
-
-    def check_options(self, project, *, records_dir, executor, keys):
+    def check_options(self, project, *, records_dir, executor):
         for option, value in (("records_dir", records_dir), ("executor", executor)):
             if value is not None:
-                key = keys.get(option, option)
                 raise RockdesignError("not used by the check of a cylinder (built-in suites of record pairs, "
-                                      "analysed in this process)", key=key,
-                                      expected="no " + key if key.startswith("-") else "None",
+                                      "analysed in this process)", key=option, expected="None",
                                       found=repr(str(value)) if isinstance(value, (str, Path)) else type(value).__name__)
-
-    def prepare_check(self, project, *, records_dir, say, report, pdf_in_process):
-        compilation.prepare(self.check_kernels, say)
 
     def check(self, project, *, progress, records_dir, margins, executor):
         return cylinder_check.cylinder_check(project, progress=progress, margins=margins)
 
-    def write_report(self, result, folder, *, pdf, html, pdf_worker):
-        write_cylinder_files(result, folder, pdf=pdf, html=html, pdf_worker=pdf_worker)
+    def report(self, result):
+        return cylinder_report_parts(result)

@@ -27,8 +27,8 @@ from .figures import comparison_figure, cylinder_history_figure, wobbling_figure
 from ..report.svg import svg
 from ..report.formatting import DIGITS, fmt
 from .methods import CYLINDER_METHODS
-from ..report.render import environment, stylesheet, write_report
-from ..report.results import write_results_csv, write_results_json
+from ..report.document import ReportParts
+from ..report.render import environment, stylesheet
 
 FIGURE_FILES = ("cylinder_vs_planar.png", "wobbling_period.png")
 """The figures written beside results.json (besides the report, which embeds its own)."""
@@ -129,13 +129,10 @@ def render_cylinder_html(result, *, figures: dict | None = None, date: str | Non
     return env.get_template(TEMPLATE).render(**ctx)
 
 
-def write_cylinder_files(result, folder, *, pdf: bool = True, html: bool = True, pdf_worker=None) -> None:
-    """results.json, results.csv (:mod:`rockdesign.report.results`), the figures and report.pdf/html of a
-    cylinder check into ``folder`` (the staging folder of the output folder)."""
-    folder = Path(folder)
+def cylinder_report_parts(result) -> ReportParts:
+    """The cylinder report's parts: its HTML, and the comparison and wobbling-period figures (Fig 5.2 for this
+    cylinder) as files beside it."""
     data = result.as_json()
-    write_results_json(data, folder / "results.json")
-    write_results_csv(data, folder / "results.csv", columns=CSV_COLUMNS)
-    save(comparison_figure(data), folder / "cylinder_vs_planar.png")
-    save(wobbling_figure(result.project.system), folder / "wobbling_period.png")   # Fig 5.2 for this cylinder
-    write_report(result, folder, pdf=pdf, html=html, render=render_cylinder_html, pdf_worker=pdf_worker)
+    return ReportParts(html=lambda: render_cylinder_html(result),
+                       files={"cylinder_vs_planar.png": lambda path: save(comparison_figure(data), path),
+                              "wobbling_period.png": lambda path: save(wobbling_figure(result.project.system), path)})

@@ -127,7 +127,7 @@ def _cylinder_for(project: Project, model: str):
     return cyl
 
 
-def simulation_request(project: Project, motion: str, *, model: str = "auto", t_end: float | None = None,
+def simulation_request(project: Project, motion, *, model: str = "auto", t_end: float | None = None,
                        rtol: float | None = None, records_dir: str | None = None) -> CylinderRequest:
     """Parse a bidirectional motion string (``record:p695-ff/1,resultant_pga=0.3g``, a pulse with
     ``direction=``, ``free:theta0=…``) and check the model, without analysing anything.
@@ -135,6 +135,15 @@ def simulation_request(project: Project, motion: str, *, model: str = "auto", t_
     ``model``: ``auto`` (the project's contact), ``undamped`` (rigid contact) or ``damped``
     (spring–dashpot with the project's ω_n, ζ)."""
     cyl = _cylinder_for(project, model)
+    if isinstance(motion, MotionPair):
+        if records_dir is not None:
+            raise RockdesignError("records_dir applies to a motion string", key="records_dir", expected="None",
+                                  found=repr(str(records_dir)))
+        return CylinderRequest(project, motion.name, PairSpec(motion), cyl, rtol or project.analysis.rtol, t_end)
+    if not isinstance(motion, str):
+        raise RockdesignError("a cylinder is driven by a pair of components", key="motion",
+                              expected="a motion string or a MotionPair (rockdesign.motions.pairs)",
+                              found=type(motion).__name__)
     if records_dir is None and project.excitation is not None:
         records_dir = project.excitation.records_dir
     spec = parse_pair(motion, gravity=cyl.g, alpha=cyl.alpha, uplift_acceleration=cyl.g * cyl.tan_alpha,
@@ -150,17 +159,3 @@ def run_simulation(request: CylinderRequest) -> CylinderSimulation:
                                  rtol=request.rtol, atol=a.atol, rest_velocity=a.rest_velocity,
                                  output_dt=0.0 if spec.pair.is_record else 0.01)
     return CylinderSimulation(request.project, request.motion_text, response, spec.pair)
-
-
-def simulate_motion(project: Project, motion, *, model: str = "auto", t_end: float | None = None,
-                    rtol: float | None = None) -> CylinderSimulation:
-    """One analysis of a cylinder under a :class:`~rockdesign.motions.pairs.MotionPair` object."""
-    if not isinstance(motion, MotionPair):
-        raise RockdesignError("a cylinder is driven by a pair of components", key="motion",
-                              expected="a motion string or a MotionPair (rockdesign.motions.pairs)",
-                              found=type(motion).__name__)
-    cyl, a = _cylinder_for(project, model), project.analysis
-    response = simulate_cylinder(cyl, motion, t_end=t_end, free_vibration=a.free_vibration, rtol=rtol or a.rtol,
-                                 atol=a.atol, rest_velocity=a.rest_velocity,
-                                 output_dt=0.0 if motion.is_record else 0.01)
-    return CylinderSimulation(project, motion.name, response, motion)

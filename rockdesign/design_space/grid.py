@@ -9,7 +9,7 @@ Shared work:
 - the kernels compile (or load from the cache) once, in this one process;
 - the analyses of all variants run together: each variant's check runs in a thread of its own and its
   batches (a chunk of a suite, a round of a margin scan) wait for the other running variants' to run as
-  one call of the batch driver (:mod:`rockdesign.planar.dynamics.batch_pool`) — as many times more jobs per call
+  one call of the numerical driver (:mod:`rockdesign.execution.batch_pool`, the kind's ``grid_batches``) — as many times more jobs per call
   as there are variants running (:func:`at_once`), so the cores stay busy to the end of each call (on a
   dask cluster the variants run one after the other, each on the whole cluster);
 - each variant runs the check's own stages through its kind's grid hooks (:mod:`rockdesign.kinds`:
@@ -105,9 +105,10 @@ def run_grid(variant_list: list[Variant], variables, *, records_dir=None, execut
     ``stage_progress(stage, done, total)`` inside one (the check's stages; not while variants run together);
     ``store``: the folder of the per-variant results that makes the run resumable (None: nothing stored).
 
-    Variants whose analyses can share batches (:attr:`~rockdesign.kinds.base.StructureKind.grid_shared_batches`)
-    are checked together, each in a thread of its own, their batches merged into shared calls of the batch
-    driver (:mod:`rockdesign.planar.dynamics.batch_pool`); on a dask cluster (``executor``) one after the other."""
+    Variants whose analyses can share batches (:meth:`~rockdesign.kinds.base.StructureKind.grid_batches`)
+    are checked together, each in a thread of its own with a pool member as its check's executor, their
+    batches merged into shared calls of the kind's driver (:mod:`rockdesign.execution.batch_pool`); on a dask
+    cluster (``executor``) one after the other."""
     run = GridRun(list(variables), [])
     records_cache: dict[str, tuple] = {}
     total = len(variant_list)
@@ -148,16 +149,19 @@ def run_grid(variant_list: list[Variant], variables, *, records_dir=None, execut
         if cells[pos] is not None:
             report(pos)
 
-    def check(task, stages) -> None:
+    def check(task, stages, runs_on=executor) -> None:
         pos, variant, kind, records, path = task
         cells[pos] = _check_variant(variant, variables, kind, records, path, records_dir=records_dir,
-                                    executor=executor, progress=stages)
+                                    executor=runs_on, progress=stages)
 
-    together = [t for t in tasks if t[2].grid_shared_batches] if executor is None else []
+    batches = tasks[0][2].grid_batches() if tasks and executor is None else None
+    together = [t for t in tasks if t[2] is tasks[0][2]] if batches is not None else []
     if len(together) > 1:
-        pool = _check_together(together, lambda task: check(task, None), report, at_once())
-        run.shared_batches = {"variants": len(together), "batches": pool.requests, "driver_calls": pool.calls,
-                              "analyses": pool.jobs}
+        pool = _check_together(together, lambda task, member: check(task, None, member), report, at_once(),
+                               batches)
+        run.shared_batches = {"variants": len(together), "batches": pool.requests,
+                              "driver_calls": getattr(batches, "calls", pool.rounds),
+                              "analyses": getattr(batches, "jobs", None)}
     for task in tasks:
         if cells[task[0]] is None:
             check(task, stage_progress)
@@ -168,8 +172,12 @@ def run_grid(variant_list: list[Variant], variables, *, records_dir=None, execut
 
 def _check_variant(variant, variables, kind, records, path, *, records_dir, executor, progress) -> dict:
     """The cell of one variant's check (stored in ``path`` for a resumed run)."""
+    from ..execution.batch_pool import PoolMember
     from ..execution.counting import AnalysisCount
-    before = AnalysisCount.mine()
+    before = AnalysisCount.total
+
+    def analyses() -> int:     # variants checked together count on their pool member
+        return executor.analyses if isinstance(executor, PoolMember) else AnalysisCount.total - before
     try:
         result = kind.grid_check(variant.project, records=records, records_dir=records_dir, executor=executor,
                                  progress=progress)
@@ -177,9 +185,9 @@ def _check_variant(variant, variables, kind, records, path, *, records_dir, exec
         cell = {**_base_cell(variant, variables), **EMPTY, "reason": str(exc),
                 "verdict": "INVALID" if isinstance(exc, ProjectError) else "ERROR",
                 "decided_at_design_level": False, "n_failed_analyses": 0,
-                "analyses": AnalysisCount.mine() - before, "analyses_saved": 0}
+                "analyses": analyses(), "analyses_saved": 0}
     else:
-        cell = _cell(kind, variant, variables, result, AnalysisCount.mine() - before)
+        cell = _cell(kind, variant, variables, result, analyses())
     if path is not None:
         path.parent.mkdir(parents=True, exist_ok=True)
         tmp = path.with_suffix(f".{threading.get_ident()}.tmp")
@@ -189,22 +197,23 @@ def _check_variant(variant, variables, kind, records, path, *, records_dir, exec
     return cell
 
 
-def _check_together(tasks, check, report, threads: int):
-    """Check ``tasks`` in ``threads`` threads (the next task starting as one ends), their analyses in shared
-    batches served by this thread; ``report(position)`` here as each one ends.  An error or Ctrl-C cancels
-    the others and is raised.  Returns the :class:`~rockdesign.planar.dynamics.batch_pool.BatchPool` (its counts)."""
+def _check_together(tasks, check, report, threads: int, batches):
+    """Check ``tasks`` in ``threads`` threads (the next task starting as one ends), ``check(task, member)`` with
+    a pool member as the check's executor, their analyses in shared batches (``batches(requests)``, the kind's)
+    served by this thread; ``report(position)`` here as each one ends.  An error or Ctrl-C cancels the others
+    and is raised.  Returns the :class:`~rockdesign.execution.batch_pool.BatchPool` (its counts)."""
     from concurrent.futures import ThreadPoolExecutor
 
-    from ..planar.dynamics.batch_pool import BatchPool, PoolCancelled
-    pool = BatchPool(len(tasks))
+    from ..execution.batch_pool import BatchPool, PoolCancelled
+    pool = BatchPool(len(tasks), batches)
     errors: list[BaseException] = []
     finished: list[int] = []
     lock = threading.Lock()
 
     def body(task) -> None:
         try:
-            with pool.member():
-                check(task)
+            with pool.member() as member:
+                check(task, member)
         except PoolCancelled:
             return
         except BaseException as exc:    # noqa: BLE001 — raised again in the grid's thread

@@ -48,7 +48,7 @@ def design(project_path, vary: list[str], *, records_dir: str | None = None, exe
         raise RockdesignError("one or two variables", key="--vary", expected="--vary once or twice",
                               found=f"{len(vary)} time(s)")
     kind = kind_of(base)
-    kind.check_options(base, records_dir=records_dir, executor=executor, keys=option_keys or {})
+    kind.check_options(base, records_dir=records_dir, executor=executor)
     raw = tomllib.loads(base.source_text) if base.source_text else base.raw
     variables = [parse_vary(v, raw, alternatives=kind.key_alternatives) for v in vary]
     if len(variables) == 2 and variables[0].key == variables[1].key:
@@ -92,7 +92,7 @@ def design_command(project, vary, out, *, as_json: bool, no_pdf: bool, records_d
                               found=f"a file {target}")
     base = load_project(project)     # input errors before compiling anything
     kind = kind_of(base)
-    kind.check_options(base, records_dir=records_dir, executor=dask, keys=OPTION_KEYS)
+    kind.check_options(base, records_dir=records_dir, executor=dask)
     prepare(kind.check_kernels, console.print)
     executor = None
     if dask:

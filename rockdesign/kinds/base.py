@@ -1,22 +1,43 @@
 """The interface every kind of structure supplies (the registry is :mod:`rockdesign.kinds`).
 
-A kind of structure (planar: column, frame, podium; the 3D cylinder) is one object with these
-methods; ``rd.load_project``, ``rd.design_quantities``, ``rd.simulate``, ``rd.check`` and
-``rd.write_report`` ask the registry for the kind once and call it — no other module branches on the
-kind of a structure.  The pattern is scipy's ``METHODS`` table of ``solve_ivp``: one entry per
-method, one call site.
+A kind of structure (planar: column, frame, podium; the 3D cylinder) is one object; ``rd.load_project``,
+``rd.design_quantities``, ``rd.simulate``, ``rd.check``, ``rd.write_report``, ``rd.spectrum`` and
+``rd.design`` ask the registry for the kind once and call it — no other module branches on the kind of a
+structure.  The pattern is a design-code base class (concreteproperties' ``DesignCode``): what every kind
+shares has a default here; a kind writes the seven methods marked abstract and overrides a default only
+where it differs.
+
+A kind must write:
+
+==========================  ===================================================================
+``claims(raw)``             does this TOML document describe a structure of this kind?
+``parse(raw, file, text)``  the typed :class:`~rockdesign.project_tables.Project` (SI)
+``quantities(project)``     the closed-form design quantities, each a :class:`~rockdesign.quantity.Quantity`
+``simulation_request``      validate one analysis (a motion string or object) without analysing
+``run_simulation``          analyse a request: a result with ``as_json()``, ``write_csv``, ``write_figure``
+``check(project, …)``       the design check: a result with ``verdict``, ``records``, ``as_json()``
+``report(result)``          the calculation report's parts (:class:`~rockdesign.report.document.ReportParts`)
+==========================  ===================================================================
 """
 from __future__ import annotations
 
 import abc
 from pathlib import Path
 
+from ..errors import RockdesignError
 from ..outdir import RUN_FILES, OutputFolder
+from ..report.document import ReportParts
+
+
+def unavailable(what: str, kind: str, key: str):
+    """The error for a command or option a kind does not offer (exit 2 in the CLI)."""
+    return RockdesignError(f"{what} is not available for this kind of structure", key=key,
+                           expected=f"a kind of structure that offers {what}", found=kind)
 
 
 class StructureKind(abc.ABC):
     """One kind of structure: its project parser, design quantities, time-history analysis, check and
-    report.  Subclasses set the class attributes and implement every abstract method."""
+    report.  Subclasses set :attr:`name` and :attr:`systems` and write the abstract methods."""
 
     name: str = ""
     """The kind's name ("planar", "cylinder")."""
@@ -26,24 +47,30 @@ class StructureKind(abc.ABC):
     """The first-run compilation command (:mod:`rockdesign.execution.compilation`) of ``simulate``."""
     check_kernels: str = "check"
     """The first-run compilation command of ``check``."""
+    check_compiles_in_background: bool = False
+    """Whether the kind's check reads its input while its engine finishes compiling on a first run (it then
+    waits for :func:`rockdesign.execution.compilation.finish_compilation` before its analyses)."""
     spectrum_excitation: str = "pulse"
     """What the kind's rocking spectrum runs over: "pulse" (planar: a pulse family, thesis Ch. 3) or
     "record pair" (cylinder: one record pair over R and PGA, Figs 5.16–5.17)."""
     report_files: frozenset[str] = frozenset()
-    """Files a check writes into its output folder besides :data:`~rockdesign.outdir.RUN_FILES`."""
+    """Files a check writes into its output folder besides the run files (``ReportParts.files``)."""
+    csv_columns: tuple[str, ...] | None = None
+    """The columns of results.csv (None: :data:`rockdesign.report.results.CSV_COLUMNS`)."""
+    key_alternatives: dict[str, tuple[str, ...]] | None = None
+    """Keys of the kind's project tables that say the same thing two ways: a ``--vary`` of one replaces the
+    others (None: :data:`rockdesign.design_space.variants.ALTERNATIVES`)."""
     design_rule: str = ""
     """What decides the verdict of a design-grid cell (``rockdesign design``: the report's words)."""
     design_skipped: str = ""
     """What the design grid skips of a variant's check (design.json ``settings.early_stopping``)."""
     design_material: tuple[str, str] = ("column material", "no elastic superstructure demand")
     """The recommended design without a superstructure force to rank by: (what is least, why)."""
-    grid_shared_batches: bool = False
-    """Whether the design grid may check variants of this kind together, their analyses merged into shared
-    batches (:mod:`rockdesign.planar.dynamics.batch_pool`; the analyses run through
-    :func:`rockdesign.planar.checks.runner.run_jobs`)."""
-    key_alternatives: dict[str, tuple[str, ...]] | None = None
-    """Keys of the kind's project tables that say the same thing two ways: a ``--vary`` of one replaces the
-    others (None: :data:`rockdesign.design_space.variants.ALTERNATIVES`)."""
+    design_columns: tuple[tuple[str, str, str], ...] = ()
+    """Extra columns of the design report's variants table: (cell key, heading, unit)."""
+    grid = None
+    """The module of the kind's design-grid hooks (``records_key``, ``grid_records``, ``grid_check``,
+    ``grid_cell``), or None when the kind has no design grid."""
 
     # --- the project file -------------------------------------------------------------------
     @abc.abstractmethod
@@ -58,45 +85,40 @@ class StructureKind(abc.ABC):
     # --- design quantities ------------------------------------------------------------------
     @abc.abstractmethod
     def quantities(self, project) -> dict:
-        """Design quantities: name → :class:`~rockdesign.design.quantities.Quantity` (SI, thesis equation)."""
+        """Design quantities: name → :class:`~rockdesign.quantity.Quantity` (SI, thesis equation)."""
 
-    @abc.abstractmethod
     def quantities_title(self, project) -> str:
         """The title of the console table of the quantities."""
+        return f"{project.name} — design quantities ({project.system.kind})"
 
     def quantities_json(self, project) -> dict:
         """The ``quantities --json`` object of CONTRACT §3 (SI values)."""
         return {"quantities": {name: q.as_json() for name, q in self.quantities(project).items()},
                 "warnings": list(project.warnings)}
 
-    @abc.abstractmethod
     def write_curve(self, project, path: Path) -> None:
         """``quantities --pushover PATH``: the kind's capacity curve (.csv numbers, .png/.svg/.pdf figure)."""
+        raise unavailable("a capacity curve", self.name, "path")
 
     # --- one time-history analysis ----------------------------------------------------------
     @abc.abstractmethod
-    def simulation_request(self, project, motion: str, *, model: str, t_end, rtol, records_dir):
-        """Parse a motion string and validate the whole request without analysing or compiling anything."""
+    def simulation_request(self, project, motion, *, model: str, t_end, rtol, records_dir):
+        """Parse a motion (a string, or the kind's motion object) and validate the whole request without
+        analysing or compiling anything: a request object with ``project``."""
 
     @abc.abstractmethod
     def run_simulation(self, request):
         """Analyse a request: a result with ``response``, ``failed``, ``as_json()``, ``write_csv(path)``,
         ``write_figure(path)``, ``summary_rows()`` and ``warnings``."""
 
-    @abc.abstractmethod
-    def simulate_motion(self, project, motion, *, model: str, t_end, rtol):
-        """One analysis under a motion object (a GroundMotion for a planar structure, a MotionPair for a
-        cylinder); the same result type as :meth:`run_simulation`."""
-
     # --- the design check -------------------------------------------------------------------
-    @abc.abstractmethod
-    def check_options(self, project, *, records_dir, executor, keys: dict[str, str]) -> None:
-        """Refuse options that do not apply to this kind (``keys`` maps option → the name to quote)."""
+    def check_options(self, project, *, records_dir, executor) -> None:
+        """Refuse options that do not apply to this kind (errors name the parameter); by default every
+        option applies."""
 
-    @abc.abstractmethod
-    def prepare_check(self, project, *, records_dir, say, report: bool, pdf_in_process: bool) -> None:
-        """Before the analyses: read what can be wrong in the input and compile the kernels on a first run
-        (announced with ``say``)."""
+    def prepare_check(self, project, *, records_dir) -> None:
+        """Before the analyses: read what can be wrong in the input, so that a first run reports a typo
+        before it compiles anything.  By default nothing beyond the project."""
 
     @abc.abstractmethod
     def check(self, project, *, progress, records_dir, margins: bool, executor):
@@ -107,30 +129,44 @@ class StructureKind(abc.ABC):
         """The check's output folder (it owns :data:`report_files` besides the run files)."""
         return OutputFolder(target, key=key, owned=RUN_FILES | set(self.report_files))
 
+    # --- the report -------------------------------------------------------------------------
     @abc.abstractmethod
-    def write_report(self, result, folder: Path, *, pdf: bool, html: bool, pdf_worker) -> None:
-        """results.json, results.csv, the figures and report.pdf/html of a check into ``folder`` (staging)."""
+    def report(self, result) -> ReportParts:
+        """The parts of the calculation report of a check result (its HTML and figures)."""
+
+    # --- rocking spectra (``rockdesign spectrum``) ------------------------------------------
+    def spectrum(self, project, request, *, executor, progress):
+        """The kind's rocking spectrum over the request's axes (planar: a pulse family, thesis Ch. 3; the
+        cylinder: one record pair over R and PGA, Figs 5.16–5.17)."""
+        raise unavailable("a rocking spectrum", self.name, "project")
 
     # --- the design grid (rockdesign design, SPEC §15): the kind's ``grid`` module does the work --------
-    grid = None
-    """The module of the kind's design-grid hooks (``records_key``, ``grid_records``, ``grid_check``,
-    ``grid_cell``): :mod:`rockdesign.planar.grid`, :mod:`rockdesign.cylinder.grid`."""
+    def _grid(self):
+        if self.grid is None:
+            raise unavailable("a design grid", self.name, "project")
+        return self.grid
+
+    def grid_batches(self):
+        """``execute(requests) -> results`` when the design grid may check variants of this kind together, their
+        batches merged into shared calls (:mod:`rockdesign.execution.batch_pool`; the grid passes each variant's
+        check a pool member as its executor), or None (variants one after the other)."""
+        return None
 
     def grid_records_key(self, project) -> str:
         """Which variants share the records read and scaled by :meth:`grid_records` (equal keys share)."""
-        return self.grid.records_key(project)
+        return self._grid().records_key(project)
 
     def grid_records(self, project, records_dir):
         """The records of the project's excitation, read and scaled once for every variant sharing them."""
-        return self.grid.grid_records(project, records_dir)
+        return self._grid().grid_records(project, records_dir)
 
     def grid_check(self, project, *, records, records_dir, executor, progress):
         """The check of one variant (its verdict is :meth:`check`'s), computing only what the verdict's word
         and the design table need (``verdict_only``) on the shared ``records``."""
-        return self.grid.grid_check(project, records=records, records_dir=records_dir, executor=executor,
-                                    progress=progress)
+        return self._grid().grid_check(project, records=records, records_dir=records_dir, executor=executor,
+                                       progress=progress)
 
     def grid_cell(self, result, analyses: int) -> dict:
         """The check's numbers of a design-grid cell (design.json ``cells``, SI): verdict, reason, governing,
         acceptance numbers, ``decided_at_design_level``, ``analyses`` (run) and ``analyses_saved``."""
-        return self.grid.grid_cell(result, analyses)
+        return self._grid().grid_cell(result, analyses)

@@ -10,14 +10,13 @@ from .checks import check as planar_check
 from .design.geometry import rocking_geometry
 from .design.pushover import pushover_curve
 from .design.quantities import design_quantities
-from ..execution import compilation
+from .dynamics.shared_batches import SharedBatches
 from ..errors import RockdesignError
 from ..plots import save
 from .project import parse_planar_project
 from .report.figures import pushover_figure
-from ..report import render
-from .report.report import write_planar_report
-from ..report.results import write_results_csv, write_results_json
+from ..report.document import ReportParts
+from .report.report import render_html
 from . import grid as planar_grid, simulation as planar_simulation
 from ..kinds.base import StructureKind
 
@@ -29,10 +28,14 @@ class Planar(StructureKind):
     systems = ("column", "podium")
     simulate_kernels = "simulate"
     check_kernels = "check"
+    check_compiles_in_background = True   # it reads and scales its records while the engine compiles
     grid = planar_grid
     design_rule = planar_grid.RULE
     design_skipped = planar_grid.SKIPPED
-    grid_shared_batches = True       # every analysis of its check runs through run_jobs
+
+    def grid_batches(self):
+        """Every analysis of the planar check runs through ``run_jobs``, which takes a pool member."""
+        return SharedBatches()
 
     def claims(self, raw):
         return True            # the default kind: its parser names what is missing ([column] or [podium])
@@ -42,9 +45,6 @@ class Planar(StructureKind):
 
     def quantities(self, project):
         return design_quantities(project.system, project.analysis.rigid_superstructure_ratio)
-
-    def quantities_title(self, project):
-        return f"{project.name} — design quantities ({project.system.kind})"
 
     def write_curve(self, project, path):
         """The pushover curve F_R/(m_C g) against θ through both phases (Fig 3.15, Eqs 3.18/3.48), from
@@ -70,26 +70,12 @@ class Planar(StructureKind):
     def run_simulation(self, request):
         return planar_simulation.run_simulation(request)
 
-    def simulate_motion(self, project, motion, *, model, t_end, rtol):
-        return planar_simulation.simulate_motion(project, motion, model=model, t_end=t_end, rtol=rtol)
-
-    def check_options(self, project, *, records_dir, executor, keys):
-        """Every option of the check applies to a planar structure."""
-
-    def prepare_check(self, project, *, records_dir, say, report, pdf_in_process):
-        if compilation.missing_kernels(self.check_kernels):   # a first run: an input error in the records stops it first
-            planar_check.check_records(project, records_dir)
-        # the engine finishes compiling in a helper while the check reads its records (run_check waits)
-        compilation.prepare(self.check_kernels, say, background=True)
-        if compilation.compilation_pending() and report:      # this process would wait: load the report's libraries
-            render.warm_up(pdf=pdf_in_process)
+    def prepare_check(self, project, *, records_dir):
+        """Read the records (an input error in them stops a first run before it compiles)."""
+        planar_check.check_records(project, records_dir)
 
     def check(self, project, *, progress, records_dir, margins, executor):
         return planar_check.run_check(project, records_dir=records_dir, margins=margins, progress=progress, executor=executor)
 
-    def write_report(self, result, folder, *, pdf, html, pdf_worker):
-        data = result.as_json()
-        write_results_json(data, folder / "results.json")
-        write_results_csv(data, folder / "results.csv")
-        if pdf or html:
-            write_planar_report(result, folder, pdf=pdf, html=html, pdf_worker=pdf_worker)
+    def report(self, result):
+        return ReportParts(html=lambda: render_html(result))

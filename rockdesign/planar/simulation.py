@@ -167,20 +167,29 @@ class SimulationRequest:
     t_end: float                  # [s]
 
 
-def simulation_request(project: Project, motion: str, *, model: str = "auto", t_end: float | None = None,
+def simulation_request(project: Project, motion, *, model: str = "auto", t_end: float | None = None,
                        rtol: float | None = None, records_dir: str | None = None) -> SimulationRequest:
-    """Parse a CONTRACT §2 motion string and validate everything :func:`run_simulation` needs, without
-    analysing (or compiling) anything."""
+    """Parse a CONTRACT §2 motion string (or take a :class:`~rockdesign.motions.motion.GroundMotion`) and
+    validate everything :func:`run_simulation` needs, without analysing (or compiling) anything."""
     system = project.system
-    if records_dir is None and project.excitation is not None and project.excitation.records_dir is not None:
-        records_dir = str(project.excitation.records_dir)
-    spec = parse_motion(motion, system_scales(system), records_dir=records_dir)
+    if isinstance(motion, GroundMotion):
+        if records_dir is not None:
+            raise RockdesignError("records_dir applies to a motion string", key="records_dir", expected="None",
+                                  found=repr(str(records_dir)))
+        spec, text = MotionSpec(motion, text=motion.name), motion.name
+    elif isinstance(motion, str):
+        if records_dir is None and project.excitation is not None and project.excitation.records_dir is not None:
+            records_dir = str(project.excitation.records_dir)
+        spec, text = parse_motion(motion, system_scales(system), records_dir=records_dir), motion
+    else:
+        raise RockdesignError("unknown motion", key="motion", expected="a motion string or a GroundMotion",
+                              found=type(motion).__name__)
     eq, structure = model_for_project(project, model)
     a = project.analysis
     structure, t_end = check_request(system, spec.motion, model=eq, structure=structure,
                                      t_end=t_end if t_end is not None else spec.motion.duration + a.free_vibration,
                                      overturn=a.overturn, rigid_ratio=a.rigid_superstructure_ratio)
-    return SimulationRequest(project, motion, spec, eq, structure, rtol or a.rtol, t_end)
+    return SimulationRequest(project, text, spec, eq, structure, rtol or a.rtol, t_end)
 
 
 def run_simulation(request: SimulationRequest) -> SimulationResult:
@@ -197,21 +206,6 @@ def run_simulation(request: SimulationRequest) -> SimulationResult:
     record = {"pga": float(m.pga), "scale": float(m.meta.get("scale", 1.0))} if m.is_record else None
     return SimulationResult(project, request.motion_text, response, params,
                             tuple(plausibility_warnings(m, project.system.g)), record)
-
-
-def simulate_motion(project: Project, motion: GroundMotion, *, model: str = "auto", t_end: float | None = None,
-                    rtol: float | None = None) -> SimulationResult:
-    """One analysis of a project under a :class:`~rockdesign.motions.motion.GroundMotion` object."""
-    if not isinstance(motion, GroundMotion):
-        raise RockdesignError("unknown motion", key="motion", expected="a motion string or a GroundMotion",
-                              found=type(motion).__name__)
-    eq, structure = model_for_project(project, model)
-    a = project.analysis
-    response = simulate(project.system, motion, model=eq, structure=structure, rtol=rtol or a.rtol,
-                        atol=a.atol, t_end=t_end if t_end is not None else motion.duration + a.free_vibration,
-                        overturn=a.overturn, rest_velocity=a.rest_velocity,
-                        rigid_ratio=a.rigid_superstructure_ratio)
-    return SimulationResult(project, motion.name, response)
 
 
 def system_scales(system) -> SystemScales:

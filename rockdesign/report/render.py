@@ -1,9 +1,9 @@
-"""The calculation report of ``rockdesign check``: jinja2 template → HTML (figures inline as SVG) →
-PDF: pages by WeasyPrint, figures stamped in (:mod:`rockdesign.report.stamped_pdf`) (CONTRACT §4:
-``report.html``, ``report.pdf``).
+"""Rendering shared by every report (the kinds' calculation reports, the design chart's, the validation's):
+jinja2 → HTML (figures inline as SVG) → PDF: pages by WeasyPrint, figures stamped in
+(:mod:`rockdesign.report.stamped_pdf`) (CONTRACT §4: ``report.html``, ``report.pdf``).
 
-    write_report(result, out_dir, pdf=True, html=True) -> {"html": Path, "pdf": Path}
-    render_html(result) -> str
+    environment(), stylesheet()       the jinja2 environment (filters fmt, number, sym, svgimg, cite) and CSS
+    html_to_pdf(html, path)           the PDF of an HTML document
 
 The template is ``templates/report.html.j2`` with ``report.css`` (folder
 :func:`rockdesign.paths.templates_dir`).  Numbers are printed by the ``fmt`` filter
@@ -114,30 +114,6 @@ def html_to_pdf(html_text: str, path: Path, base_url: str | None = None) -> Path
     return stamped(html_text, Path(path), base_url)
 
 
-def write_report(result, out_dir, *, render, pdf: bool = True, html: bool = True,
-                 pdf_worker=None) -> dict[str, Path]:
-    """Write ``report.html`` and/or ``report.pdf`` of a result into ``out_dir``; ``render(result) -> str`` is
-    the kind's (or command's) HTML.
-
-    ``pdf_worker``: a started :class:`~rockdesign.report.pdf_worker.PdfWorker` lays out the PDF (this
-    process does if it fails); the file is the same.
-
-    Returns:
-        {"html": path, "pdf": path} for the files written.
-    """
-    out_dir = Path(out_dir)
-    out_dir.mkdir(parents=True, exist_ok=True)
-    if not (pdf or html):
-        return {}
-    text = render(result)
-    written: dict[str, Path] = {}
-    if html:
-        written["html"] = write_html(text, out_dir)
-    if pdf:
-        written["pdf"] = _pdf(text, out_dir / "report.pdf", pdf_worker)
-    return written
-
-
 def write_html(text: str, out_dir: Path) -> Path:
     """``report.html`` in ``out_dir``."""
     path = out_dir / "report.html"
@@ -145,12 +121,3 @@ def write_html(text: str, out_dir: Path) -> Path:
     return path
 
 
-def _pdf(text: str, path: Path, pdf_worker) -> Path:
-    if pdf_worker is None:
-        return html_to_pdf(text, path)
-    from .stamped_pdf import drawn_by_weasyprint, figure_pdfs_or_none, slot_html, stamp
-    slotted, svgs = slot_html(text)
-    job = pdf_worker.begin_layout(slotted, path)
-    figures = figure_pdfs_or_none(svgs)
-    slots = job.result()        # (the worker writes the file: wait for it either way)
-    return stamp(path, slots, figures) if figures is not None else drawn_by_weasyprint(text, path)

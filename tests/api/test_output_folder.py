@@ -123,7 +123,7 @@ def test_interrupt_while_writing_leaves_the_old_folder(small_check, tmp_path, mo
 
     def interrupted(*args, **kwargs):
         raise KeyboardInterrupt
-    monkeypatch.setattr("rockdesign.planar.kind.write_planar_report", interrupted)
+    monkeypatch.setattr("rockdesign.library.write_document", interrupted)
     with pytest.raises(KeyboardInterrupt):
         rd.write_report(small_check, target, pdf=True, html=True)   # results.json already staged, then Ctrl-C
     assert {p.name: p.read_bytes() for p in target.iterdir()} == before

@@ -151,7 +151,6 @@ SHARED_EXCEPTIONS: dict[str, tuple[str, ...]] = {
     "rockdesign.kinds": KIND_PACKAGES,                       # the registry names the built-in kinds
     "rockdesign.bench": KIND_PACKAGES,                       # measures the kinds' engines
     "rockdesign.experiments": ("rockdesign.planar",),        # calibrates and validates planar specimens
-    "rockdesign.design_space.grid": ("rockdesign.planar.dynamics.batch_pool",),
 }
 """Modules outside the kinds' packages allowed to import from a kind's package, and what."""
 KIND_USES: dict[str, tuple[str, ...]] = {
@@ -184,3 +183,17 @@ def test_no_shared_module_imports_a_kind():
     bad = kind_imports()
     assert not bad, ("a module outside a kind's package imports it (move the code into the kind, or give "
                      "StructureKind a hook):\n" + "\n".join(bad))
+
+
+def test_the_kinds_contract_is_small_and_has_no_speed_machinery():
+    """A kind writes at most 8 methods (the rest have defaults in StructureKind), and no method of the contract
+    takes a PDF, worker or thread parameter: how the report becomes a PDF and how analyses are spread over
+    cores are the shared layers' business (issue: speed behind one seam)."""
+    import inspect
+
+    from rockdesign.kinds.base import StructureKind
+    abstract = sorted(StructureKind.__abstractmethods__)
+    assert len(abstract) <= 8, abstract
+    for name, member in inspect.getmembers(StructureKind, inspect.isfunction):
+        params = set(inspect.signature(member).parameters)
+        assert not {p for p in params if "pdf" in p or "worker" in p or "thread" in p}, (name, params)

@@ -18,6 +18,7 @@ from rockdesign.acceptance.rule import (AcceptanceRule, acceptance_rule, first_o
                                           require_suite_size)
 from rockdesign.acceptance.collapse_margin import collapse_margin
 from rockdesign.acceptance.criteria import CheckContext, decide, evaluate_criteria
+from rockdesign.planar.checks.criteria import criteria_for
 from rockdesign.acceptance.fragility import check_fragility
 from rockdesign.acceptance.scans import Margin
 from rockdesign.cli import app
@@ -119,7 +120,7 @@ def test_collapse_margin_from_first_overturning_intensities_against_scipy(catego
     assert cm["ACMR"] == pytest.approx(acmr, rel=1e-4) and cm["ACMR_target"] == pytest.approx(need, rel=1e-12)
     assert cm["p_collapse_design"] == pytest.approx(stats.norm.cdf(-math.log(acmr) / 0.525), rel=1e-3)
     ctx = CheckContext(outcomes, a, {}, {}, True, {"collapse_margin": cm})
-    items, skipped = evaluate_criteria(ctx)
+    items, skipped = evaluate_criteria(ctx, criteria_for(ctx.rule))
     v = decide(items, skipped, ctx.rule)
     # independent count: r4 overturns at the design level (ground motion g4) → 1 unacceptable
     allowed = {"I": 1, "II": 1, "III": 0, "IV": 0}[category]

@@ -12,7 +12,8 @@ import pytest
 from scipy.stats import binomtest, norm
 
 from rockdesign.acceptance.rule import AcceptanceRule, minimum_records, probability_bound
-from rockdesign.acceptance.criteria import (CRITERIA, GOVERNS, NOT_DECIDED, ROBUSTNESS, CheckContext, Criterion,
+from rockdesign.planar.checks.criteria import CRITERIA, criteria_for
+from rockdesign.acceptance.criteria import (GOVERNS, NOT_DECIDED, ROBUSTNESS, CheckContext, Criterion,
                                         decide, evaluate_criteria)
 from rockdesign.acceptance.scans import Margin
 from rockdesign.planar.checks.runner import analysis_failed
@@ -52,7 +53,7 @@ def suite(n=44, **kw):
 def run(outcomes, sens=None, margins=True, q=None, cm=2.5, rule=None, analysis=A):
     extra = {"collapse_margin": collapse(cm) if isinstance(cm, (int, float)) else cm}
     ctx = CheckContext(outcomes, analysis, q or {}, sens or sensitivity(len(outcomes)), margins, extra, rule)
-    items, skipped = evaluate_criteria(ctx)
+    items, skipped = evaluate_criteria(ctx, criteria_for(ctx.rule))
     return items, decide(items, skipped, ctx.rule)
 
 
@@ -197,7 +198,7 @@ def test_ensemble_members_are_further_draws_of_the_count_rule():
     rows[2, [0, 1]] = True                   # member 3: both components of gm0 → 1
     ens = {"overturned": rows, "restitution": np.array([1.0, 1.01, 0.99]), "robust": np.ones(24, bool)}
     ctx = CheckContext(outcomes, A, {}, sensitivity(24), True, {"collapse_margin": collapse(2.5), "ensemble": ens})
-    items, _ = evaluate_criteria(ctx)
+    items, _ = evaluate_criteria(ctx, criteria_for(ctx.rule))
     item = next(i for i in items if i.key == "ensemble_robustness")
     assert [h for _, h in item.perturbations] == [True, False, True]
     assert "unacceptable ground motions per run 0, 2, 1 of 12" in item.detail

@@ -141,7 +141,7 @@ def test_variants_checked_together_equal_variants_checked_one_after_the_other(sm
     shared = grid.grid.shared_batches
     assert shared["variants"] == 2 and shared["driver_calls"] < shared["batches"]
     assert shared["analyses"] == grid.grid.analyses_run
-    monkeypatch.setattr(Planar, "grid_shared_batches", False)
+    monkeypatch.setattr(Planar, "grid_batches", lambda self: None)
     folder, path = small
     alone = design(path, VARY, store=tmp_path / "variants")
     assert alone.grid.shared_batches is None

@@ -16,7 +16,6 @@ import pytest
 
 from rockdesign.report import render, stamped_pdf
 
-from rockdesign.planar.report import report as planar_report
 
 DPI = 96
 
@@ -95,16 +94,6 @@ def test_a_figure_without_its_box_is_refused(tmp_path):
         stamped_pdf.stamp(tmp_path / "pages.pdf", slots, stamped_pdf.figure_pdfs(svgs[:2]))
 
 
-def test_the_check_report_announces_each_figure_size_before_drawing_it(curved_out):
-    """The check's report lays out its pages while its figures are drawn: that needs each figure's box
-    before the drawing, and a box that differs from the drawing would lay out the pages again."""
-    made = planar_report.make_figures(curved_out.result)
-    boxes = planar_report.figure_boxes(made)
-    drawn = planar_report.draw_figures(made)
-    assert list(boxes) == list(drawn) and len(drawn) >= 8
-    assert [stamped_pdf.view_box(b) for b in boxes.values()] == [stamped_pdf.view_box(s) for s in drawn.values()]
-
-
 def test_every_figure_of_the_check_report_is_stamped(curved_out):
     """Each figure of report.html is painted once in report.pdf, each by a Form XObject of its own."""
     import re
@@ -136,17 +125,12 @@ def test_a_figure_typst_refuses_is_drawn_by_weasyprint(tmp_path, monkeypatch):
     assert len(ours) == 3
 
 
-@pytest.mark.parametrize("failure", ["size", "typst"])
-def test_the_check_report_survives_a_figure_it_cannot_stamp(curved_out, tmp_path, monkeypatch, failure):
-    """A figure drawn at another size than announced, or one typst refuses: the check's report is laid out
-    again, whole, with every figure in it (slower, same content)."""
-    if failure == "size":
-        boxes = planar_report.figure_boxes
-        monkeypatch.setattr(planar_report, "figure_boxes", lambda made: {
-            name: stamped_pdf.empty_svg("0 0 100 100") if name == "pushover" else svg
-            for name, svg in boxes(made).items()})
-    else:
-        monkeypatch.setattr(stamped_pdf, "figure_pdfs", lambda svgs: (_ for _ in ()).throw(RuntimeError("typst")))
-    written = planar_report.write_planar_report(curved_out.result, tmp_path, html=False)
+def test_the_check_report_survives_a_figure_it_cannot_stamp(curved_out, tmp_path, monkeypatch):
+    """A figure typst refuses: the check's report is laid out again, whole, with every figure in it (slower,
+    same content)."""
+    from rockdesign.kinds import kind_of
+    from rockdesign.report.document import write_document
+    monkeypatch.setattr(stamped_pdf, "figure_pdfs", lambda svgs: (_ for _ in ()).throw(RuntimeError("typst")))
+    written = write_document(kind_of(curved_out.result).report(curved_out.result), tmp_path, html=False)
     text = "".join(page.extract_text() for page in pypdf.PdfReader(str(written["pdf"])).pages)
     assert "Pushover curve" in text and "θ [rad]" in text      # the section and its figure's axis label

@@ -32,6 +32,7 @@ from ..project import Project
 from ...motions.grouping import earthquake_id, ground_motion_id
 from ...acceptance.rule import acceptance_rule, acceptance_summary, minimum_records, require_suite_size
 from ...acceptance.criteria import CheckContext, decide, evaluate_criteria
+from .criteria import criteria_for
 from .runner import analysis_failed
 from ...acceptance.collapse_margin import collapse_margin
 from .ensemble import ensemble_summary, record_fields, run_ensembles
@@ -356,7 +357,8 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     fragility = check_fragility(valid, a, empirical=(stats["n_overturned"], len(valid)), stripe_ratio=SCAN_RATIO)
     margin_fema = collapse_margin(fragility, dict(a.quality), acc_rule.target)
     extra = {"ensemble": ens, "collapse_margin": margin_fema}
-    items, skipped = evaluate_criteria(CheckContext(outcomes, a, q, sensitivity, margins_run, extra, acc_rule))
+    items, skipped = evaluate_criteria(CheckContext(outcomes, a, q, sensitivity, margins_run, extra, acc_rule),
+                                       criteria_for(acc_rule))
     decision = decide(items, skipped, acc_rule)
     acceptance = acceptance_summary(acc_rule, items, decision, valid, margin_fema)
     checks = [i.as_json() for i in items]

@@ -9,12 +9,13 @@ import numpy as np
 
 from ..design.geometry import displacement_capacity, slenderness_angle
 from ..dynamics.batch import batch_options, run_batch
-from ..dynamics.batch_pool import current_pool
+from ..dynamics.shared_batches import BatchRequest
 from ..dynamics.layout import (COMPLETED_STATUSES, D_STATUS, STATUS_NAMES, S_CAP_ACC_MAX, S_CAP_DV_MAX, S_DRIFT_MAX, S_FS_MAX, S_IMPACTS,
                                 S_THETA_MAX, S_T_END, S_T_UPLIFT, S_UB_MAX, S_UPLIFT_TIME)
 from ..dynamics.model import ModelChoice, system_parameters
 from ..dynamics.eom import P_CR, P_THETA_C, P_TWO_DOF
 from ..dynamics.overturning import classify
+from ...execution.batch_pool import PoolMember
 from ...execution.counting import AnalysisCount  # noqa: F401 (re-exported)
 from ...execution.executor import usable_cores
 from ..system import RockingSystem
@@ -104,6 +105,10 @@ def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rto
     capacity = displacement_capacity(system.column)
     n = len(motions)
     AnalysisCount.add(n)
+    member = executor if isinstance(executor, PoolMember) else None   # the design grid's shared batches
+    if member is not None:
+        member.analyses += n
+        executor = None
     t_ends = [m.duration + free_vibration for m in motions]
     out: list[RunSummary] = []
     step = chunk or max(4 * usable_cores(), 8)
@@ -121,15 +126,14 @@ def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rto
         return [interpret(summaries[j], diags[j, D_STATUS], theta_c, alpha, capacity, criterion, two_dof)
                 for j in range(n)]
     threads = numba.get_num_threads()     # the batch driver's threads
-    pool = current_pool()
     predicted = list(t_ends if costs is None else costs)
     for start in range(0, n, step):
         sl = slice(start, min(n, start + step))
         ms, fs, ts = list(motions[sl]), list(scales[sl]), t_ends[sl]
         order = balanced_order(list(predicted[sl]), threads)
         jobs = ([ms[k] for k in order], [fs[k] for k in order], [ts[k] for k in order])
-        if pool is not None:      # the design grid: run with the other variants' waiting batches
-            summaries, diags = pool.run(sp, *jobs, opts, costs=[predicted[sl][k] for k in order])
+        if member is not None:    # the design grid: run with the other variants' waiting batches
+            summaries, diags = member.run(BatchRequest(sp, *jobs, opts, [predicted[sl][k] for k in order]))
         else:
             summaries, diags = run_batch(sp, *jobs, opts)
         rows = [None] * len(order)

@@ -2,7 +2,7 @@
 out dynamically), or one after the other in the calling thread when a batch is too small to pay for threads.
 
 A batch is a list of jobs, each with its system (a row of ``sps``, usually one row shared by every job;
-several when the design grid runs the analyses of many variants together, :mod:`.batch_pool`) and its
+several when the design grid runs the analyses of many variants together, :mod:`.shared_batches`) and its
 excitation: an excitation kind, a parameter row (pulse amplitude/period, or record scale/dt) and a
 slice of one concatenated sample array.  Only the summaries (θ_max, impacts, overturning...) are kept —
 what spectra, suites and margins need.  Results are identical to one-by-one :func:`integrate` calls,

@@ -2,19 +2,17 @@
 ``report.html.j2`` template, and the PDF (:mod:`rockdesign.report.render`)."""
 from __future__ import annotations
 
-from pathlib import Path
-
 import jinja2
 
 from ...paths import templates_dir
 from ...report.formatting import DIGITS
 from ...report import stamped_pdf
-from ...report.render import TEMPLATE, environment, stylesheet, write_html, write_report
+from ...report.render import TEMPLATE, environment, stylesheet
 from ...report.svg import ink_box, svg, view_box_of
 from . import figures
 from .demand_figures import demand_figure, demand_history_figure
 from .drawing import structure_drawing
-from .verification import engine_accuracy_statement, normalise
+from .verification import normalise
 from .context import build_context, given_value
 
 
@@ -69,15 +67,12 @@ def render_figures(result) -> dict[str, str]:
 
 
 def verification_statement(result) -> dict:
-    """The engine's error on a closed-form case at the check's tolerance (see :mod:`.verification`):
-    taken from results.json when the check recorded it (``settings.engine_accuracy`` or
-    ``verification``), else measured now."""
+    """The engine's error on a closed-form case at the check's tolerance (:mod:`.verification`), as the check
+    recorded it (results.json ``settings.engine_accuracy`` or ``verification``); {} when it recorded none
+    (the report then has no verification paragraph: it runs no analysis)."""
     data = result.as_json()
     recorded = data.get("settings", {}).get("engine_accuracy") or data.get("verification")
-    if isinstance(recorded, dict) and recorded:
-        return normalise(recorded)
-    s = result.settings
-    return engine_accuracy_statement(float(s.get("rtol", 1e-10)), float(s.get("atol", 1e-12)))
+    return normalise(recorded) if isinstance(recorded, dict) and recorded else {}
 
 
 def render_html(result, *, figures: dict | None = None, date: str | None = None) -> str:
@@ -100,36 +95,3 @@ def html_renderer(result, *, date: str | None = None):
     return render
 
 
-def _planar_report(result, out_dir: Path, *, html: bool, pdf_worker) -> dict[str, Path]:
-    """The check's report with its two halves at once: the pages are laid out with an empty box per
-    figure (each figure's size is known before it is drawn), by the worker when there is one, while
-    this process draws the figures; then the figures are stamped into their boxes."""
-    made = make_figures(result)
-    render = html_renderer(result)
-    slotted, boxes = stamped_pdf.slot_html(render(figure_boxes(made)))
-    path = out_dir / "report.pdf"
-    job = pdf_worker.begin_layout(slotted, path) if pdf_worker is not None else None
-    text = render(draw_figures(made))
-    written = {"html": write_html(text, out_dir)} if html else {}
-    _, svgs = stamped_pdf.slot_html(text)
-    same_boxes = [stamped_pdf.view_box(b) for b in boxes] == [stamped_pdf.view_box(s) for s in svgs]
-    figures = stamped_pdf.figure_pdfs_or_none(svgs) if same_boxes else None
-    if figures is None:
-        # a figure drawn at another size than it announced, or one typst refused: the PDF again, whole
-        if job is not None:
-            job.result()        # (the worker writes the same file: wait for it)
-        written["pdf"] = stamped_pdf.html_to_pdf(text, path)
-        return written
-    slots = job.result() if job is not None else stamped_pdf.layout_pdf(slotted, path)
-    written["pdf"] = stamped_pdf.stamp(path, slots, figures)
-    return written
-
-
-def write_planar_report(result, out_dir, *, pdf: bool = True, html: bool = True, pdf_worker=None) -> dict[str, Path]:
-    """``report.html`` and/or ``report.pdf`` of a planar check into ``out_dir``: with a PDF, its pages are laid
-    out (by ``pdf_worker`` when given) while its figures are drawn (:func:`_planar_report`)."""
-    out_dir = Path(out_dir)
-    if pdf:
-        out_dir.mkdir(parents=True, exist_ok=True)
-        return _planar_report(result, out_dir, html=html, pdf_worker=pdf_worker)
-    return write_report(result, out_dir, render=render_html, pdf=False, html=html)

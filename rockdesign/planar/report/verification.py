@@ -1,15 +1,15 @@
 """The verification statement of the calculation report: the engine's error on a closed-form case.
 
 The linearized SDOF equations have an exact event-driven solution (SPEC §3.8,
-:mod:`rockdesign.planar.dynamics.linear_exact`).  The report runs the engine's integrator (the one that also
-integrates the exact equations) on such a case at the tolerance of the check and states its error
+:mod:`rockdesign.planar.dynamics.linear_exact`).  The check runs the engine's integrator (the one that also
+integrates the exact equations) on such a case at its own tolerance, and the report states its error
 against the closed form: the largest |Δθ| over the history and the largest difference of the impact
-times, measured by ``rockdesign.planar.dynamics.accuracy.engine_accuracy`` (one implementation for the
-benchmark and the report).
+times, measured by ``rockdesign.planar.dynamics.accuracy.engine_accuracy`` when the check runs (one
+implementation for the benchmark and the check; results.json ``settings.engine_accuracy``).  The report
+only words what the check recorded: it runs no analysis.
 """
 from __future__ import annotations
 
-import functools
 import math
 
 
@@ -43,13 +43,3 @@ def normalise(statement: dict) -> dict:
             alpha = statement["theta_max_rad"] / statement["theta_max_over_alpha"]
         out["theta_error_over_alpha"] = out["theta_error"] / alpha
     return out
-
-
-@functools.lru_cache(maxsize=8)
-def engine_accuracy_statement(rtol: float, atol: float = 1e-12) -> dict:
-    """The verification statement at the check's tolerance, in the report's keys."""
-    from ..dynamics.accuracy import engine_accuracy
-    out = dict(engine_accuracy(rtol, atol))
-    out.setdefault("rtol", float(rtol))
-    out.setdefault("source", "rockdesign.planar.dynamics.accuracy.engine_accuracy")
-    return normalise(out)

@@ -1,5 +1,6 @@
-"""Shared batches of the design grid (rockdesign.planar.dynamics.batch_pool): the batches of member threads run
-together, and every thread gets exactly what its batch gives alone."""
+"""Shared batches of the design grid (rockdesign.execution.batch_pool served by the planar kind's
+rockdesign.planar.dynamics.shared_batches): the batches of member threads run together, and every thread gets
+exactly what its batch gives alone.  A member is passed down as an executor; nothing is kept per thread."""
 from __future__ import annotations
 
 import threading
@@ -10,7 +11,8 @@ import pytest
 
 from support import G, reference_podium, table34_column
 from rockdesign.planar.dynamics.batch import batch_options, run_batch
-from rockdesign.planar.dynamics.batch_pool import BatchPool, PoolCancelled, current_pool
+from rockdesign.execution.batch_pool import BatchPool, PoolCancelled, PoolMember
+from rockdesign.planar.dynamics.shared_batches import BatchRequest, SharedBatches
 from rockdesign.planar.dynamics.model import ModelChoice, system_parameters
 from rockdesign.motions.motion import pulse_motion
 
@@ -22,15 +24,15 @@ def _systems():
 
 
 def _members(pool, work, threads=None):
-    """Run ``work[k]()`` as members in ``threads`` threads (default one each; the next starts when one
+    """Run ``work[k](member)`` as members in ``threads`` threads (default one each; the next starts when one
     ends) while this thread serves the pool; returns their results (re-raises the first error)."""
     results, errors = [None] * len(work), []
 
     def body(k):
         try:
-            with pool.member():
-                assert current_pool() is pool
-                results[k] = work[k]()
+            with pool.member() as member:
+                assert isinstance(member, PoolMember) and member.pool is pool
+                results[k] = work[k](member)
         except BaseException as exc:      # noqa: BLE001 — re-raised in the test's thread
             errors.append(exc)
     queue = list(range(len(work)))
@@ -66,20 +68,21 @@ def test_members_batches_run_together_and_each_gets_its_own_result():
     plans = [[(0, [0, 1], loose), (0, [2, 3], loose), (0, [1], tight)],
              [(1, [3, 2, 1, 0], loose)],
              [(2, [0], loose), (2, [1, 2], tight)]]
-    pool = BatchPool(len(plans))
+    shared, shared_queued = SharedBatches(), SharedBatches()
+    pool = BatchPool(len(plans), shared)
 
     def variant(plan):
-        def work():
+        def work(member):
             out = []
             for k, (system, picks, opts) in enumerate(plan):
                 time.sleep(0.01 * k)
-                out.append(current_pool().run(sps[system], [motions[i] for i in picks], [1.0] * len(picks),
-                                              [5.0] * len(picks), opts))
+                out.append(member.run(BatchRequest(sps[system], [motions[i] for i in picks], [1.0] * len(picks),
+                                                   [5.0] * len(picks), opts, [5.0] * len(picks))))
             return out
         return work
 
     got = _members(pool, [variant(p) for p in plans])
-    queued = BatchPool(len(plans))          # two threads for three members: the third waits for a thread
+    queued = BatchPool(len(plans), shared_queued)   # two threads for three members: the third waits for a thread
     got_queued = _members(queued, [variant(p) for p in plans], threads=2)
     for results_of in (got, got_queued):
         for plan, results in zip(plans, results_of):
@@ -88,33 +91,34 @@ def test_members_batches_run_together_and_each_gets_its_own_result():
                                              [5.0] * len(picks), opts, threads=False)
                 np.testing.assert_array_equal(s, s_alone)
                 np.testing.assert_array_equal(d, d_alone)
-    assert queued.requests == 6 and queued.jobs == 12
-    assert pool.requests == 6 and pool.jobs == 12
-    assert pool.calls < pool.requests            # batches of different variants shared calls
+    assert queued.requests == 6 and shared_queued.jobs == 12
+    assert pool.requests == 6 and shared.jobs == 12
+    assert shared.calls < pool.requests          # batches of different variants shared calls
 
 
-def test_a_lone_member_runs_at_once_and_outside_a_pool_nothing_changes():
-    assert current_pool() is None
+def test_a_lone_member_runs_at_once():
     sp = _systems()[0]
     motion = pulse_motion("ricker-anti", 0.38 * G, 0.95)
-    pool = BatchPool(1)
-    (s, _), = _members(pool, [lambda: pool.run(sp, [motion], [1.0], [5.0], batch_options())])
-    assert pool.calls == 1 and current_pool() is None
+    shared = SharedBatches()
+    pool = BatchPool(1, shared)
+    (s, _), = _members(pool, [lambda m: m.run(BatchRequest(sp, [motion], [1.0], [5.0], batch_options(), [5.0]))])
+    assert shared.calls == 1 and pool.rounds == 1
     np.testing.assert_array_equal(s, run_batch(sp, [motion], [1.0], [5.0], batch_options())[0])
 
 
 def test_cancel_wakes_a_waiting_member():
-    pool = BatchPool(2)
+    shared = SharedBatches()
+    pool = BatchPool(2, shared)
     sp = _systems()[0]
     motion = pulse_motion("ricker-anti", 0.38 * G, 0.95)
     busy = threading.Event()
     release = threading.Event()
 
-    def waiting():
+    def waiting(member):
         busy.wait(timeout=60)           # the other member is in: this batch waits for it
-        return pool.run(sp, [motion], [1.0], [5.0], batch_options())
+        return member.run(BatchRequest(sp, [motion], [1.0], [5.0], batch_options(), [5.0]))
 
-    def other():        # a member that never asks for a batch keeps the first one waiting
+    def other(member):        # a member that never asks for a batch keeps the first one waiting
         busy.set()
         release.wait(timeout=60)
 
@@ -126,4 +130,4 @@ def test_cancel_wakes_a_waiting_member():
     threading.Thread(target=cancel_later).start()
     with pytest.raises(PoolCancelled):
         _members(pool, [other, waiting])
-    assert pool.calls == 0
+    assert shared.calls == 0

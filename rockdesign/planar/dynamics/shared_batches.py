@@ -1,0 +1,68 @@
+"""The planar kind's shared batches: a round of batch requests of many design variants run as one call of the
+batch driver (:func:`~.batch.run_batch` with ``systems``), longest predicted job first; each request gets its
+own rows back (:class:`rockdesign.execution.batch_pool.BatchPool` serves the rounds).  Requests with other
+integrator options (``opts``) run as separate calls of the same round."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .batch import run_batch
+
+
+@dataclass
+class BatchRequest:
+    """One check's batch: a system's parameter row ``sp``, its jobs (motion, scale, end time [s]), the
+    integrator options and the predicted cost of each job (the longest runs first)."""
+
+    sp: np.ndarray
+    motions: list
+    scales: list
+    t_ends: list
+    opts: np.ndarray
+    costs: list
+
+
+class SharedBatches:
+    """``execute(requests) -> [(summaries, diagnostics), …]`` for a :class:`~rockdesign.execution.batch_pool.BatchPool`;
+    ``calls`` and ``jobs`` count the batch-driver calls and the jobs they ran."""
+
+    def __init__(self):
+        self.calls = 0
+        self.jobs = 0
+
+    def __call__(self, requests: list[BatchRequest]) -> list[tuple[np.ndarray, np.ndarray]]:
+        groups: dict[bytes, list[int]] = {}
+        for k, req in enumerate(requests):
+            groups.setdefault(np.asarray(req.opts, dtype=np.float64).tobytes(), []).append(k)
+        results: list = [None] * len(requests)
+        for indices in groups.values():
+            for k, result in zip(indices, self._group([requests[k] for k in indices])):
+                results[k] = result
+        return results
+
+    def _group(self, reqs: list[BatchRequest]) -> list[tuple[np.ndarray, np.ndarray]]:
+        rows: dict[bytes, int] = {}
+        table = []
+        jobs = []                                   # (request index, job index, system row)
+        for i, req in enumerate(reqs):
+            key = np.ascontiguousarray(req.sp, dtype=np.float64).tobytes()
+            if key not in rows:
+                rows[key] = len(table)
+                table.append(np.ascontiguousarray(req.sp, dtype=np.float64))
+            jobs.extend((i, j, rows[key]) for j in range(len(req.motions)))
+        order = sorted(range(len(jobs)), key=lambda k: (-reqs[jobs[k][0]].costs[jobs[k][1]], k))
+        ordered = [jobs[k] for k in order]
+        summaries, diags = run_batch(np.vstack(table), [reqs[i].motions[j] for i, j, _ in ordered],
+                                     [reqs[i].scales[j] for i, j, _ in ordered],
+                                     [float(reqs[i].t_ends[j]) for i, j, _ in ordered], reqs[0].opts,
+                                     systems=[s for _, _, s in ordered])
+        out = [(np.empty((len(r.motions), summaries.shape[1])), np.empty((len(r.motions), diags.shape[1]),
+                                                                         dtype=diags.dtype)) for r in reqs]
+        for row, (i, j, _) in enumerate(ordered):
+            out[i][0][j] = summaries[row]
+            out[i][1][j] = diags[row]
+        self.calls += 1
+        self.jobs += len(jobs)
+        return out
