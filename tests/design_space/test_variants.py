@@ -45,7 +45,7 @@ def test_integer_key_takes_whole_numbers(curved):
 def test_bad_vary_is_an_input_error_naming_the_option(curved, spec, message):
     with pytest.raises(RockdesignError, match=message) as info:
         parse_vary(spec, curved)
-    assert "--vary" in str(info.value)
+    assert "key 'vary'" in str(info.value)            # the library's parameter (the CLI says --vary)
 
 
 def test_wrong_unit_for_the_key_is_an_input_error_not_an_invalid_cell(curved):
