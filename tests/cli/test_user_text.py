@@ -83,3 +83,17 @@ def test_mostly_missing_suite_is_named_and_refused(tmp_path):
     flat = " ".join(r.output.split())
     assert "thesis-table-4.1: 2 ground motion(s) from 4 record(s); 9 record(s) not found" in flat
     assert "at least 11 independent ground motions" in flat and not (out / "results.json").exists()
+
+
+def test_templates_state_the_documented_defaults():
+    """`init podium` wrote `rtol = 1e-10 # (default 1e-10)` while the documented default is 1e-8."""
+    import re
+
+    import rockdesign as rd
+    from rockdesign.templates import KINDS, template_text
+    default = rd.parse_project('[project]\nname = "x"\n[column]\nheight = "3 m"\nwidth = "0.5 m"\nmass = "1 t"\n'
+                               'mass_distribution = 0.333\n', name="x").analysis.rtol
+    for kind in KINDS:
+        stated = [float(m.group(1)) for line in template_text(kind).splitlines() if line.startswith("rtol")
+                  for m in [re.search(r"\(default ([0-9.e+-]+)[;:)]", line)] if m]
+        assert stated == [default], (kind, stated)
