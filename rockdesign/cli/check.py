@@ -23,9 +23,7 @@ def register(app: typer.Typer, handle_errors) -> None:
               records_dir: Optional[Path] = typer.Option(None, "--records-dir", help="Folder of PEER AT2 files."),
               dask: Optional[str] = typer.Option(None, "--dask", help="Run the analyses on dask.distributed: "
                                                  "'local:N' (a local cluster of N workers) or a scheduler address.")):
-        """Polyakov design check over record suites, with a PDF calculation report (exit 0 = PASS,
-        1 = FAIL, 2 = input error or failed analyses, 4 = not decided: a governing criterion was not
-        evaluated, e.g. --no-margins; 130 = interrupted)."""
+        """Polyakov design check over record suites, with a PDF calculation report (exit 0 = PASS, 1 = FAIL, 2 = input error or failed analyses, 3 = internal error, 4 = not decided: a governing criterion was not evaluated, e.g. --no-margins; 130 = interrupted)."""  # noqa: E501
         # a second process loads WeasyPrint on the core this one leaves idle while it starts, and writes
         # the PDF at the end (report.pdf_worker)
         from .. import library as rd      # (lazy: mounting the commands loads no numerical library)

@@ -33,7 +33,7 @@ def register(app: typer.Typer, handle_errors) -> None:
     def design(project: Path = typer.Argument(..., help="Project file (TOML)"),
                vary: List[str] = typer.Option(..., "--vary", metavar="TABLE.KEY=FROM:TO:N", help="A key of the "
                                               "project file and N values from FROM to TO in the key's units, e.g. "
-                                              "podium.width=0.36m:0.60m:7 or superstructure.damping=1%:5%:3 "
+                                              "podium.width=0.36m:0.60m:7 or podium.columns=6:10:3 "
                                               "(once or twice)."),
                out: Optional[Path] = typer.Option(None, "-o", "--out", help="Output folder, written when the run "
                                                   "completes; it keeps the finished variants (variants/) so an "
@@ -44,10 +44,7 @@ def register(app: typer.Typer, handle_errors) -> None:
                records_dir: Optional[Path] = typer.Option(None, "--records-dir", help="Folder of PEER AT2 files."),
                dask: Optional[str] = typer.Option(None, "--dask", help="Run the analyses on dask.distributed: "
                                                   "'local:N' or a scheduler address (tcp://host:8786).")):
-        """Design chart: the check of every variant of one or two keys, the pass/fail region, contours of
-        ACMR and of the superstructure's shear coefficient (a cylinder: of its overturning record pairs),
-        and the recommended design (exit 0 = at least one variant passes, 1 = none does, 2 = input error,
-        3 = internal error, 130 = interrupted)."""
+        """Design chart: the check of every variant of one or two keys, the pass/fail region, contours of ACMR and of the superstructure's shear coefficient (a cylinder: of its overturning record pairs), and the recommended design (exit 0 = at least one variant passes, 1 = none does, 2 = input error, 3 = internal error, 130 = interrupted)."""  # noqa: E501  (one paragraph: the help rewraps it)
         # the heavy modules (numpy, numba, pint, scipy) are imported here, not at module level: the CLI
         # mounts this command at every start-up (tests/cli/test_startup.py)
         with option_names():

@@ -97,3 +97,39 @@ def test_templates_state_the_documented_defaults():
         stated = [float(m.group(1)) for line in template_text(kind).splitlines() if line.startswith("rtol")
                   for m in [re.search(r"\(default ([0-9.e+-]+)[;:)]", line)] if m]
         assert stated == [default], (kind, stated)
+
+
+COMMANDS = [[], ["init"], ["quantities"], ["simulate"], ["check"], ["spectrum"], ["bench"], ["calibrate"],
+            ["validate"], ["ensemble"], ["design"], ["records"], ["records", "list"], ["records", "show"],
+            ["records", "spectrum"], ["records", "synth"], ["records", "scale-model"]]
+
+
+@pytest.mark.parametrize("command", COMMANDS, ids=lambda c: " ".join(c) or "rockdesign")
+def test_help_fits_80_columns_without_cutting_words(command):
+    """`spectrum --help` cut its defaults at 80 columns ("omega_p/p:0.5:12…")."""
+    import os
+    import subprocess
+    import sys
+    env = {**os.environ, "COLUMNS": "80", "TERMINAL_WIDTH": "80"}
+    out = subprocess.run([sys.executable, "-m", "rockdesign.cli", *command, "--help"], capture_output=True,
+                         text=True, env=env, timeout=60)
+    assert out.returncode == 0, out.stderr
+    assert "…" not in out.stdout, [ln for ln in out.stdout.splitlines() if "…" in ln]
+
+
+def test_top_level_and_check_help_name_every_exit_code_and_command():
+    import os
+    import subprocess
+    import sys
+    env = {**os.environ, "COLUMNS": "200"}
+
+    def help_of(*args):
+        return " ".join(subprocess.run([sys.executable, "-m", "rockdesign.cli", *args, "--help"], capture_output=True,
+                                       text=True, env=env, timeout=60).stdout.split())
+    top = help_of()
+    for code in ("0 =", "1 =", "2 = input error", "3 = internal error", "4 = not decided", "130 = interrupted"):
+        assert code in top, code
+    assert "scale-model" in top
+    check = help_of("check")
+    assert "3 = internal error" in check and "4 = not decided" in check
+    assert "scale-model" in help_of("records")
