@@ -133,3 +133,19 @@ def test_top_level_and_check_help_name_every_exit_code_and_command():
     check = help_of("check")
     assert "3 = internal error" in check and "4 = not decided" in check
     assert "scale-model" in help_of("records")
+
+
+def test_one_form_of_units_for_a_reader():
+    """Units were printed m/s^2 beside m/s²: the console and the report write m/s², JSON keeps m/s^2."""
+    from typer.testing import CliRunner
+
+    from rockdesign.cli import app
+    from rockdesign.display import readable_units
+    from rockdesign.paths import REPO_ROOT
+    from rockdesign.report.render import symbols
+    assert readable_units("median PGA 8.785 m/s^2 over 2.5 t/m^3") == "median PGA 8.785 m/s² over 2.5 t/m³"
+    assert symbols("PGA 8.785 m/s^2") == "PGA 8.785 m/s²"
+    res = CliRunner().invoke(app, ["quantities", str(REPO_ROOT / "examples" / "podium_flat.toml")])
+    assert res.exit_code == 0 and "m/s²" in res.stdout and "m/s^2" not in res.stdout
+    res = CliRunner().invoke(app, ["quantities", str(REPO_ROOT / "examples" / "podium_flat.toml"), "--json"])
+    assert '"m/s^2"' in res.stdout

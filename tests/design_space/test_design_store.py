@@ -167,3 +167,34 @@ def test_the_library_call(tmp_path, fake):
     assert again.grid.resumed == 3
     memory = rd.design(p, "podium.width=0.4m:0.6m:3")                # no folder: nothing stored or written
     assert memory.grid.resumed == 0 and memory.verdicts == chart.verdicts
+
+
+def _boxes(box):
+    yield box
+    for child in getattr(box, "children", []) or []:
+        yield from _boxes(child)
+
+
+def test_the_design_reports_variants_table_fits_its_page(tmp_path, fake):
+    """The variants table ran off the page ("anal…"): every box of every page lies within the page."""
+    from weasyprint import HTML
+
+    import rockdesign as rd
+    p = rd.load_project(project(tmp_path / "A"))
+    chart = rd.design(p, ["podium.width=0.4m:0.6m:3", "podium.cap_beam_mass=150t:250t:2"],
+                      out_dir=tmp_path / "out", pdf=False, full_check=False)
+    html = (tmp_path / "out" / "design.html").read_text(encoding="utf-8")
+    assert chart.out_dir == tmp_path / "out" and "analyses</th>" in html
+    doc = HTML(string=html, base_url=str(tmp_path)).render()
+    variants_pages = 0
+    for page in doc.pages:
+        width = page.width
+        for box in _boxes(page._page_box):
+            x, w = getattr(box, "position_x", None), getattr(box, "width", None)
+            if isinstance(x, (int, float)) and isinstance(w, (int, float)) and w > 0:
+                assert x + w <= width + 0.5, (type(box).__name__, x, w, width)
+        if any(getattr(b, "element_tag", None) == "table" and "variants" in (b.element.get("class") or "")
+               for b in _boxes(page._page_box) if getattr(b, "element", None) is not None):
+            variants_pages += 1
+            assert page.width > page.height          # the variants table is on a landscape page
+    assert variants_pages >= 1
