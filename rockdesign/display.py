@@ -159,9 +159,11 @@ def check_order(checks: list[dict], governing: str | None = None) -> list[dict]:
     return ([top] if top is not None else []) + rest
 
 
-def check_summary(data: dict, out_dir, console: Console) -> None:
+def check_summary(data: dict, out_dir, console: Console, hint: str | None = None) -> None:
     """Print the checks, what the run found (failed analyses, missing records), the verdict and its
-    reason, and where the report went (``out_dir``; None: not yet, the caller says it)."""
+    reason, after a FAIL the ``hint`` (:func:`rockdesign.design_space.hint.design_hint`: the parameter that
+    governs and the ``rockdesign design`` command that varies it), and where the report went (``out_dir``;
+    None: not yet, the caller says it)."""
     s = data["summary"]
     table = Table(title=escape(f"{data['project']['name']} — design check"), title_justify="left")
     for col in ("check", RATIO_HEADING, "result"):
@@ -205,5 +207,7 @@ def check_summary(data: dict, out_dir, console: Console) -> None:
         "yellow" if data["verdict"] in ("PASS", "NOT DECIDED") else "red")
     reason = readable_units(data.get('verdict_reason') or data['verdict'])
     console.print(f"verdict: [bold {colour}]{escape(reason)}[/]", highlight=False)
+    if hint:
+        console.print(f"next: {escape(hint)}", highlight=False, soft_wrap=True)
     if out_dir is not None:
         console.print(f"output: {escape(str(out_dir))}", highlight=False)

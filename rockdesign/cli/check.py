@@ -40,6 +40,7 @@ def register(app: typer.Typer, handle_errors) -> None:
 def _check(rd, project, out, as_json, no_pdf, html, no_margins, records_dir, dask, pdf_worker) -> None:
     from rich.markup import escape
 
+    from .. import design_hint
     from ..display import check_summary
     proj = rd.load_project(project)
     rd.check_options(proj, records_dir=records_dir, dask=dask)
@@ -52,7 +53,7 @@ def _check(rd, project, out, as_json, no_pdf, html, no_margins, records_dir, das
                               progress=not as_json or make_console(stderr=True).is_terminal, executor=dask)
         data = result.as_json()
         if not as_json:     # the verdict first: the engineer reads it while the report is being written
-            check_summary(data, None, make_console())
+            check_summary(data, None, make_console(), hint=design_hint(proj, data))
         _report(rd.write_report, result, folder, no_pdf, html, pdf_worker)
     if as_json:
         sys.stdout.write(rd.json_text(data))
