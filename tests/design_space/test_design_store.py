@@ -198,3 +198,27 @@ def test_the_design_reports_variants_table_fits_its_page(tmp_path, fake):
             variants_pages += 1
             assert page.width > page.height          # the variants table is on a landscape page
     assert variants_pages >= 1
+
+
+def test_a_long_silent_stage_says_why(tmp_path, fake, monkeypatch):
+    """design was silent for minutes inside one cylinder variant: after a while without progress it says what
+    runs and why that can take long; inside a variant checked alone its stages are shown."""
+    import time
+
+    import rockdesign.cli.design as cli_design
+    from rockdesign.design_space.run import SLOW_ANALYSIS
+    from rockdesign.planar.kind import Planar
+    real = Planar.grid_check
+
+    def slow(self, project, *, progress, **kw):
+        progress("design-level suite", 0, 2)
+        time.sleep(2.5)
+        progress("design-level suite", 2, 2)
+        return real(self, project, progress=progress, **kw)
+    monkeypatch.setattr(Planar, "grid_check", slow)
+    monkeypatch.setattr(cli_design, "SLOW", 1.0)
+    res, data = design(project(tmp_path / "A"), tmp_path / "out", "podium.width=0.4m:0.6m:2")
+    assert res.exit_code == 0, res.output
+    text = " ".join(res.stderr.split())
+    assert "still working (design-level suite" in text and " ".join(SLOW_ANALYSIS.split()) in text
+    assert "design-level suite: 2 to do" in text            # the stages of a variant checked alone are shown
