@@ -49,7 +49,8 @@ _EXPORTS = {
     "run_design": "rockdesign.design_space.run", "write_design": "rockdesign.design_space.run",
     "design_folder": "rockdesign.design_space.run", "recommended_check": "rockdesign.design_space.run",
     "DesignResult": "rockdesign.design_space.run", "DesignPlan": "rockdesign.design_space.run",
-    "FULL_CHECK": "rockdesign.design_space.run", "design_hint": "rockdesign.design_space.hint", "SLOW_ANALYSIS": "rockdesign.design_space.run", "check_dask_address": "rockdesign.execution.executor:check_address",
+    "FULL_CHECK": "rockdesign.design_space.run", "design_hint": "rockdesign.design_space.hint",
+    "report_citation": "rockdesign.report.methods:cite", "SLOW_ANALYSIS": "rockdesign.design_space.run", "check_dask_address": "rockdesign.execution.executor:check_address",
     "progress_bars": "rockdesign.progress", "working": "rockdesign.progress", "json_ready": "rockdesign.jsonable",
     # rocking spectra (``rockdesign spectrum``)
     "parse_axis": "rockdesign.planar.spectra.axes", "spectrum_scales": "rockdesign.planar.spectra.axes",

@@ -56,17 +56,35 @@ def format_value(value: float) -> str:
     return f"{value:.4e}"
 
 
+_DOC_REFERENCE = re.compile(r"docs/[\w-]+\.md(?:\s*§\d+)?")
+
+
+def with_report_names(text: str, cite) -> str:
+    """``text`` with each reference to the documentation followed by the calculation report's name for the same
+    section (``cite``: :func:`rockdesign.report.methods.cite`): "docs/model.md §7 (report: Appendix M4)" — the
+    console cited docs/model.md §7 where the report says Appendix M4."""
+    if cite is None or not text:
+        return text
+
+    def both(m):
+        named = cite(m.group())
+        return m.group() if named == m.group() else f"{m.group()} (report: {named})"
+    return _DOC_REFERENCE.sub(both, str(text))
+
+
 def quantities_table(quantities: dict, console: Console, units: str | None, gravity: float, title: str,
-                     warnings=()) -> None:
-    """Print design quantities as a table: symbol, name, value, unit, equation."""
+                     warnings=(), cite=None) -> None:
+    """Print design quantities as a table: symbol, name, value, unit, equation (each documentation reference
+    with the report's name for it, :func:`with_report_names`)."""
     targets = parse_display_units(units, gravity)
     table = Table(title=escape(title), title_justify="left")
     for col in ("symbol", "quantity", "value", "unit", "equation"):
         table.add_column(col, justify="right" if col == "value" else "left")
     for q in quantities.values():
         v, u = convert_for_display(q.value, q.unit, targets)
-        table.add_row(q.symbol, q.description + (f" ({q.note})" if q.note else ""), format_value(v),
-                      readable_units(u or "-"), q.equation)
+        table.add_row(q.symbol, with_report_names(q.description + (f" ({q.note})" if q.note else ""), cite),
+                      format_value(v),
+                      readable_units(u or "-"), with_report_names(q.equation, cite))
     console.print(table)
     for w in warnings:
         console.print(f"[yellow]warning:[/] {escape(w)}", highlight=False)

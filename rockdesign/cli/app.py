@@ -153,7 +153,8 @@ def quantities(project: Path = typer.Argument(..., help="Project file (TOML)"),
     if as_json:
         sys.stdout.write(json.dumps(q.as_json(), indent=2) + "\n")
         return
-    quantities_table(q, console, units, proj.system.g, q.title, proj.warnings)
+    from .. import report_citation
+    quantities_table(q, console, units, proj.system.g, q.title, proj.warnings, cite=report_citation)
 
 
 @app.command()

@@ -149,3 +149,17 @@ def test_one_form_of_units_for_a_reader():
     assert res.exit_code == 0 and "m/s²" in res.stdout and "m/s^2" not in res.stdout
     res = CliRunner().invoke(app, ["quantities", str(REPO_ROOT / "examples" / "podium_flat.toml"), "--json"])
     assert '"m/s^2"' in res.stdout
+
+
+def test_documentation_references_carry_the_reports_name():
+    """The console cited docs/model.md §7 where the report says Appendix M4: it now gives both."""
+    from typer.testing import CliRunner
+
+    from rockdesign.cli import app
+    from rockdesign.paths import REPO_ROOT
+    res = CliRunner().invoke(app, ["quantities", str(REPO_ROOT / "examples" / "podium_curved.toml")],
+                             env={"COLUMNS": "250"})
+    text = " ".join(res.stdout.split())
+    assert res.exit_code == 0
+    assert "docs/model.md §7 (report: Appendix M4)" in text
+    assert text.count("docs/model.md") == text.count("(report: Appendix")
