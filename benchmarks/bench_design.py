@@ -148,7 +148,7 @@ def shared_vs_one_by_one(base: Path, tmp: Path, rounds: int) -> dict:
         for how in ("together", "one_by_one"):
             Planar.grid_batches = shared_batches if how == "together" else (lambda self: None)
             t0 = time.perf_counter()
-            res = design(base, [WIDTH, HEIGHT], store=None)
+            res = design(base, [WIDTH, HEIGHT])
             times[how].append(time.perf_counter() - t0)
             cells[how] = [{key: v for key, v in c.items() if key != "resumed"} for c in res.as_json()["cells"]]
             shared = res.grid.shared_batches or shared

@@ -8,6 +8,7 @@ The library API (imported on first use, so ``import rockdesign`` stays light)::
     r = rd.simulate(project, "ricker-anti:ap=0.38g,Tp=0.95s")
     c = rd.check(project, progress=False)
     rd.write_report(c, "out/")
+    chart = rd.design(project, ["podium.width=0.36m:0.60m:7"], out_dir="design/")
 """
 import os
 
@@ -43,7 +44,13 @@ _EXPORTS = {
     "created_folder": "rockdesign.outdir", "refuse_wrong_type": "rockdesign.outdir",
     "discard_unfinished": "rockdesign.outdir", "forget_created": "rockdesign.outdir",
     # design charts (``rockdesign design``)
-    "design_command": "rockdesign.design_space.run",
+    "design": "rockdesign.design_space.run", "plan_design": "rockdesign.design_space.run",
+    "prepare_design": "rockdesign.design_space.run",
+    "run_design": "rockdesign.design_space.run", "write_design": "rockdesign.design_space.run",
+    "design_folder": "rockdesign.design_space.run", "recommended_check": "rockdesign.design_space.run",
+    "DesignResult": "rockdesign.design_space.run", "DesignPlan": "rockdesign.design_space.run",
+    "FULL_CHECK": "rockdesign.design_space.run", "design_hint": "rockdesign.design_space.hint",
+    "report_citation": "rockdesign.report.methods:cite", "SLOW_ANALYSIS": "rockdesign.design_space.run", "check_dask_address": "rockdesign.execution.executor:check_address",
     "progress_bars": "rockdesign.progress", "working": "rockdesign.progress", "json_ready": "rockdesign.jsonable",
     # rocking spectra (``rockdesign spectrum``)
     "parse_axis": "rockdesign.planar.spectra.axes", "spectrum_scales": "rockdesign.planar.spectra.axes",

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import math
+import re
 
 from rich.console import Console
 from rich.markup import escape
@@ -10,7 +11,6 @@ from rich.table import Table
 from .errors import RockdesignError
 from .units import registry
 
-_SI_UNITS = {"m": "m", "rad": "rad", "1/s": "1/s", "m/s^2": "m/s^2", "N": "N", "s": "s", "kg": "kg", "-": ""}
 
 
 def parse_display_units(spec: str | None, gravity: float) -> list[tuple[str, object]]:
@@ -56,17 +56,35 @@ def format_value(value: float) -> str:
     return f"{value:.4e}"
 
 
+_DOC_REFERENCE = re.compile(r"docs/[\w-]+\.md(?:\s*§\d+)?")
+
+
+def with_report_names(text: str, cite) -> str:
+    """``text`` with each reference to the documentation followed by the calculation report's name for the same
+    section (``cite``: :func:`rockdesign.report.methods.cite`): "docs/model.md §7 (report: Appendix M4)" — the
+    console cited docs/model.md §7 where the report says Appendix M4."""
+    if cite is None or not text:
+        return text
+
+    def both(m):
+        named = cite(m.group())
+        return m.group() if named == m.group() else f"{m.group()} (report: {named})"
+    return _DOC_REFERENCE.sub(both, str(text))
+
+
 def quantities_table(quantities: dict, console: Console, units: str | None, gravity: float, title: str,
-                     warnings=()) -> None:
-    """Print design quantities as a table: symbol, name, value, unit, equation."""
+                     warnings=(), cite=None) -> None:
+    """Print design quantities as a table: symbol, name, value, unit, equation (each documentation reference
+    with the report's name for it, :func:`with_report_names`)."""
     targets = parse_display_units(units, gravity)
     table = Table(title=escape(title), title_justify="left")
     for col in ("symbol", "quantity", "value", "unit", "equation"):
         table.add_column(col, justify="right" if col == "value" else "left")
     for q in quantities.values():
         v, u = convert_for_display(q.value, q.unit, targets)
-        table.add_row(q.symbol, q.description + (f" ({q.note})" if q.note else ""), format_value(v), u or "-",
-                      q.equation)
+        table.add_row(q.symbol, with_report_names(q.description + (f" ({q.note})" if q.note else ""), cite),
+                      format_value(v),
+                      readable_units(u or "-"), with_report_names(q.equation, cite))
     console.print(table)
     for w in warnings:
         console.print(f"[yellow]warning:[/] {escape(w)}", highlight=False)
@@ -97,7 +115,7 @@ def response_table(result, console: Console) -> None:
     if caption:
         table.caption, table.caption_justify = caption, "left"
     for row in result.summary_rows():
-        table.add_row(*row)
+        table.add_row(*(readable_units(x) for x in row))
     console.print(table)
     for w in result.warnings:
         console.print(f"[yellow]warning:[/] {escape(w)}", highlight=False)
@@ -110,27 +128,66 @@ def demand_rows(r, g: float) -> list[tuple[str, str, str]]:
     until = " (until overturning)" if r.overturned else ""
     if r.superstructure_acceleration_max is not None:
         a = r.superstructure_acceleration_max
-        rows.append(("superstructure max |a_T| (abs.)" + until, f"{format_value(a)} ({a / g:.4g} g)", "m/s^2"))
+        rows.append(("superstructure max |a_T| (abs.)" + until, f"{format_value(a)} ({a / g:.4g} g)", "m/s²"))
         if r.fixed_base_acceleration_max:
             f = r.fixed_base_acceleration_max
-            rows.append(("same on a fixed base", f"{format_value(f)} ({f / g:.4g} g)", "m/s^2"))
+            rows.append(("same on a fixed base", f"{format_value(f)} ({f / g:.4g} g)", "m/s²"))
             rows.append(("force ratio rocking / fixed base", format_value(a / f), "-"))
     elif r.cap_acceleration_max is not None:
-        rows.append(("cap beam max |a| between impacts" + until, format_value(r.cap_acceleration_max), "m/s^2"))
+        rows.append(("cap beam max |a| between impacts" + until, format_value(r.cap_acceleration_max), "m/s²"))
         rows.append(("cap beam max velocity jump (impact)", format_value(r.cap_velocity_jump_max), "m/s"))
     return rows
 
 
-def check_summary(data: dict, out_dir, console: Console) -> None:
+_POWER = re.compile(r"(?<=[A-Za-z])\^([23])\b")
+
+
+def readable_units(text: str) -> str:
+    """Units for a reader: "m/s^2" → "m/s²", "t/m^3" → "t/m³" (JSON keeps the ASCII names, CONTRACT §3); the
+    report and the console print one form (a table had m/s^2 beside m/s²)."""
+    return _POWER.sub(lambda m: "²" if m.group(1) == "2" else "³", str(text))
+
+
+RATIO_HEADING = "demand/limit (≤ 1 passes)"
+"""What a check's ``utilisation`` is, in the report's and the console's words: the criterion's demand over its
+limit (a count over the allowance, a required over an achieved margin, θ_max over θc …), ≤ 1 when it passes."""
+CANNOT_PASS = 1e8
+"""Utilisations at or above this are the criteria's cap (:data:`rockdesign.acceptance.criterion_base.UTILISATION_CAP`,
+e.g. a zero limit): not a number to read."""
+
+
+def utilisation_text(value) -> str:
+    """A check's demand/limit for a table: three significant digits ("2.00", never a bare "2" beside "FAILED"
+    that reads as a count), "—" when the criterion cannot pass (the cap) or has no number."""
+    if value is None or not isinstance(value, (int, float)) or math.isnan(value):
+        return "—"
+    if value >= CANNOT_PASS:
+        return "— (cannot pass)"
+    return f"{value:.3g}" if value >= 1e-3 or value == 0 else f"{value:.1e}"
+
+
+def check_order(checks: list[dict], governing: str | None = None) -> list[dict]:
+    """The checks as the reports list them: the governing check first, then those that decide the verdict, those
+    that qualify it (robustness) and those that inform it, each group by decreasing demand/limit."""
+    rank = {"governs": 0, "robustness": 1}
+    top = next((c for c in checks if governing is not None and c.get("criterion") == governing), None)
+    rest = sorted((c for c in checks if c is not top),
+                  key=lambda c: (rank.get(c.get("role") or ("governs" if c.get("governs_verdict") else ""), 2),
+                                 -(c.get("utilisation") or 0.0)))
+    return ([top] if top is not None else []) + rest
+
+
+def check_summary(data: dict, out_dir, console: Console, hint: str | None = None) -> None:
     """Print the checks, what the run found (failed analyses, missing records), the verdict and its
-    reason, and where the report went (``out_dir``; None: not yet, the caller says it).  Reads the sections
-    every kind's results.json has (``project``, ``checks``, ``verdict``) and, where present, the summary of
-    the records analysed."""
+    reason, after a FAIL the ``hint`` (:func:`rockdesign.design_space.hint.design_hint`: the parameter that
+    governs and the ``rockdesign design`` command that varies it), and where the report went (``out_dir``;
+    None: not yet, the caller says it).  Reads the sections every kind's results.json has (``project``,
+    ``checks``, ``verdict``) and, where present, the summary of the records analysed."""
     s = data.get("summary")
     table = Table(title=escape(f"{data['project']['name']} — design check"), title_justify="left")
-    for col in ("check", "utilisation or ratio", "result"):
-        table.add_column(col, justify="right" if col == "utilisation or ratio" else "left")
-    for c in data["checks"]:
+    for col in ("check", RATIO_HEADING, "result"):
+        table.add_column(col, justify="right" if col == RATIO_HEADING else "left")
+    for c in check_order(data["checks"], data.get("governing_check")):
         role = c.get("role", "governs" if c["governs_verdict"] else "")
         if not c.get("evaluated", True):
             res = "not evaluated"
@@ -140,7 +197,7 @@ def check_summary(data: dict, out_dir, console: Console) -> None:
             res = ("yes" if c["passed"] else "no") + " (info)"
         else:       # informs, does not decide: not a failure of the design
             res = ("met" if c["passed"] else "not met") + " (info)"
-        table.add_row(escape(c["name"]), format_value(c["utilisation"]), res)
+        table.add_row(escape(readable_units(c["name"])), utilisation_text(c["utilisation"]), res)
     console.print(table)
     exc = data.get("excitation", {})
     for m in exc.get("missing", []):
@@ -154,10 +211,13 @@ def check_summary(data: dict, out_dir, console: Console) -> None:
     if s is not None:
         _suite_line(data, s, exc, console)
     if exc.get("intensity_analysed"):
-        console.print(f"intensity analysed: {escape(exc['intensity_analysed'])}", highlight=False)
+        console.print(f"intensity analysed: {escape(readable_units(exc['intensity_analysed']))}", highlight=False)
     colour = "green" if data["verdict"] == "PASS" and data.get("verdict_robust", True) else (
         "yellow" if data["verdict"] in ("PASS", "NOT DECIDED") else "red")
-    console.print(f"verdict: [bold {colour}]{escape(data.get('verdict_reason') or data['verdict'])}[/]", highlight=False)
+    reason = readable_units(data.get('verdict_reason') or data['verdict'])
+    console.print(f"verdict: [bold {colour}]{escape(reason)}[/]", highlight=False)
+    if hint:
+        console.print(f"next: {escape(hint)}", highlight=False, soft_wrap=True)
     if out_dir is not None:
         console.print(f"output: {escape(str(out_dir))}", highlight=False)
 

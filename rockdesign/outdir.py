@@ -84,11 +84,15 @@ class OutputFolder:
                                   "a folder beside or below the working directory", f"'{t}'")
             if not _writable(t):
                 raise self._error("output folder is read-only", "a writable folder", f"'{t}'")
-            foreign = sorted(p.name for p in t.iterdir() if p.name not in self.owned)
+            foreign = sorted(p.name for p in t.iterdir() if not self.owns(p))
             if foreign:
                 shown = ", ".join(foreign[:4]) + (f" and {len(foreign) - 4} more" if len(foreign) > 4 else "")
                 raise self._error("output folder holds files rockdesign did not write (it replaces the folder)",
                                   "a new folder or one from an earlier check", f"{shown} in '{t}'")
+
+    def owns(self, entry: Path) -> bool:
+        """True when ``entry`` (in the target folder) is a file an earlier run of this kind may have left."""
+        return entry.name in self.owned and (entry.is_file() or entry.name in OS_METADATA)
 
     def _parent(self) -> Path:
         """The nearest existing ancestor of the target (the folders between are created on commit)."""
@@ -110,11 +114,19 @@ class OutputFolder:
             yield self
             return
         self.validate()
-        self.target.absolute().parent.mkdir(parents=True, exist_ok=True)
+        parent = self.target.absolute().parent
+        missing = [p for p in [parent, *parent.parents] if not p.exists()]
+        parent.mkdir(parents=True, exist_ok=True)
         self._acquire()
         try:
             yield self
-        finally:
+        except BaseException:
+            self._release()
+            for p in missing:            # a failed run leaves none of the folders it created empty
+                with contextlib.suppress(OSError):
+                    p.rmdir()
+            raise
+        else:
             self._release()
 
     def _acquire(self) -> None:
@@ -176,6 +188,57 @@ class OutputFolder:
                 shutil.rmtree(old, ignore_errors=True)
             else:
                 os.rename(tmp, target)
+
+
+DESIGN_FILES = frozenset({"design.json", "design.csv", "design.pdf", "design.html"})
+"""The files ``rockdesign design`` writes (CONTRACT §6.3), besides its figures ``design_<name>.svg``."""
+STORE = "variants"
+"""The folder of stored variants inside a design's output folder (:mod:`rockdesign.design_space.store`)."""
+
+
+class DesignFolder(OutputFolder):
+    """The output folder of ``rockdesign design``: :class:`OutputFolder`'s guarantees (refused before any
+    analysis when it is a file, read-only, in use or holds files rockdesign did not write; locked for the
+    run; written all or nothing) plus the store of finished variants, ``DIR/variants/``, which is written as
+    each variant ends (an interrupted run resumes from it) and carried over into the new folder when the
+    run completes.  A ``variants`` that is not a folder of ``*.json`` files is foreign content."""
+
+    def __init__(self, target, *, key: str = "out_dir"):
+        super().__init__(target, key=key, owned=DESIGN_FILES)
+
+    @property
+    def store(self) -> Path:
+        """Where the finished variants are stored (created with the first one)."""
+        return self.target / STORE
+
+    def owns(self, entry: Path) -> bool:
+        name = entry.name
+        if name == STORE:
+            return entry.is_dir() and not entry.is_symlink() and all(
+                p.is_file() and not p.is_symlink() and (p.suffix in (".json", ".tmp") or p.name in OS_METADATA)
+                for p in entry.iterdir())
+        if name.startswith("design_") and name.endswith(".svg"):
+            return entry.is_file()
+        return super().owns(entry)
+
+    def validate(self) -> None:
+        super().validate()
+        store = self.store
+        if store.is_dir() and not _writable(store):
+            raise self._error("the stored variants cannot be written", "a writable folder of stored variants",
+                              f"'{store}' is read-only")
+
+    def _commit(self, tmp: Path) -> None:
+        store = self.store.absolute()
+        if store.is_dir():      # the stored variants stay with the folder (a later run resumes from them)
+            shutil.rmtree(tmp / STORE, ignore_errors=True)
+            os.rename(store, tmp / STORE)
+        try:
+            super()._commit(tmp)
+        except BaseException:
+            if (tmp / STORE).is_dir() and not store.exists():
+                os.rename(tmp / STORE, store)
+            raise
 
 
 _CREATED: list[Path] = []

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .errors import ProjectError
-from .units import G_DEFAULT, QuantityParseError, parse_quantity
+from .units import G_DEFAULT, QuantityParseError, parse_angular_frequency, parse_quantity
 
 PROJECT_KEYS = ("name", "engineer", "checker", "job", "client", "notes")
 
@@ -138,6 +138,35 @@ class _Table:
                              found=raw)
         return value
 
+    def angular_frequency(self, name: str, *, plain_is_cyclic: bool) -> float:
+        """A frequency key as ω [rad/s] (:func:`~rockdesign.units.parse_angular_frequency`: "rad/s" and "rpm"
+        are angular, "Hz" cyclic), finite and positive."""
+        raw = self.data[name]
+        try:
+            value = parse_angular_frequency(raw, plain_is_cyclic=plain_is_cyclic)
+        except QuantityParseError as exc:
+            raise ProjectError(f"expects {exc}", file=self.file, key=self.key(name)) from None
+        if not math.isfinite(value) or value <= 0.0:
+            raise self.error(name, "must be positive and finite", expected="a frequency > 0 (e.g. '2 Hz')", found=raw)
+        return value
+
+    def fraction(self, name: str, *, default: float, low: float = 0.0, high: float = 1.0, low_open: bool = True,
+                 high_open: bool = True) -> float:
+        """A dimensionless key given as a plain number or with a unit ("10 %"), range-checked in either form."""
+        if name not in self.data:
+            return default
+        raw = self.data[name]
+        value = (self.quantity(name, "dimensionless", positive=False) if isinstance(raw, str)
+                 else self.number(name, default=default))
+        lo_bad = value <= low if low_open else value < low
+        hi_bad = value >= high if high_open else value > high
+        if lo_bad or hi_bad or not math.isfinite(value):
+            lo = f"> {low:g}" if low_open else f"≥ {low:g}"
+            hi = f"< {high:g}" if high_open else f"≤ {high:g}"
+            raise self.error(name, "out of range", expected=f"a number {lo} and {hi} (e.g. 0.1 or \"10 %\")",
+                             found=raw)
+        return value
+
     def choice(self, name: str, options: tuple[str, ...], default: str) -> str:
         raw = self.data.get(name, default)
         if not isinstance(raw, str) or raw not in options:
@@ -254,10 +283,9 @@ def _parse_analysis(data: dict, file: str) -> AnalysisSettings:
         rigid_superstructure_ratio=t.number("rigid_superstructure_ratio", default=DEFAULTS.rigid_superstructure_ratio,
                                             low=0.0),
         scan_rtol=t.number("scan_rtol", default=DEFAULTS.scan_rtol, low=0.0, high=1e-3),
-        overturn_probability_limit=t.quantity("overturn_probability_limit", "dimensionless",
-                                              default=DEFAULTS.overturn_probability_limit)
-        if isinstance(t.data.get("overturn_probability_limit"), str)
-        else t.number("overturn_probability_limit", default=DEFAULTS.overturn_probability_limit, low=0.0, high=1.0),
+        # a probability limit of 1 (or "150 %") passes every suite: 0 < limit < 1 in every form
+        overturn_probability_limit=t.fraction("overturn_probability_limit",
+                                              default=DEFAULTS.overturn_probability_limit),
         **_parse_fragility(t),
         **_parse_acceptance(t),
     )
@@ -303,8 +331,31 @@ def _parse_fragility(t: _Table) -> dict:
             "seed": t.number("seed", default=DEFAULTS.seed, low=0, low_open=False, integer=True)}
 
 
+_CONTROL = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f]")
+"""Control characters (NUL, escape, …; not tab or line breaks): TOML can write them ("\\u0000"), no
+report, JSON consumer or terminal shows them as text."""
+
+
+def refuse_control_characters(raw, file: str, path: str = "") -> None:
+    """Refuse text with a control character anywhere in the document (``name = "a\\u0000b"`` was written raw
+    into report.html and results.json): a :class:`ProjectError` naming the key."""
+    items = raw.items() if isinstance(raw, dict) else enumerate(raw)
+    for k, v in items:
+        key = f"{path}.{k}" if path and isinstance(raw, dict) else (f"{path}[{k}]" if path else str(k))
+        if isinstance(v, str):
+            m = _CONTROL.search(v)
+            if m:
+                raise ProjectError("control character in text", file=file, key=key,
+                                   expected="printable text (no NUL, escape or other control characters)",
+                                   found=f"{ascii(m.group())} at position {m.start()} of {ascii(v)}")
+        elif isinstance(v, (dict, list)):
+            refuse_control_characters(v, file, key)
+
+
 def project_info(raw: dict, file: str, g: float, example: str = "5-storey block") -> dict:
-    """The ``[project]`` table (name required, engineer/notes optional; all strings) of any project file."""
+    """The ``[project]`` table (name required, engineer/notes optional; all strings) of any project file; no
+    text of the document may hold a control character (:func:`refuse_control_characters`)."""
+    refuse_control_characters(raw, file)
     section = raw.get("project", {})
     if not isinstance(section, dict):
         raise ProjectError("wrong type", file=file, key="project", expected="a [project] table with name = \"...\"",

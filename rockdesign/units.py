@@ -95,6 +95,27 @@ def parse_quantity(text, dimension: str, *, gravity: float = G_DEFAULT) -> float
     return float(q.to_base_units().magnitude)
 
 
+def parse_angular_frequency(text, *, plain_is_cyclic: bool) -> float:
+    """A frequency key as an angular frequency ω [rad/s]: ``"16.5 rad/s"``, ``"100 rpm"``, ``"90 deg/s"``,
+    ``"1 cycle/s"`` carry their angle (pint's base value is already ω); ``"2 Hz"`` (any hertz) is cyclic,
+    ω = 2π f; a unit without either (``"2 /s"``) is cyclic when ``plain_is_cyclic`` (the superstructure's
+    ``frequency``, CONTRACT §1 ``frequency = "2 Hz"``), angular otherwise (a cylinder's ``contact_frequency``,
+    ω_n of Eq 5.32).
+
+    Raises:
+        QuantityParseError: not a frequency (as :func:`parse_quantity`).
+    """
+    import math
+    value = parse_quantity(text, "frequency")
+    unit_text = _NUMBER.match(text).group(2) if isinstance(text, str) else ""
+    unit = registry().parse_expression(_normalise_unit_text(unit_text, G_DEFAULT)) if unit_text else None
+    if unit is not None and "radian" in str((1.0 * unit).to_base_units().units):
+        return value                                    # rad/s, rpm, deg/s, cycle/s: already ω
+    if unit is not None and "hertz" in str(getattr(unit, "units", "")):
+        return 2.0 * math.pi * value
+    return 2.0 * math.pi * value if plain_is_cyclic else value
+
+
 def _a(noun: str) -> str:
     """The noun with its indefinite article ("an acceleration", "a length")."""
     return ("an " if noun[:1].lower() in "aeiou" else "a ") + noun

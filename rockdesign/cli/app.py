@@ -26,7 +26,10 @@ from .. import discard_unfinished, forget_created
 from .inputs import OptionsOnce
 
 app = typer.Typer(cls=OptionsOnce, add_completion=False, no_args_is_help=True,
-                  help="Design checks for rocking columns, rocking frames and rocking podium buildings.")
+                  help="Design checks for rocking columns, rocking frames, rocking podium buildings and free-standing "
+                       "cylinders.\n\nExit codes: 0 = success (check: PASS), 1 = the design fails (check FAIL, "
+                       "design: no variant passes, records scale-model: a table limit exceeded), 2 = input error, "
+                       "3 = internal error (a bug: please report it), 4 = not decided (check), 130 = interrupted.")
 err_console = make_console(stderr=True)
 FLAG = " "
 """metavar of on/off options (typer would print "<bool>" after them in --help)."""
@@ -181,7 +184,8 @@ def quantities(project: Path = typer.Argument(..., help="Project file (TOML)"),
     if as_json:
         sys.stdout.write(json.dumps(q.as_json(), indent=2) + "\n")
         return
-    quantities_table(q, console, units, proj.system.g, q.title, proj.warnings)
+    from .. import report_citation
+    quantities_table(q, console, units, proj.system.g, q.title, proj.warnings, cite=report_citation)
 
 
 @app.command()
@@ -232,7 +236,7 @@ def _mount_command_modules():
     from .records import app as records_app
     for command in records_app.registered_commands:
         command.callback = handle_errors(command.callback)
-    app.add_typer(records_app, name="records", help="Ground-motion tools: list, show, spectrum, synth.")
+    app.add_typer(records_app, name="records", help="Ground-motion tools: list, show, spectrum, synth, scale-model.")
     for module in (cli_check, cli_spectrum, cli_bench, cli_experiments, cli_design):
         module.register(app, handle_errors)
 

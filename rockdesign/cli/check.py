@@ -22,9 +22,7 @@ def register(app: typer.Typer, handle_errors) -> None:
               records_dir: Optional[Path] = typer.Option(None, "--records-dir", help="Folder of PEER AT2 files."),
               dask: Optional[str] = typer.Option(None, "--dask", help="Run the analyses on dask.distributed: "
                                                  "'local:N' (a local cluster of N workers) or a scheduler address.")):
-        """Polyakov design check over record suites, with a PDF calculation report (exit 0 = PASS,
-        1 = FAIL, 2 = input error or failed analyses, 4 = not decided: a governing criterion was not
-        evaluated, e.g. --no-margins; 130 = interrupted)."""
+        """Polyakov design check over record suites, with a PDF calculation report (exit 0 = PASS, 1 = FAIL, 2 = input error or failed analyses, 3 = internal error, 4 = not decided: a governing criterion was not evaluated, e.g. --no-margins; 130 = interrupted)."""  # noqa: E501
         from .. import library as rd      # (lazy: mounting the commands loads no numerical library)
         _check(rd, project, out, as_json, no_pdf, html, no_margins, records_dir, dask)
 
@@ -32,6 +30,7 @@ def register(app: typer.Typer, handle_errors) -> None:
 def _check(rd, project, out, as_json, no_pdf, html, no_margins, records_dir, dask) -> None:
     from rich.markup import escape
 
+    from .. import design_hint
     from ..display import check_summary
     proj = rd.load_project(project)
     rd.check_options(proj, records_dir=records_dir, executor=dask)
@@ -43,7 +42,7 @@ def _check(rd, project, out, as_json, no_pdf, html, no_margins, records_dir, das
                               progress=not as_json or make_console(stderr=True).is_terminal, executor=dask)
         data = result.as_json()
         if not as_json:     # the verdict first: the engineer reads it while the report is being written
-            check_summary(data, None, make_console())
+            check_summary(data, None, make_console(), hint=design_hint(proj, data))
         _report(rd.write_report, result, folder, no_pdf, html)
     if as_json:
         sys.stdout.write(rd.json_text(data))

@@ -23,7 +23,7 @@ from .inputs import OptionsOnce
 # the records, spectra and units modules (numba, pint) are imported by the commands that use them: the
 # CLI mounts this module for every command, `--help` and `init` included
 
-app = typer.Typer(cls=OptionsOnce, help="Ground-motion records: list, show, spectra, synthetic ensembles.", no_args_is_help=True)
+app = typer.Typer(cls=OptionsOnce, help="Ground-motion records: list, show, spectra, synthetic ensembles, scale-model records.", no_args_is_help=True)
 
 RECORDS_DIR_HELP = "Folder of your PEER *.AT2 files (for rsn:<RSN>:<component> ids)."
 FLAG = " "  # metavar of on/off options (typer prints "<bool>" otherwise)

@@ -45,25 +45,27 @@ def register(app: typer.Typer, handle_errors) -> None:
         pulse: Optional[str] = typer.Option(None, "--pulse", "-p", help=HELP_PULSE),
         record: Optional[str] = typer.Option(None, "--record", help="Cylinders: the record pair, e.g. p695-ff/11 "
                                              "(axes R:lo:hi:n and pga/up:lo:hi:n; thesis Figs 5.16-5.17)."),
-        x: str = typer.Option("omega_p/p:0.5:12:801", "--x",
-                              help="x axis AXIS:lo:hi:n, AXIS = omega_p/p | omega_p/p_hat | Tp (seconds)."),
-        y: str = typer.Option("ap/up:0:12:401", "--y", help="y axis AXIS:lo:hi:n, AXIS = ap/up (a_p over g tan α) "
-                              "| ap/g."),
+        x: str = typer.Option("omega_p/p:0.5:12:801", "--x", show_default=False,
+                              help="x axis AXIS:lo:hi:n, AXIS = omega_p/p | omega_p/p_hat | Tp (seconds) "
+                                   "[default: omega_p/p from 0.5 to 12, 801 points]."),
+        y: str = typer.Option("ap/up:0:12:401", "--y", show_default=False,
+                              help="y axis AXIS:lo:hi:n, AXIS = ap/up (a_p over g tan α) | ap/g "
+                                   "[default: ap/up from 0 to 12, 401 points]."),
         relative: Optional[Path] = typer.Option(None, "--relative", help="Reference project: relative spectrum "
                                                 "Δθ_max (Eq 3.64) and equivalent size (Eq 3.65) on the same pulses."),
         dask: Optional[str] = typer.Option(None, "--dask", help="Run on dask.distributed: local:N (LocalCluster "
                                            "of N workers) or a scheduler address tcp://host:8786."),
-        out: Optional[Path] = typer.Option(None, "-o", "--out", help="Output folder (default: "
-                                           "<project>-spectrum-<pulse>)."),
+        out: Optional[Path] = typer.Option(None, "-o", "--out", help="Output folder (default: named "
+                                           "after the project and the pulse, e.g. pier-spectrum-sine)."),
         model: str = typer.Option("auto", "--model", help="Equations: exact | linear | auto (the "
-                                  "project's analysis.equations)."),
+                                  "project's [analysis] equations)."),
         structure: Optional[str] = typer.Option(None, "--structure", help="auto | block | frame | "
                                                 "rigid-superstructure | podium-2dof (default: the project's "
-                                                "analysis.model)."),
+                                                "[analysis] model)."),
         overturn: Optional[str] = typer.Option(None, "--overturn", help="static (θ_max ≥ θc) | dynamic (|θ| = "
-                                               "π/2) (default: the project's analysis.overturn)."),
+                                               "π/2) (default: the project's [analysis] overturn)."),
         t_free: Optional[float] = typer.Option(None, "--t-free", help="Free vibration [s] after the pulse "
-                                               "(default: the project's analysis.free_vibration, 10 s)."),
+                                               "(default: the project's [analysis] free_vibration, 10 s)."),
         rtol: Optional[float] = typer.Option(None, "--rtol", help="Relative tolerance (default: project)."),
         tm_ratio: float = typer.Option(1.5, "--tm-ratio", help="Ricker centre t_m/T_p (1.5: thesis Table 3.4)."),
         chunk_rows: Optional[int] = typer.Option(None, "--chunk-rows", help="Grid rows per chunk (default: "
@@ -72,12 +74,12 @@ def register(app: typer.Typer, handle_errors) -> None:
                                     "with identical inputs."),
         keep_chunks: bool = typer.Option(False, "--keep-chunks", metavar=" ", help="Keep the chunk files after success."),
         energy_stop: bool = typer.Option(True, "--energy-stop/--no-energy-stop", metavar=" ", help="Stop each analysis once "
-                                         "the energy bound proves θ_max final (docs/early_termination.md)."),
+                                         "the energy bound proves θ_max final (docs: early_termination.md)."),
         stop_at_capacity: bool = typer.Option(False, "--stop-at-capacity", metavar=" ", help="Static criterion: stop each "
                                               "analysis when θ reaches θc (verdict final; θ_max shown as θc)."),
         polyakov: bool = typer.Option(True, "--polyakov/--no-polyakov", metavar=" ", help="Overlay Polyakov's overturning "
                                       "line (SD_max of the pulse = u_B(θc))."),
-        equivalent_at: Optional[List[float]] = typer.Option(None, "--equivalent-at", help="Ordinate(s) y for "
+        equivalent_at: Optional[List[float]] = typer.Option(None, "--equivalent-at", metavar="Y", help="Ordinate(s) y for "
                                                             "the equivalent size of Eq 3.65 (repeatable)."),
         figures: bool = typer.Option(True, "--figures/--no-figures", metavar=" ", help="Write PNG and SVG figures."),
         as_json: bool = typer.Option(False, "--json", metavar=" ", help="Print summary.json to stdout."),

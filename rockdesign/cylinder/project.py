@@ -232,10 +232,7 @@ def _parse_cylinder(t, name: str, g: float, overturn_tilt: float) -> Cylinder:
                         overturn_tilt)
     omega = DEFAULT_CONTACT_FREQUENCY
     if t.has("contact_frequency"):
-        raw = t.data["contact_frequency"]
-        omega = t.quantity("contact_frequency", "frequency")   # "200 rad/s" (rad is dimensionless in pint)
-        if isinstance(raw, str) and "hz" in raw.lower():       # "30 Hz" is a cyclic frequency: ω_n = 2π f
-            omega *= 2.0 * math.pi
+        omega = t.angular_frequency("contact_frequency", plain_is_cyclic=False)   # "30 Hz" is ω_n = 2π·30/s
     zeta = DEFAULT_CONTACT_DAMPING
     if t.has("contact_damping"):
         raw = t.data["contact_damping"]

@@ -23,21 +23,19 @@ Shared work:
   appendix and a cylinder's planar runs per component (which never change the verdict's word) are
   skipped everywhere.
 
-Every finished variant is stored in ``<out>/variants/<digest>.json`` (the digest of the variant's project
-text, the tool version and the kernel sources): a run interrupted and started again skips them.
+Every finished variant is stored in ``<out>/variants/<digest>.json`` (:mod:`.store`: the digest of the
+variant's project text, the content of its scaled records, the tool version and the kernel sources): a run
+interrupted and started again skips them, each placed in the current grid (its index and labels are the
+current grid's, never the stored file's); a stored file that cannot be used is analysed again with a warning.
 """
 from __future__ import annotations
 
-import hashlib
-import json
 import math
 import threading
 from dataclasses import dataclass, field
-from pathlib import Path
-
-from .. import __version__
 from ..errors import ProjectError, RockdesignError
 from ..kinds import kind_of
+from .store import VariantStore, content_digest, tool_digest, variant_digest
 from .variants import Variable, Variant, variant_toml
 
 
@@ -55,11 +53,8 @@ class GridRun:
     resumed: int = 0
     notes: list[str] = field(default_factory=list)
     shared_batches: dict | None = None
-
-
-def _digest(text: str) -> str:
-    from ..kernel_cache import sources_digest
-    return hashlib.sha256(f"{__version__}\n{sources_digest()}\n{text}".encode()).hexdigest()[:20]
+    warnings: list[str] = field(default_factory=list)
+    """Stored variants that could not be used (analysed again), in the words told to ``warn``."""
 
 
 NOT_NEEDED = (("no incremental analysis: --no-margins", "not needed: the design-level suite decides"),
@@ -99,40 +94,71 @@ def at_once() -> int:
     return min(64, max(8, 4 * usable_cores()))
 
 
-def run_grid(variant_list: list[Variant], variables, *, records_dir=None, executor=None, store: Path | None = None,
-             progress=None, stage_progress=None) -> GridRun:
+def records_key(variant: Variant) -> str:
+    kind = kind_of(variant.project)
+    return f"{kind.name}\n{kind.grid_records_key(variant.project)}"
+
+
+def read_records(variant_list: list[Variant], records_dir=None, cache: dict | None = None) -> dict[str, tuple]:
+    """The records of every distinct excitation of the valid variants, read and scaled once
+    (:meth:`~rockdesign.kinds.base.StructureKind.grid_records`): ``{records_key: (records, content digest)}``.
+    Input errors in the records (a missing suite file, a record not found) raise here, before any analysis."""
+    cache = {} if cache is None else cache
+    for variant in variant_list:
+        if variant.project is None:
+            continue
+        key = records_key(variant)
+        if key not in cache:
+            records = kind_of(variant.project).grid_records(variant.project, records_dir)
+            cache[key] = (records, content_digest(records))
+    return cache
+
+
+def run_grid(variant_list: list[Variant], variables, *, records_dir=None, executor=None, store=None,
+             progress=None, stage_progress=None, warn=None, records: dict | None = None) -> GridRun:
     """Check every variant (see module docstring); ``progress(done, total, cell)`` as each variant ends,
     ``stage_progress(stage, done, total)`` inside one (the check's stages; not while variants run together);
-    ``store``: the folder of the per-variant results that makes the run resumable (None: nothing stored).
+    ``store``: the folder (or :class:`~.store.VariantStore`) of the per-variant results that makes the run
+    resumable (None: nothing stored); ``warn(text)``: a stored variant that cannot be used (it is analysed
+    again); ``records``: :func:`read_records` of these variants when already read.
 
     Variants whose analyses can share batches (:meth:`~rockdesign.kinds.base.StructureKind.grid_batches`)
     are checked together, each in a thread of its own with a pool member as its check's executor, their
     batches merged into shared calls of the kind's driver (:mod:`rockdesign.execution.batch_pool`); on a dask
     cluster (``executor``) one after the other."""
     run = GridRun(list(variables), [])
-    records_cache: dict[str, tuple] = {}
+
+    def warned(text: str) -> None:
+        run.warnings.append(text)
+        if warn is not None:
+            warn(text)
+
+    if store is not None and not isinstance(store, VariantStore):
+        store = VariantStore(store)
+    if store is not None:
+        store.warn = warned
+    records = read_records(variant_list, records_dir, records)    # input errors stop the grid, before any analysis
+    tool = tool_digest() if store is not None else ""
     total = len(variant_list)
     cells: list[dict | None] = [None] * total
-    tasks = []                  # (position, variant, kind, records, stored path) of the variants to check
+    tasks = []                  # (position, variant, kind, records, digest) of the variants to check
     for pos, variant in enumerate(variant_list):
         if variant.project is None:
             cells[pos] = {**_base_cell(variant, variables), **EMPTY, "verdict": "INVALID", "reason": variant.invalid,
                           "decided_at_design_level": False, "n_failed_analyses": 0, "analyses": 0,
                           "analyses_saved": 0}
             continue
-        path = None if store is None else store / f"{_digest(variant_toml(variant.raw))}.json"
-        if path is not None and path.is_file():
-            cell = json.loads(path.read_text(encoding="utf-8"))
-            cell["resumed"] = True
-            cells[pos] = cell
-            run.resumed += 1
-            continue
-        proj = variant.project
-        kind = kind_of(proj)
-        key = f"{kind.name}\n{kind.grid_records_key(proj)}"
-        if key not in records_cache:     # input errors stop the grid (exit 2), before any analysis
-            records_cache[key] = kind.grid_records(proj, records_dir)
-        tasks.append((pos, variant, kind, records_cache[key], path))
+        kind = kind_of(variant.project)
+        recs, recs_digest = records[records_key(variant)]
+        digest = None
+        if store is not None:
+            digest = variant_digest(kind.name, variant_toml(variant.raw), recs_digest, tool)
+            stored = store.load(digest)
+            if stored is not None:      # its place is this grid's, not the stored file's
+                cells[pos] = {**_base_cell(variant, variables), **stored, "resumed": True}
+                run.resumed += 1
+                continue
+        tasks.append((pos, variant, kind, recs, (store, digest)))
 
     done = [0]
 
@@ -150,8 +176,8 @@ def run_grid(variant_list: list[Variant], variables, *, records_dir=None, execut
             report(pos)
 
     def check(task, stages, runs_on=executor) -> None:
-        pos, variant, kind, records, path = task
-        cells[pos] = _check_variant(variant, variables, kind, records, path, records_dir=records_dir,
+        pos, variant, kind, recs, path = task
+        cells[pos] = _check_variant(variant, variables, kind, recs, path, records_dir=records_dir,
                                     executor=runs_on, progress=stages)
 
     batches = tasks[0][2].grid_batches() if tasks and executor is None else None
@@ -171,7 +197,7 @@ def run_grid(variant_list: list[Variant], variables, *, records_dir=None, execut
 
 
 def _check_variant(variant, variables, kind, records, path, *, records_dir, executor, progress) -> dict:
-    """The cell of one variant's check (stored in ``path`` for a resumed run)."""
+    """The cell of one variant's check (stored for a resumed run: ``path`` is (store, digest))."""
     from ..execution.batch_pool import PoolMember
     from ..execution.counting import AnalysisCount
     before = AnalysisCount.total
@@ -188,11 +214,9 @@ def _check_variant(variant, variables, kind, records, path, *, records_dir, exec
                 "analyses": analyses(), "analyses_saved": 0}
     else:
         cell = _cell(kind, variant, variables, result, analyses())
-    if path is not None:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        tmp = path.with_suffix(f".{threading.get_ident()}.tmp")
-        tmp.write_text(json.dumps(cell, default=_json_default), encoding="utf-8")
-        tmp.replace(path)        # atomic: an interruption leaves no half-written variant
+    store, digest = path
+    if store is not None:
+        store.save(digest, cell)
     cell["resumed"] = False
     return cell
 
@@ -246,15 +270,6 @@ def _check_together(tasks, check, report, threads: int, batches):
     return pool
 
 
-def _json_default(x):
-    if isinstance(x, float) and not math.isfinite(x):
-        return None
-    try:
-        return float(x)
-    except (TypeError, ValueError):
-        raise TypeError(f"not JSON: {type(x).__name__}") from None
-
-
 def recommended(cells: list[dict], material: tuple[str, str] = ("column material", "no elastic superstructure demand")
                 ) -> dict | None:
     """The recommended design (SPEC §15): among passing cells the lowest 84th-percentile superstructure
@@ -295,4 +310,4 @@ def check_exit_code(cells: list[dict]) -> int:
     return 0 if any(c["verdict"] == "PASS" for c in cells) else 1
 
 
-__all__ = ["GridRun", "run_grid", "recommended", "check_exit_code"]
+__all__ = ["GridRun", "run_grid", "read_records", "recommended", "check_exit_code"]

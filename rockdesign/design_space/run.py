@@ -1,158 +1,265 @@
-"""The design chart of a project (``rockdesign design``, :func:`design`): variants → grid → files (SPEC §15)."""
+"""The design chart of a project (``rd.design``; ``rockdesign design`` calls it): plan → grid → files (SPEC §15,
+CONTRACT §6.3, docs/design.md).
+
+    import rockdesign as rd
+    project = rd.load_project("podium.toml")
+    chart = rd.design(project, ["podium.width=0.36m:0.52m:3"], out_dir="podium_design",
+                      progress=lambda done, total, cell: print(done, total, cell["verdict"]))
+    chart.verdicts, chart.recommended, chart.as_json()      # design.json
+
+The steps, for a caller that does something between them (the command line compiles the kernels, with an
+announcement, after every input is validated and before any analysis):
+
+- :func:`plan_design` validates everything and analyses nothing: the variables (units, keys the project
+  file takes, two keys that say the same thing), each variant's project, the records of every excitation,
+  the options the project's kind has no use for; a grid without one valid variant is an input error;
+- :func:`run_design` checks every variant (:func:`~rockdesign.design_space.grid.run_grid`);
+- :func:`write_design` writes design.json, design.csv and the report into a folder, all or nothing.
+
+The project is parsed once (the :class:`~rockdesign.project_tables.Project` carries its TOML document).
+Errors are :class:`~rockdesign.errors.RockdesignError` whose ``key`` names the parameter (``vary``,
+``out_dir``, ``records_dir``, ``executor``); the command line names its options instead.  Nothing here
+draws on the terminal: progress goes to the callbacks the caller passes.
+"""
 from __future__ import annotations
 
-import json
-import tomllib
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import ProjectError, RockdesignError
 from ..kinds import kind_of
-from ..kinds import parse_document
-from ..library import load_project
-from .grid import GridRun, check_exit_code, recommended, run_grid
-from .variants import parse_vary, variants
+from ..outdir import DesignFolder
+from ..project_tables import Project
+from .grid import GridRun, check_exit_code, read_records, recommended, run_grid
+from .variants import Variable, Variant, parse_vary, refuse_overlaps, variants
+
+
+@dataclass
+class DesignPlan:
+    """A validated design grid, nothing analysed: the base project, its variables and variants (each a
+    validated project or an INVALID cell's reason), and the records of every excitation, read once."""
+
+    project: Project
+    variables: list[Variable]
+    variants: list[Variant]
+    records: dict
+    records_dir: str | None = None
+    executor: object | None = None
+
+    @property
+    def kind(self):
+        return kind_of(self.project)
 
 
 @dataclass
 class DesignResult:
-    """A design chart: the base project, the grid's cells and the recommendation; ``as_json()`` is design.json."""
+    """A design chart: the base project, the grid's cells, the recommendation and (when a report was asked
+    for) the full check of the recommended variant; ``as_json()`` is design.json."""
 
-    project: object
+    project: Project
     grid: GridRun
     recommended: dict | None
     settings: dict
+    recommended_check: object | None = None
+    """The full check (every stage) of the recommended variant, or None (no variant passes, or no report)."""
+    warnings: list[str] = field(default_factory=list)
+    out_dir: Path | None = None
+    plan: DesignPlan | None = None
 
     def as_json(self) -> dict:
         from ..report.design_results import design_json
-        return design_json(self.project, self.grid, self.recommended, settings=self.settings)
+        data = design_json(self.project, self.grid, self.recommended, settings=self.settings)
+        full = self.recommended_check
+        if full is not None and data["recommended"] is not None:
+            data["recommended"]["check"] = {"verdict": full.verdict, "reason": full.verdict_reason}
+        data["warnings"] = list(self.warnings)
+        return data
+
+    @property
+    def verdicts(self) -> list[str]:
+        """The cells' verdicts, row-major over the variables."""
+        return [c["verdict"] for c in self.grid.cells]
 
     @property
     def exit_code(self) -> int:
+        """0 when at least one variant passes, 1 when none does (CONTRACT §6.3)."""
         return check_exit_code(self.grid.cells)
 
 
-def design(project_path, vary: list[str], *, records_dir: str | None = None, executor=None, store: Path | None = None,
-           progress=None, stage_progress=None, option_keys: dict | None = None) -> DesignResult:
-    """Check every variant of ``vary`` (one or two ``TABLE.KEY=FROM:TO:N``) of the project file at
-    ``project_path``; ``store``: folder of per-variant results (resume); ``progress(done, total, cell)``;
-    ``option_keys``: the command-line names of ``records_dir``/``executor`` for error messages.
+def _project(project) -> Project:
+    if isinstance(project, Project):
+        return project
+    if isinstance(project, (str, Path)):
+        from ..library import load_project
+        return load_project(project)
+    raise ProjectError("design needs a project", key="project",
+                       expected="a Project (rd.load_project or rd.parse_project) or a project file",
+                       found=type(project).__name__)
+
+
+def _vary_list(vary) -> list[str]:
+    specs = [vary] if isinstance(vary, str) else list(vary) if isinstance(vary, (list, tuple)) else None
+    if specs is None or not all(isinstance(v, str) for v in specs):
+        raise RockdesignError("variables must be strings", key="vary",
+                              expected="one or two 'TABLE.KEY=FROM:TO:N' strings", found=repr(vary))
+    if not 1 <= len(specs) <= 2:
+        raise RockdesignError("one or two variables", key="vary", expected="one or two TABLE.KEY=FROM:TO:N",
+                              found=f"{len(specs)} given")
+    return specs
+
+
+def plan_design(project, vary, *, records_dir=None, executor=None) -> DesignPlan:
+    """Validate a design grid without analysing anything (see module docstring).
+
+    Args:
+        project: a :class:`~rockdesign.project_tables.Project` (or a project file's path, loaded once).
+        vary: one or two ``"TABLE.KEY=FROM:TO:N"`` (FROM and TO in the key's units).
+        records_dir: folder of PEER AT2 files for suites that name them (planar structures).
+        executor: an executor (:mod:`rockdesign.execution.executor`, e.g. a dask cluster; planar structures).
 
     Raises:
-        RockdesignError: an unreadable project or ``--vary``, an option the project's kind has no use for
-            (a cylinder's pairs are built in and analysed in this process: no ``records_dir``/``executor``),
-            or an excitation no variant can run.
+        RockdesignError: naming the parameter (``vary``, ``records_dir``, ``executor``) or the project file's key.
     """
-    base = load_project(project_path)
-    if not vary or len(vary) > 2:
-        raise RockdesignError("one or two variables", key="--vary", expected="--vary once or twice",
-                              found=f"{len(vary)} time(s)")
-    kind = kind_of(base)
-    kind.check_options(base, records_dir=records_dir, executor=executor)
-    raw = tomllib.loads(base.source_text) if base.source_text else base.raw
-    variables = [parse_vary(v, raw, alternatives=kind.key_alternatives) for v in vary]
-    if len(variables) == 2 and variables[0].key == variables[1].key:
-        raise RockdesignError("the same key twice", key="--vary", expected="two different keys",
-                              found=variables[0].key)
-    cells = variants(raw, variables, file=str(project_path))
-    if base.excitation_raw is None:
-        raise ProjectError("the design chart needs an excitation", file=base.path, key="excitation.design_pga",
-                           expected="[excitation] with design_pga", found="no [excitation] table")
-    grid = run_grid(cells, variables, records_dir=records_dir, executor=executor, store=store, progress=progress,
-                    stage_progress=stage_progress)
+    project = _project(project)
+    specs = _vary_list(vary)
+    kind = kind_of(project)
+    kind.check_options(project, records_dir=records_dir, executor=executor)
+    raw = project.raw
+    variables = [parse_vary(v, raw, alternatives=kind.key_alternatives) for v in specs]
+    refuse_overlaps(variables)
+    if project.excitation_raw is None:
+        raise ProjectError("the design chart needs an excitation", file=project.path, key="excitation",
+                           expected="an [excitation] table (the default intensity would move with the varied keys)",
+                           found="no [excitation] table")
+    cells = variants(raw, variables, file=str(project.path))
+    records = read_records(cells, str(records_dir) if records_dir else None)
+    return DesignPlan(project, variables, cells, records, str(records_dir) if records_dir else None, executor)
+
+
+def prepare_design(plan: DesignPlan, say=None) -> float:
+    """Compile the kernels of the project's check on a first run (announced with ``say``), before any
+    analysis; seconds spent (0 when every kernel is cached)."""
+    from ..execution import compilation
+    return compilation.prepare(plan.kind.check_kernels, say)
+
+
+def run_design(plan: DesignPlan, *, store=None, progress=None, stage_progress=None, warn=None) -> DesignResult:
+    """Check every variant of a :func:`plan_design`.
+
+    Args:
+        store: the folder of stored variants (resumable; None: nothing stored).
+        progress: ``progress(done, total, cell)`` as each variant ends.
+        stage_progress: ``stage_progress(stage, done, total)`` inside a variant checked alone.
+        warn: ``warn(text)`` for a stored variant that cannot be used (analysed again).
+    """
+    kind = plan.kind
+    grid = run_grid(plan.variants, plan.variables, records_dir=plan.records_dir, executor=plan.executor,
+                    store=store, progress=progress, stage_progress=stage_progress, warn=warn, records=plan.records)
     settings = {"early_stopping": kind.design_skipped, "verdict_rule": kind.design_rule,
-                "executor": "dask" if executor is not None else "local",
+                "executor": "dask" if plan.executor is not None else "local",
                 "shared_batches": grid.shared_batches}
-    return DesignResult(base, grid, recommended(grid.cells, kind.design_material), settings)
+    return DesignResult(plan.project, grid, recommended(grid.cells, kind.design_material), settings,
+                        warnings=list(grid.warnings), plan=plan)
 
 
-def recommended_check(result: DesignResult, *, records_dir: str | None = None):
-    """The full ``rockdesign check`` (every stage) of the recommended variant: its summary goes into the
-    design report, and its verdict must be PASS like its cell's."""
-    from .variants import variant_document, variant_toml
-    idx = tuple(result.recommended["index"])
-    base = result.project
-    raw = tomllib.loads(base.source_text) if base.source_text else base.raw
-    doc, _ = variant_document(raw, result.grid.variables, idx)
-    proj = parse_document(doc, file=f"{result.project.path} [recommended]", text=variant_toml(doc))
-    return kind_of(proj).check(proj, progress=None, records_dir=records_dir, margins=True, executor=None)
+FULL_CHECK = ("full check of the recommended design: the stages the grid skipped (c_r sensitivity, perturbation "
+              "ensembles, report histories) run as in rockdesign check")
+"""What the full check of the recommended design does, and why it takes as long as a check."""
 
 
-OPTION_KEYS = {"records_dir": "--records-dir", "executor": "--dask"}
-"""The command-line options of :func:`design`'s parameters (errors of ``rockdesign design`` name these)."""
+SLOW_ANALYSIS = ("one analysis can take minutes when a record brings the structure close to its uplift level, where "
+                 "the engine resolves every impact (a 3D cylinder some 10^5 quasi-impacts of one record pair), and a "
+                 "stage ends with its slowest analysis; nothing has stopped (Ctrl-C stops the run, the finished "
+                 "variants stay stored)")
+"""Why a stage of a design run can be silent for minutes (the command line says it after a while)."""
 
 
-def design_command(project, vary, out, *, as_json: bool, no_pdf: bool, records_dir, dask, console, stdout) -> int:
-    """The CLI's ``design``: run, write DIR (design.json, design.csv, design.html/pdf, figures), print."""
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
-    from ..execution.compilation import prepare
-    target = Path(out if out is not None else f"{Path(project).stem}_design").expanduser()
-    if target.exists() and not target.is_dir():
-        raise RockdesignError("not a folder", key="-o/--out", expected="a folder (created if missing)",
-                              found=f"a file {target}")
-    base = load_project(project)     # input errors before compiling anything
-    kind = kind_of(base)
-    kind.check_options(base, records_dir=records_dir, executor=dask)
-    prepare(kind.check_kernels, console.print)
-    executor = None
-    if dask:
-        from ..execution.executor import make_executor
-        executor = make_executor(dask)
-        executor.start()
-    target.mkdir(parents=True, exist_ok=True)
-    bar = Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
-                   console=console, disable=as_json and not console.is_terminal)
+def recommended_check(result: DesignResult, *, progress=None):
+    """The full check (every stage, as ``rockdesign check``) of the recommended variant: its summary goes into
+    the design report, and its verdict must be PASS like its cell's.  None when no variant passes."""
+    if result.recommended is None:
+        return None
+    plan = result.plan
+    index = tuple(result.recommended["index"])
+    variant = next(v for v in plan.variants if tuple(v.index) == index)
+    return kind_of(variant.project).check(variant.project, progress=progress, records_dir=plan.records_dir,
+                                          margins=True, executor=None)
 
-    def on_variant(done, total, cell):
-        labels = ", ".join(f"{k} = {v}" for k, v in cell["labels"].items())
-        how = " (stored)" if cell.get("resumed") else ""
-        bar.console.print(f"[{done}/{total}] {labels}: {cell['verdict']}{how}", highlight=False)
-        bar.update(task, completed=done, total=total)
 
-    try:
-        with bar:
-            task = bar.add_task("design variants", total=None)
-            result = design(project, vary, records_dir=records_dir, executor=executor, store=target / "variants",
-                            progress=on_variant, option_keys=OPTION_KEYS)
-    finally:
-        if executor is not None:
-            executor.close()
-    data = result.as_json()
+def design_folder(out_dir, *, key: str = "out_dir") -> DesignFolder:
+    """The output folder of a design chart, validated (a file, a read-only folder or one holding files
+    rockdesign did not write is refused before any analysis)."""
+    folder = DesignFolder(out_dir, key=key)
+    folder.validate()
+    return folder
+
+
+def write_design(result: DesignResult, folder, *, pdf: bool = True, html: bool = True, say=None) -> Path:
+    """Write design.json, design.csv and (``html``/``pdf``) design.html, design.pdf and the figures into
+    ``folder`` (a path or a :class:`~rockdesign.outdir.DesignFolder`), all or nothing: files of an earlier
+    run that this one does not write (a design.pdf beside a new --no-pdf design.json) are gone afterwards;
+    the stored variants stay.  ``say(text)``: what is being written.  Returns the folder."""
     from ..report.design_results import write_design_csv, write_design_json
-    write_design_json(data, target / "design.json")
-    write_design_csv(data, target / "design.csv")
-    if not no_pdf:
-        from ..report.design_report import write_design_report
-        full = None
-        if result.recommended is not None:
-            with console.status("full check of the recommended design"):
-                full = recommended_check(result, records_dir=records_dir)
-            data["recommended"]["check"] = {"verdict": full.verdict, "reason": full.verdict_reason}
-            if full.verdict != "PASS":      # the grid's cell and the full check must agree: say so loudly
-                console.print(f"[bold red]warning:[/] the full check of the recommended design gives "
-                              f"{full.verdict}: {full.verdict_reason}", highlight=False)
-            write_design_json(data, target / "design.json")
-        with console.status("writing the design report (charts, PDF)"):
-            write_design_report(result, data, target, recommended_check=full)
-    if as_json:
-        stdout.write(json.dumps(data, indent=1, ensure_ascii=False) + "\n")
-    else:
-        _summary(data, target, console)
-    return result.exit_code
+    folder = folder if isinstance(folder, DesignFolder) else design_folder(folder)
+    data = result.as_json()
+    with folder.staging() as tmp:
+        write_design_json(data, tmp / "design.json")
+        write_design_csv(data, tmp / "design.csv")
+        if pdf or html:
+            from ..report.design_report import write_design_report
+            if say is not None:
+                say("writing the design report (charts" + (", PDF" if pdf else "") + ")")
+            write_design_report(result, data, tmp, pdf=pdf, recommended_check=result.recommended_check)
+    result.out_dir = folder.target
+    return folder.target
 
 
-def _summary(data: dict, target: Path, console) -> None:
-    counts = {}
-    for c in data["cells"]:
-        counts[c["verdict"]] = counts.get(c["verdict"], 0) + 1
-    console.print(f"{len(data['cells'])} variants: " + ", ".join(f"{n} {v}" for v, n in sorted(counts.items())),
-                  highlight=False)
-    rec = data["recommended"]
-    if rec:
-        console.print("recommended: " + ", ".join(f"{k} = {v}" for k, v in rec["labels"].items())
-                      + f" — {rec['reason']}", highlight=False)
-    else:
-        console.print("no variant passes", highlight=False)
-    console.print(f"analyses run: {data['analyses_run']}; saved by shared work and early stopping: at least "
-                  f"{data['analyses_saved']}", highlight=False)
-    console.print(f"written: {target}", highlight=False)
+def design(project, vary, *, out_dir=None, records_dir=None, executor=None, pdf: bool = True, html: bool = True,
+           full_check: bool | None = None, progress=None, stage_progress=None, warn=None, say=None) -> DesignResult:
+    """The design chart of a project: the check of every variant of one or two keys (SPEC §15, docs/design.md).
+
+    Args:
+        project: a :class:`~rockdesign.project_tables.Project` (or a project file's path).
+        vary: one or two ``"TABLE.KEY=FROM:TO:N"``, FROM and TO in the key's units
+            (``"podium.width=0.36m:0.60m:7"``, ``"podium.columns=6:10:3"``, ``"superstructure.damping=1%:5%:3"``).
+        out_dir: the folder of design.json, design.csv, the report and the stored variants (resumable: an
+            interrupted run started again re-runs only the variants not yet stored); None: no files, nothing stored.
+        records_dir: folder of PEER AT2 files for suites that name them (planar structures).
+        executor: a started executor (:mod:`rockdesign.execution.executor`, e.g. a dask cluster; planar).
+        pdf, html: write design.pdf / design.html (with ``out_dir``).
+        full_check: run the full check of the recommended variant (default: when a report is written).
+        progress: ``progress(done, total, cell)`` as each variant ends.
+        stage_progress: ``stage_progress(stage, done, total)`` inside a variant checked alone.
+        warn: ``warn(text)``: a stored variant that cannot be used (it is analysed again).
+        say: ``say(text)``: a long step starting (the full check, the report).
+
+    Returns:
+        A :class:`DesignResult` (``verdicts``, ``recommended``, ``exit_code``, ``as_json()`` = design.json).
+
+    Raises:
+        RockdesignError: an input error, before any analysis; its ``key`` names the parameter.
+    """
+    project = _project(project)
+    folder = design_folder(out_dir) if out_dir is not None else None
+    plan = plan_design(project, vary, records_dir=records_dir, executor=executor)
+    if full_check is None:
+        full_check = out_dir is not None and (pdf or html)
+    if folder is None:
+        result = run_design(plan, progress=progress, stage_progress=stage_progress, warn=warn)
+        if full_check:
+            if say is not None and result.recommended is not None:
+                say(FULL_CHECK)
+            result.recommended_check = recommended_check(result, progress=stage_progress)
+        return result
+    with folder.locked():
+        result = run_design(plan, store=folder.store, progress=progress, stage_progress=stage_progress, warn=warn)
+        if full_check:
+            if say is not None and result.recommended is not None:
+                say(FULL_CHECK)
+            result.recommended_check = recommended_check(result, progress=stage_progress)
+        write_design(result, folder, pdf=pdf, html=html, say=say)
+    return result
+
+
+__all__ = ["design", "plan_design", "prepare_design", "run_design", "write_design", "design_folder", "recommended_check",
+           "DesignPlan", "DesignResult", "FULL_CHECK", "SLOW_ANALYSIS"]

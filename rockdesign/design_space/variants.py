@@ -41,6 +41,8 @@ class Variable:
     integer: bool = False
     replaces: tuple[str, ...] = ()
     """Keys of the same table this key replaces when written in (its alternatives, e.g. ``curvature``)."""
+    plain: bool = False
+    """The values carry a dimensionless unit ("%", "deg"): the project file gets the plain SI number."""
 
     @property
     def table(self) -> str:
@@ -55,6 +57,8 @@ class Variable:
         v = self.values[k]
         if self.integer:
             return int(round(v))
+        if self.plain:
+            return float(f"{self.si[k]:.12g}")
         return f"{v:.10g} {self.unit}" if self.unit else float(v)
 
     def label(self, k: int) -> str:
@@ -78,13 +82,27 @@ def _quantity(text: str, option: str, spec: str):
     return q
 
 
-def parse_vary(spec: str, raw: dict, *, option: str = "--vary", alternatives: dict | None = None) -> Variable:
-    """Read one ``--vary TABLE.KEY=FROM:TO:N`` against the project's TOML document ``raw``;
-    ``alternatives``: key → the keys it replaces (default :data:`ALTERNATIVES`, one each).
+DERIVED = frozenset(("alpha", "R", "p", "lambda", "c_r", "uplift_acceleration", "uplift_acceleration_linear",
+                     "alpha_ext", "beta", "rho", "rho_c", "theta_c", "k_phase1", "k_phase2", "R_hat", "p_hat",
+                     "gamma", "eta", "omega_s", "omega_su", "S_r", "zeta_su", "omega_s_over_p", "u_capacity",
+                     "angle_of_turn", "theta_overturn", "B", "H", "tan_alpha"))
+"""Design quantities (CONTRACT §3 names) computed from the project: not keys of the project file."""
+
+
+def parse_vary(spec: str, raw: dict, *, option: str = "vary", alternatives: dict | None = None) -> Variable:
+    """Read one ``TABLE.KEY=FROM:TO:N`` (``--vary``) against the project's TOML document ``raw``;
+    ``alternatives``: key → the keys it replaces (default :data:`ALTERNATIVES`, one each); ``option``: how the
+    caller names the parameter in errors (``vary`` for the library, ``--vary`` on the command line).
+
+    FROM and TO keep their units: a dimensionless value in another unit (``0.5%``, ``5deg``) is written into
+    the variant's project file as its plain SI number (0.005, 0.0873 rad) and labelled in the user's unit.
 
     Raises:
-        RockdesignError: an unreadable spec, a table the project has not, a key that is not numeric,
-            FROM and TO of different or wrong dimensions, N < 1, or a non-integer value of an integer key.
+        RockdesignError: an unreadable spec, a table the project has not, a design quantity instead of a
+            key, a key that is not numeric, FROM and TO of different or wrong dimensions, FROM > TO, N = 1
+            with TO ≠ FROM, N outside 1…:data:`MAX_VALUES`, or a non-integer value of an integer key.
+            Whether the key exists and takes these units is the project loader's answer
+            (:func:`variants`).
     """
     m = _SPEC.match(spec)
     if not m:
@@ -101,6 +119,10 @@ def parse_vary(spec: str, raw: dict, *, option: str = "--vary", alternatives: di
         raise RockdesignError("the project has no such table", key=option,
                               expected="a table of the project file: " + ", ".join(
                                   f"[{t}]" for t, v in raw.items() if isinstance(v, dict)), found=f"[{table}] in {key}")
+    if name in DERIVED and name not in raw[table]:
+        raise RockdesignError("a design quantity, not a key of the project file", key=option,
+                              expected=f"a key of [{table}] that the quantity depends on (e.g. width, extended_width, "
+                                       "curvature, height)", found=f"{key} in {spec!r}")
     replaces = tuple(alternatives.get(name, ())) if alternatives is not None else \
         ((ALTERNATIVES[name],) if name in ALTERNATIVES else ())
     current = raw[table].get(name, next((raw[table][o] for o in replaces if o in raw[table]), None))
@@ -108,29 +130,66 @@ def parse_vary(spec: str, raw: dict, *, option: str = "--vary", alternatives: di
         raise RockdesignError("not a numeric key", key=option, expected="a key whose value is a number or a quantity",
                               found=f"{key} = {current!r}")
     lo, hi = _quantity(lo_text, option, spec), _quantity(hi_text, option, spec)
-    if lo.dimensionless and not hi.dimensionless and str(lo.units) in ("", "dimensionless"):
-        lo = lo * hi.units      # FROM without unit takes TO's unit
-    unit = f"{hi.units:~}" if not hi.dimensionless else ""
-    if (lo.dimensionality != hi.dimensionality):
+    if _plain(lo) and not _plain(hi):
+        lo = lo.magnitude * hi.units      # FROM without unit takes TO's unit
+    if _plain(hi) and not _plain(lo):
+        hi = hi.magnitude * lo.units      # and TO without unit FROM's
+    if lo.dimensionality != hi.dimensionality:
         raise RockdesignError("FROM and TO have different dimensions", key=option,
-                              expected="FROM and TO in units of the same kind", found=f"{lo} and {hi}")
+                              expected="FROM and TO in units of the same kind", found=f"{lo} and {hi} in {spec!r}")
+    unit = "" if _plain(hi) else f"{hi.units:~}"
     lo_v = float(lo.to(hi.units).magnitude)
     hi_v = float(hi.magnitude)
+    if not (math.isfinite(lo_v) and math.isfinite(hi_v)):
+        raise RockdesignError("values must be finite", key=option, expected="finite FROM and TO", found=spec)
+    if n == 1 and lo_v != hi_v:
+        raise RockdesignError("one value but two ends", key=option,
+                              expected=f"N = 1 with TO = FROM (e.g. {key}={lo_text.strip()}:{lo_text.strip()}:1), "
+                                       "or N ≥ 2 values from FROM to TO", found=spec)
+    if lo_v > hi_v:
+        raise RockdesignError("FROM is above TO", key=option, expected="FROM ≤ TO (values ascending)",
+                              found=f"{lo_text.strip()} > {hi_text.strip()} in {spec!r}")
     values = [lo_v] if n == 1 else [float(f"{lo_v + (hi_v - lo_v) * k / (n - 1):.12g}") for k in range(n)]
-    integer = isinstance(current, int)
+    integer = isinstance(raw[table].get(name), int) and not isinstance(raw[table].get(name), bool)
     if integer:
         if unit or any(abs(v - round(v)) > 1e-9 for v in values):
             raise RockdesignError("the key takes whole numbers", key=option,
-                                  expected=f"{key}=FROM:TO:N with whole-number steps, e.g. {name}=6:10:3",
+                                  expected=f"{key}=FROM:TO:N with whole-number steps and no unit, e.g. {name}=6:10:3",
                                   found=spec)
         values = [float(round(v)) for v in values]
-    if not all(math.isfinite(v) for v in values):
-        raise RockdesignError("values must be finite", key=option, expected="finite FROM and TO", found=spec)
+    own = raw[table].get(name)      # (``current`` may be the alternative's value, in other units)
+    if isinstance(own, float) and unit and not hi.dimensionless:
+        raise RockdesignError("the key takes plain numbers", key=option,
+                              expected=f"{key}=FROM:TO:N without a unit (the project gives {name} = {own!r})",
+                              found=spec)
     if len(set(values)) != len(values):
         raise RockdesignError("repeated values", key=option, expected="N distinct values", found=spec)
     si = [float(registry_si(v, unit)) for v in values]
-    return Variable(key, unit, tuple(values), tuple(si), integer, replaces)
+    return Variable(key, unit, tuple(values), tuple(si), integer, replaces, plain=bool(unit) and hi.dimensionless)
 
+
+def _plain(q) -> bool:
+    """A quantity without a unit (not "%" or "deg", which are dimensionless but units)."""
+    return str(q.units) in ("", "dimensionless")
+
+
+def refuse_overlaps(variables, *, option: str = "vary") -> None:
+    """Refuse one key given twice, or two keys that say the same thing (``podium.width`` with
+    ``podium.slenderness``, CONTRACT §1): the second would replace the first in every variant while the
+    cells are labelled by both.
+
+    Raises:
+        RockdesignError: naming both keys (``option``).
+    """
+    for k, a in enumerate(variables):
+        for b in variables[k + 1:]:
+            if a.key == b.key:
+                raise RockdesignError("the same key twice", key=option, expected="two different keys", found=a.key)
+            if a.table == b.table and (b.name in a.replaces or a.name in b.replaces):
+                raise RockdesignError("two keys that say the same thing", key=option,
+                                      expected=f"one of {a.key} or {b.key} (each replaces the other in the project "
+                                               "file), with another key as the second variable",
+                                      found=f"{a.key} and {b.key}")
 
 def registry_si(value: float, unit: str) -> float:
     """``value`` in ``unit`` as an SI magnitude (plain numbers stay as they are)."""
@@ -167,10 +226,24 @@ def variant_document(raw: dict, variables, index) -> tuple[dict, list[str]]:
     return doc, notes
 
 
-def variants(raw: dict, variables, *, file: str) -> list[Variant]:
-    """Every variant of the grid (row-major over the variables), each validated by the project loader."""
+KEY_ERRORS = ("unknown key", "wrong type", "invalid value", "expects", "conflicting alternatives", "must be a table")
+"""The loader's words for a key it cannot take at all (not a value out of its range): a ``--vary`` naming such
+a key is an input error, not a grid of INVALID cells."""
+
+
+def variants(raw: dict, variables, *, file: str, option: str = "vary") -> list[Variant]:
+    """Every variant of the grid (row-major over the variables), each validated by the project loader.
+
+    A variant the project rules do not allow (a contact width as wide as the extension) is an INVALID cell
+    with the loader's message; the key itself refused by the loader (unknown, a key of another kind, the
+    wrong type or units) and a grid without one valid variant are input errors (SPEC §15, docs/design.md).
+
+    Raises:
+        RockdesignError: naming ``option``, the key, what the loader expected and the value it found.
+    """
     from ..kinds import parse_document
     out = []
+    keys = {v.key for v in variables}
     for index in itertools.product(*(range(len(v.values)) for v in variables)):
         doc, notes = variant_document(raw, variables, index)
         label = ", ".join(f"{v.key} = {v.label(k)}" for v, k in zip(variables, index))
@@ -178,11 +251,17 @@ def variants(raw: dict, variables, *, file: str) -> list[Variant]:
             proj = parse_document(doc, file=f"{file} [{label}]", text=variant_toml(doc))
             out.append(Variant(index, doc, proj, None, tuple(notes)))
         except ProjectError as exc:
-            if exc.key in {v.key for v in variables} and exc.detail.startswith("expects"):
-                raise RockdesignError(f"the values do not fit the key: {exc.detail}", key="--vary",
-                                      expected=exc.expected or "values in the key's units",
-                                      found=label) from None
+            if exc.key in keys and exc.detail.startswith(KEY_ERRORS):
+                what = ("the project file has no such key" if exc.detail == "unknown key"
+                        else f"the values do not fit the key: {exc.detail}")
+                raise RockdesignError(what, key=option, expected=exc.expected or "values in the key's units",
+                                      found=f"{exc.key} ({label})" + (f"; {exc.found}" if exc.found else ""),
+                                      hint=exc.hint) from None
             out.append(Variant(index, doc, None, str(exc), tuple(notes)))
+    if out and all(v.project is None for v in out):
+        raise RockdesignError("no variant of the grid is a valid project", key=option,
+                              expected="values the project file allows for at least one variant",
+                              found=f"{len(out)} invalid variant(s), e.g. {out[0].invalid}")
     return out
 
 

@@ -168,20 +168,49 @@ PROBE_TIMEOUT = 5.0
 """Seconds to wait for a TCP connection to a remote dask scheduler before refusing ``--dask``."""
 
 
-def reach_scheduler(address: str, timeout: float = PROBE_TIMEOUT) -> None:
-    """Open (and close) a TCP connection to the scheduler at ``address`` (``tcp://host:port`` or
-    ``host:port``), so an unreachable scheduler is refused at once, before any output is created."""
-    scheme, _, target = address.rpartition("://")
-    if scheme not in ("", "tcp"):       # tls://, ws://, inproc://: left to dask's own connection
-        return
-    target = target.rstrip("/")
-    host, _, port = target.rpartition(":")
-    try:
-        number = int(port)
-    except ValueError:
+SCHEMES = ("tcp", "tls", "ws", "wss")
+"""dask.distributed's network transports a ``--dask`` address may name (``inproc://`` exists only inside one
+process and cannot be reached from here)."""
+
+
+def check_address(address) -> str:
+    """The ``--dask`` value stripped, or :class:`ExecutorError` for one that names no cluster: empty or blank
+    (it would silently run locally), ``local:N`` with N < 1, a transport dask does not reach from another
+    process, or a scheduler address without a port.  ``localhost:8786`` is a scheduler address, not a local
+    cluster: only ``local`` and ``local:N`` start one."""
+    text = "" if address is None else str(address).strip()
+    if not text:
+        raise ExecutorError("empty dask address", key="--dask",
+                            expected="local:N (a local cluster of N workers) or a scheduler address such as "
+                                     "tcp://host:8786 (leave --dask out to run in this process)",
+                            found=repr(str(address)))
+    if text == "local" or text.startswith("local:"):
+        rest = text[len("local:"):] if text != "local" else ""
+        if rest and not (rest.isdigit() and int(rest) >= 1):
+            raise ExecutorError("invalid local cluster", key="--dask", expected="local:N with N ≥ 1 workers, or a "
+                                "scheduler address (tcp://host:8786)", found=repr(str(address)))
+        return text
+    scheme, sep, target = text.rpartition("://")
+    if sep and scheme not in SCHEMES:
+        raise ExecutorError("unknown transport of the dask scheduler address", key="--dask",
+                            expected="a scheduler address " + ", ".join(f"{s}://host:port" for s in SCHEMES)
+                            + " or host:port", found=repr(str(address)))
+    host, colon, port = target.rstrip("/").rpartition(":")
+    if not colon or not port.isdigit() or not host.strip("[]"):
         raise ExecutorError("invalid dask scheduler address", key="--dask",
-                            expected="a scheduler address with a port, such as tcp://host:8786",
-                            found=repr(address)) from None
+                            expected="local:N or a scheduler address with a host and a port, such as "
+                                     "tcp://host:8786", found=repr(str(address)))
+    return text
+
+
+def reach_scheduler(address: str, timeout: float = PROBE_TIMEOUT) -> None:
+    """Open (and close) a TCP connection to the scheduler at ``address`` (``tcp://``, ``tls://``, ``ws://``,
+    ``wss://host:port`` or ``host:port``: every transport runs over TCP), so an unreachable scheduler is
+    refused at once, before any output is created."""
+    check_address(address)
+    target = address.strip().rpartition("://")[2].rstrip("/")
+    host, _, port = target.rpartition(":")
+    number = int(port)
     try:
         with socket.create_connection((host.strip("[]") or "localhost", number), timeout=timeout):
             pass
@@ -212,32 +241,18 @@ class DaskExecutor:
         except ImportError:
             raise ExecutorError("dask.distributed is not installed", key="--dask",
                                 expected="pip install 'rockdesign[dask]'", found="no module 'distributed'") from None
-        self.address = str(address).strip()
+        self.address = check_address(address)
         self.warm_up = warm_up
         self.numba_threads = numba_threads
         self.warm_up_seconds = 0.0
         self.client = None
         self.cluster = None
         self._n_local = None
-        if self.address.startswith("local"):
-            rest = self.address[len("local"):]
-            if rest in ("", ":"):
-                self._n_local = os.cpu_count() or 1
-            else:
-                try:
-                    self._n_local = int(rest.lstrip(":"))
-                except ValueError:
-                    self._n_local = 0
-                if not rest.startswith(":") or self._n_local < 1:
-                    raise ExecutorError("invalid local cluster", key="--dask",
-                                        expected="local:N with N ≥ 1 workers, or a scheduler address "
-                                                 "(tcp://host:8786)", found=repr(address))
+        if self.address == "local" or self.address.startswith("local:"):
+            rest = self.address[len("local:"):]
+            self._n_local = int(rest) if rest else os.cpu_count() or 1
             if self.numba_threads is None:
                 self.numba_threads = max(1, (os.cpu_count() or 1) // self._n_local)
-        elif "://" not in self.address and ":" not in self.address:
-            raise ExecutorError("invalid dask scheduler address", key="--dask",
-                                expected="local:N or a scheduler address such as tcp://host:8786",
-                                found=repr(address))
         else:
             reach_scheduler(self.address)
 
@@ -274,9 +289,12 @@ class DaskExecutor:
         else:
             try:
                 self.client = Client(self.address, timeout="20s")
-            except (OSError, TimeoutError, ValueError) as exc:
+            except (OSError, TimeoutError, ValueError, TypeError) as exc:
+                # TypeError: a tls:// address without dask's TLS configuration (distributed.comm.tls)
+                tls = "" if not self.address.startswith(("tls://", "wss://")) else \
+                    " with the TLS certificates of dask's configuration (distributed.comm.tls)"
                 raise ExecutorError(f"cannot connect to the dask scheduler: {exc}", key="--dask",
-                                    expected="a running scheduler (dask scheduler; dask worker ADDRESS)",
+                                    expected="a running scheduler (dask scheduler; dask worker ADDRESS)" + tls,
                                     found=repr(self.address)) from None
         if self.warm_up is not None:
             workers = list(self.client.scheduler_info().get("workers", {}))
@@ -326,8 +344,9 @@ def _noop_func():
 
 def make_executor(dask: str | None = None, *, processes: int = 0, warm_up: Callable[[], object] | None = None,
                   numba_threads: int | None = None):
-    """The executor for a CLI ``--dask`` value: None → :class:`LocalExecutor`, else :class:`DaskExecutor`."""
-    if dask is None or str(dask).strip() == "":
+    """The executor for a CLI ``--dask`` value: None → :class:`LocalExecutor`, else :class:`DaskExecutor` (an
+    empty or blank value is refused there: it names no cluster, :func:`check_address`)."""
+    if dask is None:
         return LocalExecutor(processes, warm_up)
     return DaskExecutor(dask, warm_up=warm_up, numba_threads=numba_threads)
 

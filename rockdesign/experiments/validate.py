@@ -59,6 +59,8 @@ class MixedSample:
     name: str
     values: np.ndarray
     ids: list[str] = field(default_factory=list)
+    file: str = ""
+    """The CSV file the runs were read from (error messages name it)."""
 
     @property
     def n(self) -> int:
@@ -98,7 +100,7 @@ class MixedSample:
         return x, np.concatenate([[0.0], self.cdf(finite), [1.0 - self.p_overturn, 1.0]])
 
     def subset(self, index: np.ndarray, name: str) -> "MixedSample":
-        return MixedSample(name, self.values[index], [self.ids[i] for i in index] if self.ids else [])
+        return MixedSample(name, self.values[index], [self.ids[i] for i in index] if self.ids else [], self.file)
 
 
 def read_results_csv(path, name: str) -> MixedSample:
@@ -125,7 +127,22 @@ def read_results_csv(path, name: str) -> MixedSample:
         if flag not in _TRUE and flag not in _FALSE:
             raise ExperimentError("invalid overturned flag", file=file, line=k, key="overturned",
                                   expected="true/false (or 1/0)", found=repr(flag))
-        if flag in _TRUE or text.lower() in ("inf", "+inf", "ot", "overturned"):
+        marked_ot = text.lower() in ("inf", "+inf", "ot", "overturned")
+        if flag in _FALSE and flag and marked_ot:     # an explicit "not overturned" beside θ_max/α = inf
+            raise ExperimentError("the row contradicts itself", file=file, line=k, key="overturned",
+                                  expected="overturned = true for θ_max/α = inf/OT (or a finite θ_max/α)",
+                                  found=f"overturned = {flag!r} and theta_max_over_alpha = {text!r}")
+        if flag in _TRUE and not marked_ot and text:
+            try:
+                finite = float(text.replace(",", ".") if "," in text and "." not in text else text)
+            except ValueError:
+                finite = math.nan
+            if math.isfinite(finite) and finite < 1.0:   # θ_max < α: the body never passed its tipping angle
+                raise ExperimentError("the row contradicts itself", file=file, line=k, key="overturned",
+                                      expected="overturned = true only with θ_max/α ≥ 1 (a run that overturns "
+                                               "passes θ = α) or inf/OT",
+                                      found=f"overturned = {flag!r} and theta_max_over_alpha = {text!r}")
+        if flag in _TRUE or marked_ot:
             values.append(math.inf)
         else:
             try:   # a decimal comma ("0,5") as Excel writes it beside semicolons
@@ -152,7 +169,7 @@ def read_results_csv(path, name: str) -> MixedSample:
                                       expected="each id once (it pairs tests with model runs)",
                                       found=f"'{rid}' again (first on line {first[rid]})")
             first[rid] = k
-    return MixedSample(name, np.asarray(values, dtype=float), ids if "id" in rows[0][1] else [])
+    return MixedSample(name, np.asarray(values, dtype=float), ids if "id" in rows[0][1] else [], file)
 
 
 def _rows(path: Path, file: str) -> tuple[list[tuple[int, dict]], int]:
@@ -246,8 +263,9 @@ def _model_on(model: MixedSample, tests: MixedSample, d2: np.ndarray, name: str)
         if missing:
             shown = ", ".join(repr(m) for m in missing[:4]) + (f" and {len(missing) - 4} more" if len(missing) > 4
                                                                else "")
-            raise ExperimentError("tests without a model run of the same id", key="id",
-                                  expected=f"every test id among the ids of --{model.name.replace('_', '-')}",
+            raise ExperimentError("tests without a model run of the same id", file=model.file or None, key="id",
+                                  expected=f"every test id of '{tests.file or tests.name}' among the ids of "
+                                           f"--{model.name.replace('_', '-')}",
                                   found=f"{len(missing)} of {tests.n}: {shown}")
         return model.subset(np.array([where[tests.ids[i]] for i in d2]), name), "id"
     if model.n == tests.n:

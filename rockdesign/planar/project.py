@@ -184,7 +184,7 @@ def _parse_superstructure(t: _Table) -> Superstructure:
     if pk == "period":
         omega = 2.0 * math.pi / t.quantity("period", "time")
     else:
-        omega = 2.0 * math.pi * t.quantity("frequency", "frequency")
+        omega = t.angular_frequency("frequency", plain_is_cyclic=True)    # "2 Hz" cyclic, "12.6 rad/s" angular
     if not t.has("damping"):
         raise t.error("damping", "missing required value", expected="damping = \"2 %\" (fixed-base ζ_s)",
                       found="none")

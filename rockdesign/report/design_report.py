@@ -19,7 +19,8 @@ CAPTIONS = {
     "acmr": "Adjusted collapse margin ratio ACMR of the variants whose margin was analysed (cells the count rule "
             "already fails at the design level need no margin scan and are left blank).",
     "shear": "Superstructure shear coefficient |f_s|/g, 84th percentile over the records that did not overturn "
-             "(2DOF podium, SPEC §13) — the force the building above is designed for.",
+             "(the two-degree-of-freedom podium of thesis Ch. 4: the superstructure on the rocking storey) — the force "
+             "the building above is designed for.",
     "overturning": "Overturning of the record pairs at the design level (θ reaching θ_ot, thesis Sec 5.5.1): under "
                    "acceptance = \"binomial\" the one-sided 95 % bound of P(overturn) (Clopper–Pearson) with the "
                    "limit (its contour is the design level's pass/fail boundary), otherwise the pairs that overturn "
@@ -77,8 +78,11 @@ def write_design_report(result, data: dict, out_dir: Path, *, pdf: bool = True, 
     check = None
     if recommended_check is not None:
         r = recommended_check
+        from ..display import check_order, utilisation_text
+        shown = [c for c in r.checks if c.get("governs_verdict") or c.get("role") == "robustness"]
         check = {"verdict": r.verdict, "reason": r.verdict_reason,
-                 "checks": [c for c in r.checks if c.get("governs_verdict") or c.get("role") == "robustness"],
+                 "checks": [dict(c, ratio=utilisation_text(c.get("utilisation")))
+                            for c in check_order(shown, getattr(r, "governing_check", None))],
                  "acceptance": r.acceptance or {},
                  "superstructure": (r.statistics.get("superstructure") or {})}
     env = environment()

@@ -21,6 +21,7 @@ from pathlib import Path
 
 import jinja2
 
+from ..display import readable_units
 from ..paths import templates_dir
 from .formatting import fmt, number
 from .methods import cite
@@ -38,7 +39,7 @@ def symbols(text) -> str:
     become the report's appendix sections (:func:`~rockdesign.planar.report.methods.cite`)."""
     if text is None:
         return ""
-    escaped = html_lib.escape(cite(str(text)), quote=False)
+    escaped = html_lib.escape(readable_units(cite(str(text))), quote=False)     # m/s^2 → m/s², as fmt writes it
     return _SUBSCRIPT.sub(r"<sub>\1</sub>", escaped)
 
 

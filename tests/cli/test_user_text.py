@@ -83,3 +83,83 @@ def test_mostly_missing_suite_is_named_and_refused(tmp_path):
     flat = " ".join(r.output.split())
     assert "thesis-table-4.1: 2 ground motion(s) from 4 record(s); 9 record(s) not found" in flat
     assert "at least 11 independent ground motions" in flat and not (out / "results.json").exists()
+
+
+def test_templates_state_the_documented_defaults():
+    """`init podium` wrote `rtol = 1e-10 # (default 1e-10)` while the documented default is 1e-8."""
+    import re
+
+    import rockdesign as rd
+    from rockdesign.templates import KINDS, template_text
+    default = rd.parse_project('[project]\nname = "x"\n[column]\nheight = "3 m"\nwidth = "0.5 m"\nmass = "1 t"\n'
+                               'mass_distribution = 0.333\n', name="x").analysis.rtol
+    for kind in KINDS:
+        stated = [float(m.group(1)) for line in template_text(kind).splitlines() if line.startswith("rtol")
+                  for m in [re.search(r"\(default ([0-9.e+-]+)[;:)]", line)] if m]
+        assert stated == [default], (kind, stated)
+
+
+COMMANDS = [[], ["init"], ["quantities"], ["simulate"], ["check"], ["spectrum"], ["bench"], ["calibrate"],
+            ["validate"], ["ensemble"], ["design"], ["records"], ["records", "list"], ["records", "show"],
+            ["records", "spectrum"], ["records", "synth"], ["records", "scale-model"]]
+
+
+@pytest.mark.parametrize("command", COMMANDS, ids=lambda c: " ".join(c) or "rockdesign")
+def test_help_fits_80_columns_without_cutting_words(command):
+    """`spectrum --help` cut its defaults at 80 columns ("omega_p/p:0.5:12…")."""
+    import os
+    import subprocess
+    import sys
+    env = {**os.environ, "COLUMNS": "80", "TERMINAL_WIDTH": "80"}
+    out = subprocess.run([sys.executable, "-m", "rockdesign.cli", *command, "--help"], capture_output=True,
+                         text=True, env=env, timeout=60)
+    assert out.returncode == 0, out.stderr
+    assert "…" not in out.stdout, [ln for ln in out.stdout.splitlines() if "…" in ln]
+
+
+def test_top_level_and_check_help_name_every_exit_code_and_command():
+    import os
+    import subprocess
+    import sys
+    env = {**os.environ, "COLUMNS": "200"}
+
+    def help_of(*args):
+        return " ".join(subprocess.run([sys.executable, "-m", "rockdesign.cli", *args, "--help"], capture_output=True,
+                                       text=True, env=env, timeout=60).stdout.split())
+    top = help_of()
+    for code in ("0 =", "1 =", "2 = input error", "3 = internal error", "4 = not decided", "130 = interrupted"):
+        assert code in top, code
+    assert "scale-model" in top
+    check = help_of("check")
+    assert "3 = internal error" in check and "4 = not decided" in check
+    assert "scale-model" in help_of("records")
+
+
+def test_one_form_of_units_for_a_reader():
+    """Units were printed m/s^2 beside m/s²: the console and the report write m/s², JSON keeps m/s^2."""
+    from typer.testing import CliRunner
+
+    from rockdesign.cli import app
+    from rockdesign.display import readable_units
+    from rockdesign.paths import REPO_ROOT
+    from rockdesign.report.render import symbols
+    assert readable_units("median PGA 8.785 m/s^2 over 2.5 t/m^3") == "median PGA 8.785 m/s² over 2.5 t/m³"
+    assert symbols("PGA 8.785 m/s^2") == "PGA 8.785 m/s²"
+    res = CliRunner().invoke(app, ["quantities", str(REPO_ROOT / "examples" / "podium_flat.toml")])
+    assert res.exit_code == 0 and "m/s²" in res.stdout and "m/s^2" not in res.stdout
+    res = CliRunner().invoke(app, ["quantities", str(REPO_ROOT / "examples" / "podium_flat.toml"), "--json"])
+    assert '"m/s^2"' in res.stdout
+
+
+def test_documentation_references_carry_the_reports_name():
+    """The console cited docs/model.md §7 where the report says Appendix M4: it now gives both."""
+    from typer.testing import CliRunner
+
+    from rockdesign.cli import app
+    from rockdesign.paths import REPO_ROOT
+    res = CliRunner().invoke(app, ["quantities", str(REPO_ROOT / "examples" / "podium_curved.toml")],
+                             env={"COLUMNS": "250"})
+    text = " ".join(res.stdout.split())
+    assert res.exit_code == 0
+    assert "docs/model.md §7 (report: Appendix M4)" in text
+    assert text.count("docs/model.md") == text.count("(report: Appendix")

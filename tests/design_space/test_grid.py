@@ -30,7 +30,7 @@ def small(tmp_path_factory):
 @pytest.fixture(scope="module")
 def grid(small):
     folder, path = small
-    return design(path, VARY, store=folder / "variants")
+    return design(path, VARY, out_dir=folder / "out", pdf=False, html=False)
 
 
 def test_each_cell_verdict_equals_the_check_of_its_project_file(small, grid):
@@ -68,7 +68,7 @@ def test_recommended_is_the_passing_cell_and_the_run_resumes(small, grid):
     rec = grid.recommended
     passing = [c for c in grid.grid.cells if c["verdict"] == "PASS"]
     assert rec is not None and rec["index"] == passing[0]["index"]
-    again = design(path, VARY, store=folder / "variants")       # finished variants are not re-run
+    again = design(path, VARY, out_dir=folder / "out", pdf=False, html=False)   # finished variants are not re-run
     assert again.grid.resumed == 2 and again.grid.analyses_run == 0
     assert [c["verdict"] for c in again.grid.cells] == [c["verdict"] for c in grid.grid.cells]
     assert json.dumps(again.as_json()["cells"][0]["values"]) == json.dumps(grid.as_json()["cells"][0]["values"])
@@ -103,7 +103,7 @@ def test_grid_on_dask_equals_local_and_resumes_after_an_interruption(small, grid
     from rockdesign.cli import app
     folder, path = small
     out = tmp_path / "d"
-    first = design(path, VARY[:1], store=out / "variants")          # both variants stored ...
+    first = design(path, VARY[:1], out_dir=out, pdf=False, html=False)   # both variants stored ...
     stored = sorted((out / "variants").glob("*.json"))
     stored[0].unlink()                                             # ... one lost: the run was interrupted
     res = CliRunner().invoke(app, ["design", str(path), "--vary", VARY[0], "-o", str(out), "--no-pdf", "--json",
@@ -143,7 +143,7 @@ def test_variants_checked_together_equal_variants_checked_one_after_the_other(sm
     assert shared["analyses"] == grid.grid.analyses_run
     monkeypatch.setattr(Planar, "grid_batches", lambda self: None)
     folder, path = small
-    alone = design(path, VARY, store=tmp_path / "variants")
+    alone = design(path, VARY)
     assert alone.grid.shared_batches is None
     assert alone.as_json()["cells"] == grid.as_json()["cells"]
 
@@ -163,13 +163,13 @@ def test_an_error_in_one_variant_stops_the_grid_without_hanging(small, monkeypat
     monkeypatch.setattr(planar_grid, "grid_check", failing)
     folder, path = small
     with pytest.raises(RuntimeError, match="boom"):
-        design(path, VARY, store=tmp_path / "variants")
+        design(path, VARY)
 
 
 def test_more_variants_than_threads_queue_and_share_what_runs(small, grid, monkeypatch, tmp_path):
     from rockdesign.design_space import grid as grid_module
     monkeypatch.setattr(grid_module, "at_once", lambda: 1)   # one variant at a time: nothing shared
     folder, path = small
-    waves = design(path, VARY, store=tmp_path / "variants")
+    waves = design(path, VARY)
     assert waves.grid.shared_batches["driver_calls"] == waves.grid.shared_batches["batches"]
     assert waves.as_json()["cells"] == grid.as_json()["cells"]

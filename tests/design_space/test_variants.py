@@ -45,7 +45,7 @@ def test_integer_key_takes_whole_numbers(curved):
 def test_bad_vary_is_an_input_error_naming_the_option(curved, spec, message):
     with pytest.raises(RockdesignError, match=message) as info:
         parse_vary(spec, curved)
-    assert "--vary" in str(info.value)
+    assert "key 'vary'" in str(info.value)            # the library's parameter (the CLI says --vary)
 
 
 def test_wrong_unit_for_the_key_is_an_input_error_not_an_invalid_cell(curved):
@@ -77,3 +77,16 @@ def test_variant_toml_is_the_same_document(curved):
     text = variant_toml(doc)
     assert tomllib.loads(text) == doc
     assert parse_project(tomllib.loads(text), file="v.toml").system.column.half_width == pytest.approx(0.25)
+
+
+def test_percent_and_degrees_keep_their_units(curved):
+    """superstructure.damping=0.5%:1%:2 ran ζ = 0.5 (50 %) and marked 1 INVALID."""
+    v = parse_vary("superstructure.damping=0.5%:1%:2", curved)
+    assert v.unit == "%" and v.values == (0.5, 1.0) and v.si == pytest.approx((0.005, 0.01))
+    assert [v.toml_value(k) for k in range(2)] == [0.005, 0.01] and v.label(0) == "0.5 %"
+    cells = variants(curved, [v], file="p.toml")
+    assert [c.project.system.superstructure.damping for c in cells] == pytest.approx([0.005, 0.01])
+    plain = parse_vary("superstructure.damping=0.005:0.01:2", curved)        # the same grid as plain numbers
+    assert plain.si == pytest.approx(v.si)
+    from_only = parse_vary("superstructure.damping=0.5:1%:2", curved)         # FROM takes TO's unit
+    assert from_only.si == pytest.approx(v.si)

@@ -2,6 +2,8 @@
 exit 2 with one line naming the option, key or file — never a traceback, never a silent drop."""
 from __future__ import annotations
 
+import math
+
 import json
 
 import pytest
@@ -89,7 +91,24 @@ def test_tests_without_a_model_run_of_their_id_are_refused(tmp_path):
     """No silent fall-back to pairing by row when the ids do not match."""
     model = write(tmp_path, "m.csv", MODEL.replace("\nd,", "\nx,"))
     one_line_error(invoke("validate", "--tests", write(tmp_path, "t.csv", TESTS), "--analyses", model),
-                   "key 'id'", "tests without a model run", "'d'")
+                   "key 'id'", "tests without a model run", "'d'", "m.csv", "t.csv")     # names both files
+
+
+@pytest.mark.parametrize("row, found", [
+    ("e,inf,false", "overturned = 'false' and theta_max_over_alpha = 'inf'"),
+    ("e,OT,no", "overturned = 'no' and theta_max_over_alpha = 'OT'"),
+    ("e,0.4,true", "overturned = 'true' and theta_max_over_alpha = '0.4'"),
+])
+def test_a_row_that_contradicts_itself_is_refused(tmp_path, row, found):
+    """θ_max/α = inf marked not overturned, or 0.4 marked overturned, was accepted (and counted one way)."""
+    bad = write(tmp_path, "bad.csv", "id,theta_max_over_alpha,overturned\na,0.5,false\nb,1.2,true\n" + row + "\n")
+    one_line_error(invoke("validate", "--tests", bad, "--analyses", write(tmp_path, "m.csv", MODEL)),
+                   "bad.csv:4", "key 'overturned'", "contradicts itself", found)
+
+
+def test_consistent_flags_are_read(tmp_path):
+    ok = write(tmp_path, "ok.csv", "id,theta_max_over_alpha,overturned\na,0.5,false\nb,1.2,true\nc,inf,\nd,inf,true\n")
+    assert list(read_results_csv(ok, "tests").values) == [0.5, math.inf, math.inf, math.inf]
 
 
 def test_semicolons_and_decimal_commas_read_as_commas(tmp_path):

@@ -165,3 +165,53 @@ def test_report_warm_up_writes_nothing_and_changes_no_figure(tmp_path, monkeypat
     warm_up()
     assert list(tmp_path.iterdir()) == []
     assert svg(structure_drawing(system), "a") == before
+
+
+@pytest.mark.parametrize("example", ["podium_flat.toml", "podium_curved.toml"])
+def test_the_width_label_of_the_podium_drawing_overlaps_no_column(example):
+    """The structure drawing's "2B = 0.45 m" label was centred on a slender column and overlapped it."""
+    from matplotlib.patches import Rectangle
+
+    import rockdesign as rd
+    from rockdesign.paths import REPO_ROOT
+    from rockdesign.planar.report.drawing import structure_drawing
+    project = rd.load_project(REPO_ROOT / "examples" / example)
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    fig = structure_drawing(project.system)
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    renderer = canvas.get_renderer()
+    ax = fig.axes[0]
+    label = next(t for t in ax.texts if t.get_text().startswith("2B ="))
+    box = label.get_window_extent(renderer)
+    shafts = [p.get_window_extent(renderer) for p in ax.patches if isinstance(p, Rectangle)
+              and abs(p.get_width() - project.system.column.half_width * 2) < 1e-9]
+    assert shafts, "no column drawn"
+    assert not any(box.overlaps(s) for s in shafts), (box, shafts)
+
+
+def test_the_demand_figures_legend_hides_no_marker():
+    """The legend of the superstructure-demand figure sat on two of its markers."""
+    from types import SimpleNamespace
+
+    import numpy as np
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    from rockdesign.planar.report.demand_figures import demand_figure
+    rng = np.random.default_rng(1)
+    records = [SimpleNamespace(id=f"p695-ff/{k}a", run=SimpleNamespace(overturned=False),
+                               superstructure={"shear_coefficient_max": float(s), "fixed_base_acceleration_max": float(f)})
+               for k, (s, f) in enumerate(zip(rng.uniform(0.3, 0.62, 22), rng.uniform(3.0, 6.1, 22)), 1)]
+    records[-1].superstructure["shear_coefficient_max"] = 0.62      # top right, where the legend used to sit
+    result = SimpleNamespace(records=records, project=SimpleNamespace(system=SimpleNamespace(g=9.81)),
+                             statistics={"superstructure": {"uplift_base_shear_coefficient": 0.15}})
+    fig = demand_figure(result)
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    renderer = canvas.get_renderer()
+    ax = fig.axes[0]
+    legend = ax.get_legend().get_window_extent(renderer)
+    points = np.vstack([ax.transData.transform(np.column_stack(line.get_data())) for line in ax.get_lines()
+                        if line.get_marker() not in (None, "None", "")])
+    inside = [p for p in points if legend.x0 <= p[0] <= legend.x1 and legend.y0 <= p[1] <= legend.y1]
+    assert len(points) == 44 and not inside, inside

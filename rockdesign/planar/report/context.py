@@ -143,11 +143,12 @@ def _quality_note(project, data: dict) -> str:
 
 
 def _order_checks(checks: list[dict], governing: str | None) -> list[dict]:
-    """The governing check (decided by the library: ``CheckResult.governing_check``) first, then the
-    rest by decreasing utilisation."""
-    top = next((c for c in checks if c["criterion"] == governing), None)
-    rest = sorted((c for c in checks if c is not top), key=lambda c: -c["utilisation"])
-    return ([dict(top, governing=True)] if top else []) + [dict(c, governing=False) for c in rest]
+    """The governing check (decided by the library: ``CheckResult.governing_check``) first, then the checks
+    that decide the verdict, qualify it and inform it, each by decreasing demand/limit
+    (:func:`rockdesign.display.check_order`); ``ratio`` is the table's text of the utilisation."""
+    from ...display import check_order, utilisation_text
+    return [dict(c, governing=c.get("criterion") == governing and governing is not None,
+                 ratio=utilisation_text(c.get("utilisation"))) for c in check_order(checks, governing)]
 
 
 def _capacity_text(system) -> str:

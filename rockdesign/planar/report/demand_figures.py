@@ -31,7 +31,9 @@ def demand_figure(result):
         ax.axhline(up, color="C3", lw=0.8, ls="--", label=f"uplift, tan α = {fmt(up)}")
         ax.set_ylabel("peak |f$_s$|/g [-]")
         ax.set_ylim(0.0, None)
-        ax.legend(fontsize=7, loc="upper right")
+        # above the axes: inside, it hid the markers of the records under it
+        ax.legend(fontsize=7, loc="lower left", bbox_to_anchor=(0.0, 1.01), ncol=3, frameon=False,
+                  borderaxespad=0.0, handletextpad=0.4, columnspacing=1.2)
         ax2.bar(x, ratio, color=np.where(ratio <= 1.0, "C2", "C3"), width=0.7)
         ax2.axhline(1.0, color="k", lw=0.7)
         ax2.set_ylabel("force ratio [-]")

@@ -236,8 +236,12 @@ def podium_drawing(system, given: dict | None = None):
         x0 = xs[0]
         _dimension(ax, (x0 - Be, 0.0), (x0 - Be, H2), f"2H = {fmt(H2, 'm')}", (-0.32 * spacing, 0.0),
                    text_offset=-0.03 * spacing, rotate=True)
-        _dimension(ax, (x0 - B, 0.5 * H2), (x0 + B, 0.5 * H2), f"2B = {fmt(2 * B, 'm')}", (0.0, 0.0),
-                   text_offset=0.015 * H2)
+        # the width across the first column, its label beside the column (centred on it, the label is wider
+        # than a slender column and overlapped its outline)
+        ax.annotate("", xy=(x0 + B, 0.5 * H2), xytext=(x0 - B, 0.5 * H2), zorder=4,
+                    arrowprops=dict(arrowstyle="<|-|>", lw=0.6, color=INK, mutation_scale=6, shrinkA=0, shrinkB=0))
+        ax.text(x0 + Be + 0.06 * spacing, 0.5 * H2, f"2B = {fmt(2 * B, 'm')}", ha="left", va="center",
+                fontsize=7.5, zorder=5, bbox=dict(fc="white", ec="none", pad=0.5))
         top = H2 + beam_h
         s = system.superstructure
         if s is not None:
