@@ -77,6 +77,16 @@ def test_one_component_is_the_elastic_spectrum(landers):
     np.testing.assert_allclose(psv, 2 * np.pi / periods * sd, rtol=1e-14)
 
 
+def test_proportional_components_by_hand(landers):
+    # y = c·x moves the oscillator along one line: |u| = √(1 + c²)·|u_x|, so RotD100 = √(1 + c²)·SD(x)
+    a, _ = landers
+    periods = np.geomspace(0.03, 8.0, 12)
+    sd = response_spectrum(a.samples, a.dt, periods, 0.05)[0]
+    for c in (1.0, -0.5, 3.0):
+        rotd = max_direction_spectrum(a.samples, c * a.samples, a.dt, periods)[0]
+        np.testing.assert_allclose(rotd, math.sqrt(1 + c * c) * sd, rtol=1e-12)
+
+
 def test_rotation_over_angles_converges_from_below(landers):
     a, b = landers
     periods = np.geomspace(0.03, 10.0, 30)
