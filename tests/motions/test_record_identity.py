@@ -81,7 +81,7 @@ def test_builtin_beside_its_peer_file(tmp_path, shared_records):
     err = refused({"records": ["p695-ff/11a", str(peer)]}, tmp_path / "p.toml")
     assert "RSN 900" in err.found and peer.name in err.found
     # and the PEER file found by its RSN in a records folder beside the file itself
-    err = refused({"records": [f"rsn:6:180", str(shared_records / "RSN6_IMPVALL.I_I-ELC180.AT2")],
+    err = refused({"records": ["rsn:6:180", str(shared_records / "RSN6_IMPVALL.I_I-ELC180.AT2")],
                    "records_dir": str(shared_records)}, tmp_path / "p.toml")
     assert "the same file" in err.found
 
