@@ -15,6 +15,13 @@ Keys (quantities as strings with units; ``g`` is the project's gravity)::
 Defaults: no suites and no records → suite ``p695-farfield``; no ``scale`` → PGA scaled to
 ``design_pga`` if given, else each suite's own default rule (the built-in ones: as recorded).
 Relative paths are taken from the project file's folder.
+
+``scale = { method = "asce7-22", ... }`` (CONTRACT §7.1) scales ground motions, not records: one factor
+per pair of components (:mod:`rockdesign.motions.asce7_22`); the caller passes the structure's
+characteristic periods for the §16.2.1 period range unless the rule gives ``periods``.
+
+A suite lists each recording once: the same record under two names (two paths to one file, a built-in
+record beside its PEER file, the same id twice) is refused (:mod:`rockdesign.motions.identity`, SPEC §14).
 """
 from __future__ import annotations
 
@@ -22,9 +29,12 @@ import difflib
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Mapping
 
 from ..errors import MotionError, ProjectError, RecordError
 from ..units import QuantityParseError, parse_quantity
+from .grouping import ground_motion_id
+from .identity import Entry, refuse_repeated_recordings
 from .library import load_record
 from .motion import GroundMotion
 from .scaling import ScaleRule, parse_scale_rule, scale_factors, similitude_time_factor, time_scaled
@@ -88,6 +98,11 @@ class ResolvedSuite:
         missing: (id, reason, suite) of records not found.
         scale_description: how the records were scaled (for reports).
         default_used: the default excitation was used (no ``[excitation]`` table).
+        suites: the suites' names, in order.
+        rules: (suite name or None for the extra records, the rule applied to its records), for every
+            group with records; one entry (None, rule) when one rule scaled all records.
+        asce7_22: the outcome of ASCE 7-22 §16.2.3 scaling (factors per ground motion, period range,
+            spectra), when the records were scaled so; else None.
     """
 
     records: list[ResolvedRecord]
@@ -95,6 +110,8 @@ class ResolvedSuite:
     scale_description: str
     default_used: bool = False
     suites: list[str] = field(default_factory=list)
+    rules: list = field(default_factory=list)
+    asce7_22: object | None = None
 
 
 def default_excitation(design_pga: float | None, *, file: str | None = None) -> ExcitationSpec:
@@ -251,75 +268,121 @@ def _parse_time_scale(raw, file, gravity) -> float:
 
 
 def resolve_motions(spec: ExcitationSpec, *, gravity: float = 9.81, uplift_acceleration: float | None = None,
-                    records_dir=None) -> ResolvedSuite:
+                    records_dir=None, characteristic_periods: Mapping[str, float] | None = None) -> ResolvedSuite:
     """Load, time-scale and amplitude-scale the records of ``spec`` in a stable order.
 
-    Order: each suite's records in manifest order, then ``records``; a record id seen before is
-    not repeated. Records that cannot be found are returned in ``missing`` with the reason.
+    Order: each suite's records in manifest order, then ``records``.  Records that cannot be found are
+    returned in ``missing`` with the reason.  A recording listed twice, under any names, is refused
+    (:func:`rockdesign.motions.identity.refuse_repeated_recordings`, SPEC §14).
 
     Args:
         spec: the parsed excitation.
         gravity: g [m/s²].
         uplift_acceleration: the system's g tan α [m/s²] (scale method ``uplift``).
         records_dir: overrides ``spec.records_dir`` (e.g. ``--records-dir``).
+        characteristic_periods: label → period [s] of the structure (scale method ``asce7-22``: the
+            §16.2.1 period range, :func:`rockdesign.motions.asce7_22.scaling_period_range`), unless the
+            rule gives ``periods``.
 
     Raises:
-        ProjectError / MotionError / RecordError: unreadable suites or record files, impossible scaling.
+        ProjectError / MotionError / RecordError: unreadable suites or record files, a recording listed
+            twice, impossible scaling (an ``asce7-22`` suite whose ground motions are not pairs).
     """
     folder = records_dir if records_dir is not None else spec.records_dir
     groups: list[tuple[str | None, ScaleRule | None, list[tuple[str, GroundMotion, dict]]]] = []
     missing: list[tuple[str, str, str | None]] = []
-    seen: set[str] = set()
+    entries: list[Entry] = []
     for name in spec.suites:
         suite = load_suite(name, gravity=gravity, records_dir=folder)
         found = []
         for entry in suite.entries:
-            if entry.id in seen:
-                continue
-            seen.add(entry.id)
+            entries.append(Entry(entry.id, f"suite {suite.name}", entry.motion, entry.meta,
+                                 str(suite.path) if suite.path else None))
             if entry.motion is None:
                 missing.append((entry.id, entry.reason, suite.name))
             else:
                 found.append((entry.id, entry.motion, dict(entry.meta, suite=suite.name)))
         groups.append((suite.name, suite.default_scale, found))
     extra = []
-    for rid in spec.records:
-        if rid in seen:
-            continue
-        seen.add(rid)
+    for i, rid in enumerate(spec.records):
+        where = f"excitation.records[{i}]"
         try:
             motion = load_record(rid, gravity=gravity, records_dir=folder)
         except RecordError as exc:
             if rid.lower().startswith("rsn:"):
                 missing.append((rid, exc.detail, None))
+                entries.append(Entry(rid, where, None, {}, spec.file))
                 continue
             raise
+        entries.append(Entry(rid, where, motion, {}, spec.file))
         extra.append((rid, motion, dict(motion.meta)))
     groups.append((None, None, extra))
+    refuse_repeated_recordings(entries, file=spec.file, key="excitation")
     if spec.time_scale != 1.0:
         groups = [(s, r, [(i, time_scaled(m, spec.time_scale), meta) for i, m, meta in items])
                   for s, r, items in groups]
     rule = spec.effective_scale()
     resolved: list[ResolvedRecord] = []
     descriptions = []
+    rules = []
+    asce = None
     if rule is not None:
         items = [(suite, item) for suite, _, group in groups for item in group]
-        factors = scale_factors(rule, [m for _, (_, m, _) in items], uplift_acceleration=uplift_acceleration,
-                                gravity=gravity) if items else []
+        if rule.method == "asce7-22":
+            factors, asce = _asce7_22_factors(rule, [item for _, item in items], spec, characteristic_periods)
+        else:
+            factors = scale_factors(rule, [m for _, (_, m, _) in items], uplift_acceleration=uplift_acceleration,
+                                    gravity=gravity) if items else []
         for (suite, (rid, motion, meta)), factor in zip(items, factors):
             resolved.append(ResolvedRecord(rid, motion.scaled(factor), factor, meta, suite))
         descriptions.append(rule.describe(gravity))
+        rules.append((None, rule))
     else:
-        for suite, suite_rule, group in groups:
-            if not group:
-                continue
+        filled = [g for g in groups if g[2]]
+        for suite, suite_rule, group in filled:
             group_rule = suite_rule or ScaleRule("factor", value=1.0)
-            factors = scale_factors(group_rule, [m for _, m, _ in group], uplift_acceleration=uplift_acceleration,
-                                    gravity=gravity)
+            if group_rule.method == "asce7-22":
+                if len(filled) > 1:
+                    raise ProjectError(
+                        f"suite {suite}'s own asce7-22 rule cannot scale it beside other records", file=spec.file,
+                        key="excitation.scale", expected='one rule for the whole suite: [excitation] scale = '
+                        '{ method = "asce7-22", ... }', found=", ".join(str(g[0] or "extra records") for g in filled))
+                factors, asce = _asce7_22_factors(group_rule, group, spec, characteristic_periods)
+            else:
+                factors = scale_factors(group_rule, [m for _, m, _ in group], uplift_acceleration=uplift_acceleration,
+                                        gravity=gravity)
             for (rid, motion, meta), factor in zip(group, factors):
                 resolved.append(ResolvedRecord(rid, motion.scaled(factor), factor, meta, suite))
             descriptions.append(f"{suite or 'extra records'}: {group_rule.describe(gravity)}")
+            rules.append((suite, group_rule))
     text = "; ".join(descriptions) or "no records"
     if spec.time_scale != 1.0:
         text += f"; time scaled by {spec.time_scale:.4g} (Δt × {spec.time_scale:.4g}, Eq 6.5)"
-    return ResolvedSuite(resolved, missing, text, spec.default_used, [g[0] for g in groups if g[0]])
+    return ResolvedSuite(resolved, missing, text, spec.default_used, [g[0] for g in groups if g[0]], rules, asce)
+
+
+def _asce7_22_factors(rule: ScaleRule, items: list[tuple[str, GroundMotion, dict]], spec: ExcitationSpec,
+                      characteristic_periods):
+    """Per-record factors of ASCE 7-22 §16.2.3 scaling (one per ground motion), and the scaling outcome.
+
+    Raises:
+        ProjectError: ground motions that are not pairs (one component only, three, different time steps,
+            non-orthogonal components), no period range, or a target that does not cover it.
+    """
+    from .asce7_22 import asce7_22_scaling, pair_components, scaling_period_range
+    pairs, problems = pair_components(items)
+    if problems:
+        listed = "; ".join(f"{gm} ({', '.join(ids)}): {why}" for gm, ids, why in problems[:6])
+        if len(problems) > 6:
+            listed += f"; and {len(problems) - 6} more"
+        raise ProjectError("ASCE 7-22 §16.2.3 scaling needs both horizontal components of every ground motion: "
+                           "a suite of single components cannot conform", file=spec.file, key="excitation.scale",
+                           expected="two orthogonal components (records) per ground motion, on one time step",
+                           found=listed)
+    try:
+        period_range = scaling_period_range(characteristic_periods, override=rule.periods)
+        result = asce7_22_scaling(pairs, rule.spectrum, period_range)
+    except MotionError as exc:
+        raise ProjectError(exc.detail, file=spec.file, key=exc.key, expected=exc.expected, found=exc.found,
+                           hint=exc.hint) from None
+    return [result.factors[ground_motion_id(rid, meta)] for rid, _, meta in items], result

@@ -19,6 +19,13 @@ spectrum    ``code`` = "ec8" (``ag``, ``ground_type`` A–E, ``spectrum_type`` 1
             or "mean" (geometric least squares: mean of ln(target/mean PSA) over a log grid = 0);
             ``n_periods`` (default 100). One factor for the whole suite, keeping record-to-record
             variability.
+asce7-22    ASCE 7-22 §16.2.3 (SPEC §16, :mod:`rockdesign.motions.asce7_22`): the MCE_R target as ``SMS``,
+            ``SM1`` (accelerations, "0.60 g") and ``TL`` (time, default "8 s", stated in reports), or
+            ``target`` = a two-column file (``period [s], Sa [g]`` header; path relative to the file
+            that names it); optional ``periods`` (two periods, the §16.2.1 period range; default
+            derived from the structure by the caller).  One factor per ground motion (pair), applied
+            to both components: the suite average of the RotD100 5 % spectra is ≥ 90 % of the target
+            over the range.  Applied by :func:`rockdesign.motions.config.resolve_motions`.
 =========== ======================================================================================
 """
 from __future__ import annotations
@@ -26,12 +33,14 @@ from __future__ import annotations
 import difflib
 import math
 from dataclasses import dataclass, replace
+from pathlib import Path
 
 import numpy as np
 
 from ..errors import MotionError, ProjectError
 from ..units import QuantityParseError, parse_quantity
 from .design_spectra import EC8_GROUND_TYPES, ASCE7Spectrum, EC8Spectrum
+from .targets import MCERSpectrum, TabulatedSpectrum, read_target_spectrum
 from .excitation import EXC_CYCLOIDAL_A, EXC_CYCLOIDAL_B, EXC_CYCLOIDAL_C, EXC_NONE, EXC_SAMPLES
 from .motion import GroundMotion
 from .spectra import DEFAULT_BAND, DEFAULT_DAMPING, motion_spectrum, sd_max
@@ -43,8 +52,15 @@ METHOD_KEYS = {
     "uplift": {"multiple"},
     "spectrum": {"code", "ag", "ground_type", "spectrum_type", "SDS", "SD1", "TL", "band", "damping",
                  "fit", "fraction", "n_periods"},
+    "asce7-22": {"SMS", "SM1", "TL", "target", "periods"},
 }
 SPECTRUM_DEFAULT_BAND = (0.05, 4.0)
+_KEY_HINTS = {
+    ("asce7-22", "band"): "the period range of method 'asce7-22' is periods = [\"0.08 s\", \"3.0 s\"]",
+    ("asce7-22", "SDS"): "method 'asce7-22' scales to the MCE_R spectrum: SMS = 1.5 SDS (S_DS = 2/3 S_MS)",
+    ("asce7-22", "SD1"): "method 'asce7-22' scales to the MCE_R spectrum: SM1 = 1.5 SD1 (S_D1 = 2/3 S_M1)",
+    ("asce7-22", "damping"): "ASCE 7-22 §16.2.3 compares 5 %-damped spectra; the damping is not a choice",
+}
 
 
 @dataclass(frozen=True)
@@ -52,25 +68,27 @@ class ScaleRule:
     """A parsed scaling rule (SI).
 
     Attributes:
-        method: factor | pga | sdmax | uplift | spectrum.
+        method: factor | pga | sdmax | uplift | spectrum | asce7-22.
         value: the factor (factor), target PGA [m/s²] (pga), target SD_max [m] (sdmax) or the
             multiple of the uplift acceleration (uplift); unused for spectrum.
         damping: damping ratio of SD_max (sdmax) or of the record spectra (spectrum).
         band: period band [s] of SD_max or of the spectrum match.
-        spectrum: target design spectrum (spectrum).
+        spectrum: target design spectrum (spectrum), or the MCE_R target (asce7-22).
         fit: "not-below" or "mean" (spectrum).
         fraction: fraction of the target the mean must not fall below (spectrum, not-below).
         n_periods: periods of the grid in the band.
+        periods: the period range [s] the project gave (asce7-22), or None (derived from the structure).
     """
 
     method: str
     value: float = 1.0
     damping: float = DEFAULT_DAMPING
     band: tuple[float, float] = DEFAULT_BAND
-    spectrum: EC8Spectrum | ASCE7Spectrum | None = None
+    spectrum: EC8Spectrum | ASCE7Spectrum | MCERSpectrum | TabulatedSpectrum | None = None
     fit: str = "not-below"
     fraction: float = 1.0
     n_periods: int = 400
+    periods: tuple[float, float] | None = None
 
     def describe(self, gravity: float = 9.81) -> str:
         """One sentence for reports saying how the records were scaled."""
@@ -84,6 +102,12 @@ class ScaleRule:
                     f"({100 * self.damping:g} % damping, periods {band})")
         if self.method == "uplift":
             return f"each record scaled to PGA = {self.value:g} × the uplift acceleration g tan α"
+        if self.method == "asce7-22":
+            target = self.spectrum.describe(gravity) if self.spectrum else "?"
+            span = (f"{self.periods[0]:g}–{self.periods[1]:g} s (given)" if self.periods
+                    else "the structure's §16.2.1 range")
+            return (f"ASCE 7-22 §16.2.3: one factor per ground motion (both components), suite-average "
+                    f"maximum-direction (RotD100) 5 % spectrum ≥ 90 % of the target over {span}; target: {target}")
         target = self.spectrum.describe() if self.spectrum else "?"
         if self.fit == "mean":
             how = "mean PSA matched in the geometric least-squares sense"
@@ -173,9 +197,9 @@ def parse_scale_rule(raw: dict, *, file: str, key: str = "excitation.scale",
     for name in raw:
         if name not in allowed:
             close = difflib.get_close_matches(name, sorted(allowed), n=1)
+            hint = _KEY_HINTS.get((method, name)) or (f"did you mean '{close[0]}'?" if close else None)
             raise _error(f"unknown key for scale method '{method}'", file=file, key=f"{key}.{name}",
-                         expected=", ".join(sorted(allowed)), found=repr(name),
-                         hint=f"did you mean '{close[0]}'?" if close else None)
+                         expected=", ".join(sorted(allowed)), found=repr(name), hint=hint)
     opts = dict(file=file, key=key)
     if method == "factor":
         return ScaleRule("factor", value=_number(_require(raw, "value", method, **opts), "value", **opts))
@@ -196,7 +220,66 @@ def parse_scale_rule(raw: dict, *, file: str, key: str = "excitation.scale",
                          n_periods=int(_number(raw.get("n_periods", 400), "n_periods", **opts)))
     if method == "uplift":
         return ScaleRule("uplift", value=_number(_require(raw, "multiple", method, **opts), "multiple", **opts))
+    if method == "asce7-22":
+        return _parse_asce7_22_rule(raw, gravity=gravity, **opts)
     return _parse_spectrum_rule(raw, gravity=gravity, **opts)
+
+
+def _parse_asce7_22_rule(raw, *, file, key, gravity) -> ScaleRule:
+    """``{ method = "asce7-22", SMS, SM1, TL }`` or ``{ method = "asce7-22", target = "mce_r.csv" }``, with an
+    optional ``periods`` (CONTRACT §7.1)."""
+    opts = dict(file=file, key=key)
+    spectral = [name for name in ("SMS", "SM1", "TL") if name in raw]
+    if "target" in raw and spectral:
+        raise _error("give the MCE_R target one way", file=file, key=f"{key}.{spectral[0]}",
+                     expected='either SMS, SM1 and TL, or target = "mce_r.csv"',
+                     found=f"target = {raw['target']!r} and {', '.join(spectral)}")
+    if "target" in raw:
+        text = raw["target"]
+        if not isinstance(text, str) or not text.strip():
+            raise _error("invalid target spectrum", file=file, key=f"{key}.target",
+                         expected='a file name like "mce_r.csv" (columns period [s], Sa [g])', found=repr(text))
+        path = Path(text.strip()).expanduser()
+        if not path.is_absolute():
+            path = (Path(file).expanduser().resolve().parent if file else Path.cwd()) / path
+        if not path.is_file():
+            raise _error("target spectrum file not found", file=file, key=f"{key}.target",
+                         expected="a two-column file (period [s], Sa [g]) relative to this file's folder",
+                         found=f"{text!r}: no such file {path}")
+        spectrum = read_target_spectrum(path, gravity=gravity, key=f"{key}.target")
+    else:
+        if "SMS" not in raw or "SM1" not in raw:
+            missing = "SMS" if "SMS" not in raw else "SM1"
+            raise _error("scale method 'asce7-22' needs the MCE_R target", file=file, key=f"{key}.{missing}",
+                         expected='SMS = "0.60 g", SM1 = "0.30 g" (TL = "8 s"), or target = "mce_r.csv"',
+                         found="nothing")
+        sms = _quantity(raw["SMS"], "SMS", "acceleration", gravity=gravity, **opts)
+        sm1 = _quantity(raw["SM1"], "SM1", "acceleration", gravity=gravity, **opts)
+        tl = _quantity(raw.get("TL", "8 s"), "TL", "time", gravity=gravity, **opts)
+        for name, value in (("SMS", sms), ("SM1", sm1), ("TL", tl)):
+            if not value > 0:
+                raise _error("invalid MCE_R parameter", file=file, key=f"{key}.{name}",
+                             expected=f"{name} > 0", found=repr(raw.get(name)))
+        if not sm1 / sms < tl:
+            raise _error("invalid MCE_R parameters", file=file, key=f"{key}.TL",
+                         expected=f"T_L above T_S = SM1/SMS = {sm1 / sms:.3g} s",
+                         found=f"TL = {raw.get('TL', '8 s')!r}")
+        spectrum = MCERSpectrum(SMS=sms, SM1=sm1, TL=tl, TL_default="TL" not in raw)
+    periods = None
+    if "periods" in raw:
+        periods = _periods(raw["periods"], file=file, key=key, gravity=gravity)
+    return ScaleRule("asce7-22", damping=0.05, spectrum=spectrum, periods=periods)
+
+
+def _periods(raw, *, file, key, gravity) -> tuple[float, float]:
+    if not isinstance(raw, (list, tuple)) or len(raw) != 2:
+        raise _error("invalid period range", file=file, key=f"{key}.periods",
+                     expected='two periods like ["0.08 s", "3.0 s"]', found=repr(raw))
+    lo, hi = (_quantity(v, "periods", "time", file=file, key=key, gravity=gravity) for v in raw)
+    if not 0.0 < lo < hi:
+        raise _error("invalid period range", file=file, key=f"{key}.periods",
+                     expected="0 < lower bound < upper bound", found=repr(raw))
+    return (lo, hi)
 
 
 def _parse_spectrum_rule(raw, *, file, key, gravity) -> ScaleRule:
@@ -265,6 +348,11 @@ def scale_factors(rule: ScaleRule, motions: list[GroundMotion], *, uplift_accele
     """
     if rule.method == "factor":
         return [rule.value] * len(motions)
+    if rule.method == "asce7-22":
+        raise MotionError("scale method 'asce7-22' scales ground motions (pairs), not single records",
+                          key="excitation.scale.method",
+                          expected="rockdesign.motions.config.resolve_motions (or motions.asce7_22.asce7_22_scaling)",
+                          found="scale_factors on a list of records")
     if rule.method == "spectrum":
         factor = spectrum_factor(rule, motions)
         return [factor] * len(motions)

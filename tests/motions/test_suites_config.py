@@ -154,11 +154,12 @@ def test_parse_excitation_errors(raw, key, fragment):
 
 
 def test_resolve_order_scaling_and_missing():
-    spec = parse_excitation({"suites": ["thesis-table-4.1"], "records": ["p695-ff/1a", "p695-ff/11a", "rsn:1:x"],
+    # (p695-ff/11a beside the suite's rsn:900:270 is one recording, refused: tests/motions/test_record_identity.py)
+    spec = parse_excitation({"suites": ["thesis-table-4.1"], "records": ["p695-ff/1a", "p695-ff/12a", "rsn:1:x"],
                              "scale": {"method": "pga", "target": "0.3 g"}}, file="p.toml", gravity=G)
     resolved = resolve_motions(spec, gravity=G)
     assert [r.id for r in resolved.records] == ["rsn:821:NS", "rsn:821:EW", "rsn:900:270", "rsn:900:360",
-                                                "p695-ff/1a", "p695-ff/11a"]
+                                                "p695-ff/1a", "p695-ff/12a"]
     assert all(r.motion.pga == pytest.approx(0.3 * G, rel=1e-12) for r in resolved.records)
     assert [r.meta["label"] for r in resolved.records[:4]] == ["A7", "A8", "A9", "A10"]
     assert [m[0] for m in resolved.missing][-1] == "rsn:1:x" and len(resolved.missing) == 10
