@@ -21,9 +21,13 @@ One run (:func:`integrate`):
   θ (θ̇: − → +; a minimum below ``quasi_tilt`` is a quasi-impact), maxima of θ, and — only for an
   exactly planar motion (φ̇ ≡ 0, a one-directional excitation) — θ = 0, where the body switches to the
   opposite rim point: θ → −θ, θ̇ → −r θ̇, φ → φ + π (r = 1 rigid, √c_r of Eq 5.41 damped);
-* rest rule (damped model): at a quasi-impact or planar crossing whose rocking energy (the contact
-  spring excluded: its deflection under the rocking body's own acceleration is no motion to end) is at
-  most ½ M R² v_rest² while |ü_g| < g tan α, the cylinder rests (θ = θ̇ = φ̇ = w_T = ẇ_T = 0, φ kept).
+* rest rule (both contacts, the planar engine's, SPEC §3.6): at a quasi-impact (a minimum of θ below
+  ``quasi_tilt``) or a planar crossing whose rocking energy ½ R²(M θ̇² + J φ̇²) + gR(cos(α−θ) − cos α)
+  (Eqs 5.22–5.23; the contact spring excluded: its deflection under the rocking body's own acceleration
+  is no motion to end) is below ``rest_energy`` = ½ M R² v_rest², the cylinder rests (θ = θ̇ = φ̇ = w_T =
+  ẇ_T = 0, φ kept).  At a planar crossing this is the planar rule |θ̇⁺| < v_rest.  At rest it uplifts
+  when |ü_g| reaches ``up`` (g tan α plus the planar engine's hysteresis, :mod:`.engine`) — at once if
+  |ü_g| is already beyond it, as the planar engine's rest → uplift.  ``rest_energy`` = 0 disables the rule.
 """
 from __future__ import annotations
 
@@ -53,6 +57,8 @@ leaving a sliver step (measured: −5 % right-hand sides for the damped model, e
 
 # event codes
 EV_UPLIFT, EV_QUASI_IMPACT, EV_THETA_MAX, EV_CROSSING, EV_REST, EV_OVERTURN = 0, 1, 2, 3, 4, 5
+# where an accepted step is cut
+STOP_NONE, STOP_OVERTURN, STOP_SEEDED, STOP_CROSSING, STOP_REST = 0, 1, 2, 3, 4
 # status codes
 ST_COMPLETED, ST_OVERTURNED, ST_STEP_COLLAPSED, ST_STEP_LIMIT = 0, 1, 2, 3
 HISTORY_COLUMNS = 8          # t, θ, θ̇, φ, φ̇, w_T, ẇ_T, N/(mg)
@@ -183,6 +189,22 @@ def _root(F, y, i, level, xa, xb):
 
 
 @njit(cache=True)
+def _force_direction(t, active, kind, params, sx, sy, dirx, diry):
+    """(ψ, ψ̇): the azimuth [rad] of the inertia force −ü_g at t and its rate of turn [rad/s],
+    ψ̇ = (ü_gx d/dt ü_gy − ü_gy d/dt ü_gx)/|ü_g|² (central difference over ±1e-7 s; a record is linear there
+    but at its samples)."""
+    ax, ay = ground_xy(t, active, kind, params, sx, sy, dirx, diry)
+    d = 1e-7
+    bx, by = ground_xy(t + d, active, kind, params, sx, sy, dirx, diry)
+    cx, cy = ground_xy(max(t - d, 0.0), active, kind, params, sx, sy, dirx, diry)
+    span = t + d - max(t - d, 0.0)
+    a2 = ax * ax + ay * ay
+    if a2 == 0.0:
+        return math.atan2(-ay, -ax), 0.0
+    return math.atan2(-ay, -ax), (ax * (by - cy) - ay * (bx - cx)) / (span * a2)
+
+
+@njit(cache=True)
 def _push(buf, count, row):
     if count >= buf.shape[0]:
         new = np.empty((2 * buf.shape[0], buf.shape[1]))
@@ -216,12 +238,19 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
               theta_ot, quasi_tilt, rest_energy, planar_restitution, up, max_steps, out_dt):
     """Integrate one cylinder from (t0, y0) to t_end (module docstring).
 
+    ``theta_seed`` [rad]: the tilt an uplift starts from (θ = 0 is the singular point of Eq 5.23; 0 for a
+    planar run); ``rest_energy`` [J/kg]: the rest rule's energy (0: no rest); ``up`` [m/s²]: the resultant
+    |ü_g| at which a resting cylinder uplifts (Eq 5.24 with the hysteresis, :func:`.engine.uplift_level`).
     ``out_dt`` > 0 adds dense-output rows on the grid k·out_dt to the history.
     Returns (history rows [t, θ, θ̇, φ, φ̇, w_T, ẇ_T, N/(mg)] at every accepted step and event,
     events rows [code, t, θ, value], stats [steps, rejected, rhs evaluations, dense outputs, status,
     t_stop]).
     """
     n = 6 if par[5] > 0.5 else 4
+    par_seed = par.copy()
+    par_seed[12] = 2.0          # the seed phase: Eq 5.22 toward the inertia force, φ̈ ≡ 0 (regular at θ = 0)
+    pc = par                    # the equations in force: par, or par_seed while seeding
+    seeding = False
     y = np.zeros(6)
     y_new = np.zeros(6)
     ytmp = np.zeros(6)
@@ -249,12 +278,12 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
     h = 0.0
     active = t < t_exc_end
     if not resting:
-        rhs(t, y, f, par, active, kind, params, sx, sy, dirx, diry)
+        rhs(t, y, f, pc, active, kind, params, sx, sy, dirx, diry)
         nfev += 1
     hist, nh = _record(hist, nh, t, y, f, par, row)
     while t < t_end:
         if resting:
-            tu = uplift_time(t, min(t_end, t_exc_end), up * (1.0 + 1e-12), kind, params, sx, sy, dirx, diry)
+            tu = uplift_time(t, min(t_end, t_exc_end), up, kind, params, sx, sy, dirx, diry)
             if out_dt > 0.0:                      # grid rows while at rest
                 t_hi = min(tu, t_end)
                 while k_out * out_dt < t_hi - 1e-12 * max(1.0, t_hi):
@@ -267,7 +296,9 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
                 break
             ax, ay = ground_xy(tu, True, kind, params, sx, sy, dirx, diry)
             t = tu
-            y[0] = theta_seed
+            seeding = theta_seed > 0.0
+            pc = par_seed if seeding else par
+            y[0] = 0.0
             y[1] = 0.0
             y[2] = math.atan2(-ay, -ax)
             y[3] = 0.0
@@ -275,7 +306,7 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
             y[5] = 0.0
             resting = False
             active = t < t_exc_end
-            rhs(t, y, f, par, active, kind, params, sx, sy, dirx, diry)
+            rhs(t, y, f, pc, active, kind, params, sx, sy, dirx, diry)
             nfev += 1
             hist, nh = _record(hist, nh, t, y, f, par, row)
             events, ne = _event(events, ne, EV_UPLIFT, t, y[0], y[2], ev)
@@ -310,10 +341,10 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
             if t_new >= t_stop - 1e-12 * max(1.0, abs(t_stop)) or (not rejected_now and t_stop - t <= STRETCH * h):
                 t_new = t_stop
             hh = t_new - t
-            _step(t, y, f, hh, K, y_new, ytmp, n, par, active, kind, params, sx, sy, dirx, diry)
+            _step(t, y, f, hh, K, y_new, ytmp, n, pc, active, kind, params, sx, sy, dirx, diry)
             nfev += 12
             err = _error_norm(y, y_new, K, hh, rtol, atol, n)
-            if y_new[0] < 0.0 and par[12] < 0.5:
+            if y_new[0] < 0.0 and pc[12] < 0.5:
                 err = 10.0           # θ < 0 off the planar case: the step overshot a quasi-impact
             if err < 1.0 and math.isfinite(err):
                 factor = MAX_FACTOR if err == 0.0 else min(MAX_FACTOR, SAFETY * err ** EXPONENT)
@@ -331,9 +362,11 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
         steps += 1
         # ---- events on the dense output of the accepted step [t, t_new]
         have_dense = False
-        stop_at = -1.0            # x where the step is cut (overturn, rest, crossing)
-        if y_new[0] >= theta_ot or y_new[0] < 0.0 or (y[1] < 0.0 <= y_new[1]) or (y[1] > 0.0 >= y_new[1]):
-            _dense(t, y, y_new, K, hh, F, ytmp, n, par, active, kind, params, sx, sy, dirx, diry)
+        stop_at = -1.0            # x where the step is cut (overturn, rest, crossing, end of the seed phase)
+        stop_kind = STOP_NONE
+        if (y_new[0] >= theta_ot or y_new[0] < 0.0 or (y[1] < 0.0 <= y_new[1]) or (y[1] > 0.0 >= y_new[1])
+                or (seeding and y_new[0] >= theta_seed)):
+            _dense(t, y, y_new, K, hh, F, ytmp, n, pc, active, kind, params, sx, sy, dirx, diry)
             nfev += 3
             ndense += 1
             have_dense = True
@@ -352,11 +385,18 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
                     tt = t + x * hh
                     events, ne = _event(events, ne, EV_OVERTURN, tt, theta_ot, _dense_at(F, y, x, 3), ev)
                     status = ST_OVERTURNED
+                    stop_kind = STOP_OVERTURN
+                    break
+                if seeding and tb_ >= theta_seed > ta_:
+                    # the seed phase ends: the 3D equations take over at θ = θ_seed
+                    stop_at = _root(F, y, 0, theta_seed, xa, xb)
+                    stop_kind = STOP_SEEDED
                     break
                 if tb_ < 0.0 <= ta_:
                     # exactly planar motion reaches θ = 0: switch to the opposite rim point
                     x = _root(F, y, 0, 0.0, xa, xb)
                     stop_at = x
+                    stop_kind = STOP_CROSSING
                     break
                 if va < 0.0 <= vb:
                     x = _root(F, y, 1, 0.0, xa, xb)
@@ -367,9 +407,9 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
                         if rest_energy > 0.0:
                             for i in range(6):
                                 ytmp[i] = _dense_at(F, y, x, i) if i < n else 0.0
-                            ax, ay = ground_xy(tt, tt < t_exc_end, kind, params, sx, sy, dirx, diry)
-                            if rocking_energy(ytmp, par) <= rest_energy and ax * ax + ay * ay < up * up:
+                            if rocking_energy(ytmp, par) < rest_energy:
                                 stop_at = x
+                                stop_kind = STOP_REST
                                 break
                 elif va > 0.0 >= vb:
                     x = _root(F, y, 1, 0.0, xa, xb)
@@ -385,26 +425,44 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
                 if tg <= t:
                     continue
                 if not have_dense:
-                    _dense(t, y, y_new, K, hh, F, ytmp, n, par, active, kind, params, sx, sy, dirx, diry)
+                    _dense(t, y, y_new, K, hh, F, ytmp, n, pc, active, kind, params, sx, sy, dirx, diry)
                     nfev += 3
                     ndense += 1
                     have_dense = True
                 for i in range(6):
                     yg[i] = _dense_at(F, y, (tg - t) / hh, i) if i < n else 0.0
-                rhs(tg, yg, fg, par, active, kind, params, sx, sy, dirx, diry)
+                rhs(tg, yg, fg, pc, active, kind, params, sx, sy, dirx, diry)
                 hist, nh = _record(hist, nh, tg, yg, fg, par, row)
         if stop_at >= 0.0:
             tt = t + stop_at * hh
             for i in range(n):
                 y_new[i] = _dense_at(F, y, stop_at, i)
             t_new = tt
-            if status == ST_OVERTURNED:
+            if stop_kind == STOP_OVERTURN:
                 y_new[0] = theta_ot
-                rhs(t_new, y_new, f, par, active, kind, params, sx, sy, dirx, diry)
+                rhs(t_new, y_new, f, pc, active, kind, params, sx, sy, dirx, diry)
                 hist, nh = _record(hist, nh, t_new, y_new, f, par, row)
                 t = t_new
                 break
-            if par[12] > 0.5 and abs(y_new[0]) < 1e-9:
+            if stop_kind == STOP_SEEDED:
+                seeding = False
+                pc = par
+                y_new[0] = theta_seed
+                # while θ ≪ θ_seed the azimuth is locked to the inertia force (Eq 5.23: its stiffness
+                # cos α |ü_g|/(R J/θ) grows without bound as θ → 0): φ = its direction, φ̇ = its rate of turn
+                psi, psid = _force_direction(t_new, t_new < t_exc_end, kind, params, sx, sy, dirx, diry)
+                dpsi = psi - y_new[2]
+                y_new[2] = y_new[2] + dpsi - 2.0 * math.pi * math.floor(dpsi / (2.0 * math.pi) + 0.5)
+                y_new[3] = psid
+                for i in range(n):
+                    y[i] = y_new[i]
+                t = t_new
+                active = t < t_exc_end
+                rhs(t, y, f, pc, active, kind, params, sx, sy, dirx, diry)
+                nfev += 1
+                hist, nh = _record(hist, nh, t, y, f, par, row)
+                continue
+            if stop_kind == STOP_CROSSING:
                 # planar crossing
                 y_new[0] = 0.0
                 thd = y_new[1]
@@ -413,19 +471,20 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
                 y_new[2] = y_new[2] + math.pi
                 for i in range(n):
                     y[i] = y_new[i]
-                ax, ay = ground_xy(t_new, t_new < t_exc_end, kind, params, sx, sy, dirx, diry)
-                if rest_energy > 0.0 and rocking_energy(y, par) <= rest_energy and ax * ax + ay * ay < up * up:
+                if rest_energy > 0.0 and rocking_energy(y, par) < rest_energy:
                     resting = True
                 else:
                     t = t_new
                     active = t < t_exc_end
-                    rhs(t, y, f, par, active, kind, params, sx, sy, dirx, diry)
+                    rhs(t, y, f, pc, active, kind, params, sx, sy, dirx, diry)
                     nfev += 1
                     hist, nh = _record(hist, nh, t, y, f, par, row)
                     continue
             else:
                 resting = True
             if resting:
+                seeding = False
+                pc = par
                 for i in range(6):
                     if i != 2:
                         y[i] = 0.0
@@ -443,7 +502,7 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
         t = t_new
         if active and t >= t_exc_end:
             active = False
-            rhs(t, y, f, par, active, kind, params, sx, sy, dirx, diry)   # right limit: ü_g = 0
+            rhs(t, y, f, pc, active, kind, params, sx, sy, dirx, diry)   # right limit: ü_g = 0
             nfev += 1
         hist, nh = _record(hist, nh, t, y, f, par, row)
     stats = np.array([steps, rejected, nfev, ndense, status, t], dtype=np.float64)
