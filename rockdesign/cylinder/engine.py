@@ -178,6 +178,25 @@ class CylinderResponse:
             return "dynamic"
         return "exceeded" if self.theta_max >= self.alpha else "none"
 
+    def cost_reason(self) -> str:
+        """Why this run took the steps it took, in one sentence (for a console note on a slow analysis).
+
+        Micro-rocking is the known expensive case: a cylinder that barely uplifts (θ_max ≪ α) but keeps more
+        than the rest energy makes quasi-impacts at a period ∝ √θ (the contact point whirls round the rim),
+        each resolved by the step control with tens of steps (docs/cylinder.md, "Rest, uplift and the seed")."""
+        steps, qi = self.solver.get("steps", 0), self.quasi_impacts
+        ratio = self.theta_max / self.alpha
+        per = f"; ≈ {steps / qi:.0f} steps each" if qi else ""
+        head = f"{steps:,} steps, {qi:,} quasi-impacts, θ_max/α = {ratio:.2g}"
+        if qi >= 1000 and ratio < 0.01:
+            why = ("a spin about the vertical that the contact's dashpot does not remove" if self.damped
+                   else "the rigid contact dissipates nothing")
+            return (f"{head}: micro-rocking just above the uplift acceleration, its energy above the rest energy "
+                    f"½ M R² v_rest² ({why}){per}")
+        if qi >= 1000:
+            return f"{head}: long rocking with many quasi-impacts{per}"
+        return f"{head} over {self.t[-1]:.4g} s"
+
     def as_json(self) -> dict:
         """``simulate --json`` for a cylinder: the planar keys plus quasi-impacts, φ_end, N_min/(mg)."""
         out = {

@@ -8,10 +8,17 @@ the step control is scipy's (safety 0.9, factors 0.2–10, exponent −1/8).
 
 One run (:func:`integrate`):
 
-* at rest, wait until the resultant |ü_g| = √(ü_gx² + ü_gy²) reaches g tan α (Eq 5.24), found
-  exactly on each linear record segment (a quadratic in t) or by a T_p/2000 scan and bisection for
-  pulses; then start at θ = θ_seed, θ̇ = φ̇ = 0 toward φ0 = atan2(−ü_gy, −ü_gx) (Eq 5.25 with its
+* at rest, wait until the resultant |ü_g| = √(ü_gx² + ü_gy²) reaches ``up`` (Eq 5.24's g tan α plus the
+  hysteresis), found exactly on each linear record segment (a quadratic in t) or by a T_p/2000 scan and
+  bisection for pulses; then start at θ = θ̇ = φ̇ = 0 toward φ0 = atan2(−ü_gy, −ü_gx) (Eq 5.25 with its
   quadrant);
+* the seed phase: from θ = 0 up to θ = θ_seed the body tilts toward the inertia force by Eq 5.22 alone
+  (φ̈ ≡ 0, ü_gx cosφ + ü_gy sinφ = −|ü_g|: regular at θ = 0, where Eq 5.23 is singular); at θ_seed the
+  3D equations take over with φ = the azimuth of −ü_g and φ̇ its rate of turn (:func:`_force_direction`:
+  Eq 5.23 locks the azimuth to the force as θ → 0, its stiffness cos α |ü_g|/(R J/θ) being unbounded).
+  The state at θ_seed is thus the small-tilt solution from rest, not a disturbance of size θ_seed: θ_max
+  does not depend on the seed to first order (docs/cylinder.md).  A seed phase that comes back to θ = 0
+  is a planar crossing (and rests below the rest energy, as the planar engine's block);
 * steps end exactly on every record sample (records are piecewise linear) and on the end of the
   excitation (the right-hand side is re-evaluated there with ü_g = 0); a step that would stop short of
   a sample by less than 25 % of its size is stretched onto it; within a step a record's ü_g is linear,
