@@ -176,3 +176,18 @@ def test_the_threshold_verdict_does_not_depend_on_the_seed():
             runs = [simulate_cylinder(cyl, scaled, theta_seed=s) for s in (0.1 * seed, seed, 10 * seed)]
             assert all(r.status == "completed" and not r.overturned for r in runs)
             assert all(r.theta_max < 1e-6 * cyl.alpha for r in runs)
+
+
+def test_cost_reason_names_micro_rocking():
+    # rigid planar free rocking just above the rest energy: thousands of crossings at θ ≈ 1e-7 rad, for ever
+    cyl = EXAMPLE
+    e_rest = rest_energy(cyl.R, cyl.alpha, V_REST)
+    theta0 = brentq(lambda th: potential(th, cyl) - 1.1 * e_rest, 0.0, 1e-3, xtol=1e-20)
+    r = simulate_cylinder(cyl, None, t_end=3.0, theta0=theta0)
+    assert r.quasi_impacts > 1000
+    reason = r.cost_reason()
+    assert "micro-rocking" in reason and "rigid contact dissipates nothing" in reason
+    assert f"{r.quasi_impacts:,} quasi-impacts" in reason
+    # an ordinary record pair is not called micro-rocking
+    ordinary = simulate_cylinder(cyl, parse_pair("record:p695-ff/1,resultant_pga=0.3g", gravity=cyl.g).pair)
+    assert "micro-rocking" not in ordinary.cost_reason()
