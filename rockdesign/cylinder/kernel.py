@@ -29,7 +29,8 @@ One run (:func:`integrate`):
   exactly planar motion (φ̇ ≡ 0, a one-directional excitation) — θ = 0, where the body switches to the
   opposite rim point: θ → −θ, θ̇ → −r θ̇, φ → φ + π (r = 1 rigid, √c_r of Eq 5.41 damped);
 * rest rule (both contacts, the planar engine's, SPEC §3.6): at a quasi-impact (a minimum of θ below
-  ``quasi_tilt``) or a planar crossing whose rocking energy ½ R²(M θ̇² + J φ̇²) + gR(cos(α−θ) − cos α)
+  ``quasi_tilt``, or in 3D the end of a step below ``quasi_tilt`` on the way to one) or a planar crossing
+  whose rocking energy ½ R²(M θ̇² + J φ̇²) + gR(cos(α−θ) − cos α)
   (Eqs 5.22–5.23; the contact spring excluded: its deflection under the rocking body's own acceleration
   is no motion to end) is below ``rest_energy`` = ½ M R² v_rest², the cylinder rests (θ = θ̇ = φ̇ = w_T =
   ẇ_T = 0, φ kept).  At a planar crossing this is the planar rule |θ̇⁺| < v_rest.  At rest it uplifts
@@ -424,6 +425,12 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
                 xa = xb
                 va = vb
                 ta_ = tb_
+        if (stop_at < 0.0 and rest_energy > 0.0 and pc[12] < 0.5 and y_new[0] < quasi_tilt and y_new[1] < 0.0
+                and rocking_energy(y_new, par) < rest_energy):
+            # on its way to a quasi-impact with less than the rest energy: at rest now (in 3D the minimum of
+            # an orbit of tiny angular momentum can lie below what the step control resolves)
+            stop_at = 1.0
+            stop_kind = STOP_REST
         if out_dt > 0.0:
             t_hi = t + stop_at * hh if stop_at >= 0.0 else t_new
             while k_out * out_dt <= t_hi - 1e-12 * max(1.0, t_hi):
@@ -441,10 +448,10 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
                 rhs(tg, yg, fg, pc, active, kind, params, sx, sy, dirx, diry)
                 hist, nh = _record(hist, nh, tg, yg, fg, par, row)
         if stop_at >= 0.0:
-            tt = t + stop_at * hh
-            for i in range(n):
-                y_new[i] = _dense_at(F, y, stop_at, i)
-            t_new = tt
+            if stop_at < 1.0:
+                for i in range(n):
+                    y_new[i] = _dense_at(F, y, stop_at, i)
+                t_new = t + stop_at * hh
             if stop_kind == STOP_OVERTURN:
                 y_new[0] = theta_ot
                 rhs(t_new, y_new, f, pc, active, kind, params, sx, sy, dirx, diry)

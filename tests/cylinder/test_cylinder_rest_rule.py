@@ -136,14 +136,25 @@ def test_below_the_rest_energy_the_rigid_cylinder_rests_above_it_rocks_for_ever(
             np.testing.assert_allclose(rates, math.sqrt(1.1) * V_REST, rtol=1e-5)
 
 
-def test_a_spinning_cylinder_below_the_rest_energy_rests_at_its_first_quasi_impact():
+def test_a_spinning_cylinder_below_the_rest_energy_rests_on_its_way_to_its_first_quasi_impact():
+    # 3D: below 0.01 α, approaching (θ̇ < 0) with E < E_rest, the cylinder rests at the end of the step — the
+    # minimum of an orbit of tiny angular momentum can lie below what the step control resolves (a falling body
+    # with L ≈ 1e-22 collapsed the step size at θ ≈ 1e-19 before this test was added to the rule)
     cyl = EXAMPLE
     e_rest = rest_energy(cyl.R, cyl.alpha, V_REST)
-    theta0 = brentq(lambda th: potential(th, cyl) - 0.5 * e_rest, 0.0, 1e-3, xtol=1e-20)
-    r = simulate_cylinder(cyl, None, t_end=0.2, theta0=theta0, phidot0=1.0)
     par = parameters(cyl.R, cyl.alpha, cyl.g)
-    assert energy(np.array([theta0, 0.0, 0.0, 1.0, 0.0, 0.0]), par) < e_rest
-    assert not r.planar and r.quasi_impacts == 1 and r.times_of("rest").size == 1
+    theta0 = brentq(lambda th: potential(th, cyl) - 0.5 * e_rest, 0.0, 1e-3, xtol=1e-20)
+    fall = math.sqrt(2 * theta0 / (cyl.g * math.sin(cyl.alpha) / (cyl.R * par[11])))   # to θ = 0 without spin
+    for spin in (1.0, 1e-12):
+        assert energy(np.array([theta0, 0.0, 0.0, spin, 0.0, 0.0]), par) < e_rest
+        r = simulate_cylinder(cyl, None, t_end=0.2, theta0=theta0, phidot0=spin)
+        assert not r.planar and r.status == "completed"
+        assert r.quasi_impacts <= 1 and r.times_of("rest").size == 1
+        assert r.times_of("rest")[0] < fall
+    # above the rest energy it does not rest (E = 1.5 E_rest; a circular orbit keeps it for ever)
+    theta1 = brentq(lambda th: potential(th, cyl) - 1.5 * e_rest, 0.0, 1e-3, xtol=1e-20)
+    r = simulate_cylinder(cyl, None, t_end=0.05, theta0=theta1, phidot0=1.0)
+    assert r.times_of("rest").size == 0 and r.quasi_impacts >= 1
 
 
 # ---------------------------------------------------------------- the seed
