@@ -2,9 +2,8 @@
 
 Hand-written because scipy's ``solve_ivp`` calls Python per stage (≈100× slower, see
 ``benchmarks/bench_cylinder.py``) and cannot land on record samples, uplift from rest or apply the
-planar reflection.  The Runge–Kutta tableau (Hairer's DOP853: 12 stages, error estimators of order
-5 and 3, 3 extra stages for the dense output) is scipy's (``scipy.integrate._ivp.dop853_coefficients``);
-the step control is scipy's (safety 0.9, factors 0.2–10, exponent −1/8).
+planar reflection.  The step, its error norm and dense output are :mod:`.stepper`'s (Hairer's DOP853,
+scipy's tableau); the step control is scipy's (safety 0.9, factors 0.2–10, exponent −1/8).
 
 One run (:func:`integrate`):
 
@@ -43,18 +42,12 @@ import math
 
 import numpy as np
 from numba import njit
-from scipy.integrate._ivp import dop853_coefficients as _dop
 
-from ..motions.excitation import EXC_SAMPLES, next_breakpoint
+from ..motions.excitation import next_breakpoint
 from .uplift import uplift_time
-from .eom import contact_force_ratio, ground_xy, rhs, rhs_ground, rocking_energy
+from .eom import contact_force_ratio, ground_xy, rhs, rocking_energy
+from .stepper import dense_at, dense_coefficients, dense_root, dop853_step, error_norm
 
-A = np.ascontiguousarray(_dop.A)
-B = np.ascontiguousarray(_dop.B)
-C = np.ascontiguousarray(_dop.C)
-E3 = np.ascontiguousarray(_dop.E3)
-E5 = np.ascontiguousarray(_dop.E5)
-D = np.ascontiguousarray(_dop.D)
 SAFETY = 0.9
 MIN_FACTOR = 0.2
 MAX_FACTOR = 10.0
@@ -70,130 +63,6 @@ STOP_NONE, STOP_OVERTURN, STOP_SEEDED, STOP_CROSSING, STOP_REST = 0, 1, 2, 3, 4
 # status codes
 ST_COMPLETED, ST_OVERTURNED, ST_STEP_COLLAPSED, ST_STEP_LIMIT = 0, 1, 2, 3
 HISTORY_COLUMNS = 8          # t, θ, θ̇, φ, φ̇, w_T, ẇ_T, N/(mg)
-
-
-@njit(cache=True)
-def _step(t, y, f0, h, K, y_new, ytmp, n, par, active, kind, params, sx, sy, dirx, diry):
-    """One DOP853 step of size h: fills K[0..12] (K[12] = f(t+h, y_new)) and y_new.
-
-    A step never crosses a record sample, so a record's ü_g is linear in it: evaluated at both ends
-    only and interpolated at the stages (pulses are evaluated at every stage)."""
-    for i in range(n):
-        K[0, i] = f0[i]
-    linear = kind == EXC_SAMPLES or not active
-    ax0, ay0 = ground_xy(t, active, kind, params, sx, sy, dirx, diry)
-    ax1, ay1 = ground_xy(t + h, active, kind, params, sx, sy, dirx, diry)
-    for s in range(1, 12):
-        for i in range(n):
-            acc = 0.0
-            for j in range(s):
-                acc += A[s, j] * K[j, i]
-            ytmp[i] = y[i] + h * acc
-        if linear:
-            ax = ax0 + C[s] * (ax1 - ax0)
-            ay = ay0 + C[s] * (ay1 - ay0)
-        else:
-            ax, ay = ground_xy(t + C[s] * h, active, kind, params, sx, sy, dirx, diry)
-        rhs_ground(ytmp, K[s], par, ax, ay)
-    for i in range(n):
-        acc = 0.0
-        for j in range(12):
-            acc += B[j] * K[j, i]
-        y_new[i] = y[i] + h * acc
-    rhs_ground(y_new, K[12], par, ax1, ay1)
-
-
-@njit(cache=True)
-def _error_norm(y, y_new, K, h, rtol, atol, n):
-    """scipy's DOP853 error norm (5th- and 3rd-order estimators)."""
-    e5 = 0.0
-    e3 = 0.0
-    for i in range(n):
-        sc = atol + rtol * max(abs(y[i]), abs(y_new[i]))
-        a5 = 0.0
-        a3 = 0.0
-        for j in range(13):
-            a5 += E5[j] * K[j, i]
-            a3 += E3[j] * K[j, i]
-        e5 += (a5 / sc) ** 2
-        e3 += (a3 / sc) ** 2
-    if e5 == 0.0 and e3 == 0.0:
-        return 0.0
-    return abs(h) * e5 / math.sqrt((e5 + 0.01 * e3) * n)
-
-
-@njit(cache=True)
-def _dense(t, y, y_new, K, h, F, ytmp, n, par, active, kind, params, sx, sy, dirx, diry):
-    """The 7th-order dense-output coefficients F[0..6] of the last step (3 extra stages)."""
-    # The stage loop below repeats _step's on purpose: factored into one @njit helper (also with
-    # inline="always") the 30-s pair benchmark ran 4-7 % slower; as one helper taking the stage range,
-    # 7 % slower (rigid 5.30 → 5.70 ms, spring-dashpot 4.09 → 4.43 ms, same window; 2026-11-23).
-    linear = kind == EXC_SAMPLES or not active
-    ax0, ay0 = ground_xy(t, active, kind, params, sx, sy, dirx, diry)
-    ax1, ay1 = ground_xy(t + h, active, kind, params, sx, sy, dirx, diry)
-    for s in range(13, 16):
-        for i in range(n):
-            acc = 0.0
-            for j in range(s):
-                acc += A[s, j] * K[j, i]
-            ytmp[i] = y[i] + h * acc
-        if linear:
-            ax = ax0 + C[s] * (ax1 - ax0)
-            ay = ay0 + C[s] * (ay1 - ay0)
-        else:
-            ax, ay = ground_xy(t + C[s] * h, active, kind, params, sx, sy, dirx, diry)
-        rhs_ground(ytmp, K[s], par, ax, ay)
-    for i in range(n):
-        dy = y_new[i] - y[i]
-        F[0, i] = dy
-        F[1, i] = h * K[0, i] - dy
-        F[2, i] = 2.0 * dy - h * (K[12, i] + K[0, i])
-        for r in range(4):
-            acc = 0.0
-            for j in range(16):
-                acc += D[r, j] * K[j, i]
-            F[3 + r, i] = h * acc
-
-
-@njit(cache=True)
-def _dense_at(F, y, x, i):
-    """Component i of the dense output at x = (t − t_old)/h ∈ [0, 1]."""
-    v = 0.0
-    for k in range(6, -1, -1):
-        v += F[k, i]
-        if (6 - k) % 2 == 0:
-            v *= x
-        else:
-            v *= 1.0 - x
-    return v + y[i]
-
-
-@njit(cache=True)
-def _root(F, y, i, level, xa, xb):
-    """x in [xa, xb] where component i of the dense output equals ``level`` (bracketed; bisection+secant)."""
-    fa = _dense_at(F, y, xa, i) - level
-    fb = _dense_at(F, y, xb, i) - level
-    for _ in range(200):
-        if xb - xa <= 1e-15:
-            break
-        xm = xa - fa * (xb - xa) / (fb - fa) if fb != fa else 0.5 * (xa + xb)
-        if not (xa < xm < xb) or _ > 60:
-            xm = 0.5 * (xa + xb)
-        fm = _dense_at(F, y, xm, i) - level
-        if fm == 0.0:
-            return xm
-        if (fm < 0.0) == (fa < 0.0):
-            xa, fa = xm, fm
-        else:
-            xb, fb = xm, fm
-        if _ % 3 == 2:                                   # guarantee halving now and then
-            xm = 0.5 * (xa + xb)
-            fm = _dense_at(F, y, xm, i) - level
-            if (fm < 0.0) == (fa < 0.0):
-                xa, fa = xm, fm
-            else:
-                xb, fb = xm, fm
-    return 0.5 * (xa + xb)
 
 
 @njit(cache=True)
@@ -349,9 +218,9 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
             if t_new >= t_stop - 1e-12 * max(1.0, abs(t_stop)) or (not rejected_now and t_stop - t <= STRETCH * h):
                 t_new = t_stop
             hh = t_new - t
-            _step(t, y, f, hh, K, y_new, ytmp, n, pc, active, kind, params, sx, sy, dirx, diry)
+            dop853_step(t, y, f, hh, K, y_new, ytmp, n, pc, active, kind, params, sx, sy, dirx, diry)
             nfev += 12
-            err = _error_norm(y, y_new, K, hh, rtol, atol, n)
+            err = error_norm(y, y_new, K, hh, rtol, atol, n)
             if y_new[0] < 0.0 and pc[12] < 0.5:
                 err = 10.0           # θ < 0 off the planar case: the step overshot a quasi-impact
             if err < 1.0 and math.isfinite(err):
@@ -374,7 +243,7 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
         stop_kind = STOP_NONE
         if (y_new[0] >= theta_ot or y_new[0] < 0.0 or (y[1] < 0.0 <= y_new[1]) or (y[1] > 0.0 >= y_new[1])
                 or (seeding and y_new[0] >= theta_seed)):
-            _dense(t, y, y_new, K, hh, F, ytmp, n, pc, active, kind, params, sx, sy, dirx, diry)
+            dense_coefficients(t, y, y_new, K, hh, F, ytmp, n, pc, active, kind, params, sx, sy, dirx, diry)
             nfev += 3
             ndense += 1
             have_dense = True
@@ -385,43 +254,43 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
             ta_ = y[0]
             for k in range(1, 17):
                 xb = k / 16.0
-                vb = _dense_at(F, y, xb, 1) if k < 16 else y_new[1]
-                tb_ = _dense_at(F, y, xb, 0) if k < 16 else y_new[0]
+                vb = dense_at(F, y, xb, 1) if k < 16 else y_new[1]
+                tb_ = dense_at(F, y, xb, 0) if k < 16 else y_new[0]
                 if tb_ >= theta_ot and ta_ < theta_ot:
-                    x = _root(F, y, 0, theta_ot, xa, xb)
+                    x = dense_root(F, y, 0, theta_ot, xa, xb)
                     stop_at = x
                     tt = t + x * hh
-                    events, ne = _event(events, ne, EV_OVERTURN, tt, theta_ot, _dense_at(F, y, x, 3), ev)
+                    events, ne = _event(events, ne, EV_OVERTURN, tt, theta_ot, dense_at(F, y, x, 3), ev)
                     status = ST_OVERTURNED
                     stop_kind = STOP_OVERTURN
                     break
                 if seeding and tb_ >= theta_seed > ta_:
                     # the seed phase ends: the 3D equations take over at θ = θ_seed
-                    stop_at = _root(F, y, 0, theta_seed, xa, xb)
+                    stop_at = dense_root(F, y, 0, theta_seed, xa, xb)
                     stop_kind = STOP_SEEDED
                     break
                 if tb_ < 0.0 <= ta_:
                     # exactly planar motion reaches θ = 0: switch to the opposite rim point
-                    x = _root(F, y, 0, 0.0, xa, xb)
+                    x = dense_root(F, y, 0, 0.0, xa, xb)
                     stop_at = x
                     stop_kind = STOP_CROSSING
                     break
                 if va < 0.0 <= vb:
-                    x = _root(F, y, 1, 0.0, xa, xb)
-                    thmin = _dense_at(F, y, x, 0)
+                    x = dense_root(F, y, 1, 0.0, xa, xb)
+                    thmin = dense_at(F, y, x, 0)
                     if thmin < quasi_tilt:
                         tt = t + x * hh
-                        events, ne = _event(events, ne, EV_QUASI_IMPACT, tt, thmin, _dense_at(F, y, x, 3), ev)
+                        events, ne = _event(events, ne, EV_QUASI_IMPACT, tt, thmin, dense_at(F, y, x, 3), ev)
                         if rest_energy > 0.0:
                             for i in range(6):
-                                ytmp[i] = _dense_at(F, y, x, i) if i < n else 0.0
+                                ytmp[i] = dense_at(F, y, x, i) if i < n else 0.0
                             if rocking_energy(ytmp, par) < rest_energy:
                                 stop_at = x
                                 stop_kind = STOP_REST
                                 break
                 elif va > 0.0 >= vb:
-                    x = _root(F, y, 1, 0.0, xa, xb)
-                    events, ne = _event(events, ne, EV_THETA_MAX, t + x * hh, _dense_at(F, y, x, 0), 0.0, ev)
+                    x = dense_root(F, y, 1, 0.0, xa, xb)
+                    events, ne = _event(events, ne, EV_THETA_MAX, t + x * hh, dense_at(F, y, x, 0), 0.0, ev)
                 xa = xb
                 va = vb
                 ta_ = tb_
@@ -439,18 +308,18 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
                 if tg <= t:
                     continue
                 if not have_dense:
-                    _dense(t, y, y_new, K, hh, F, ytmp, n, pc, active, kind, params, sx, sy, dirx, diry)
+                    dense_coefficients(t, y, y_new, K, hh, F, ytmp, n, pc, active, kind, params, sx, sy, dirx, diry)
                     nfev += 3
                     ndense += 1
                     have_dense = True
                 for i in range(6):
-                    yg[i] = _dense_at(F, y, (tg - t) / hh, i) if i < n else 0.0
+                    yg[i] = dense_at(F, y, (tg - t) / hh, i) if i < n else 0.0
                 rhs(tg, yg, fg, pc, active, kind, params, sx, sy, dirx, diry)
                 hist, nh = _record(hist, nh, tg, yg, fg, par, row)
         if stop_at >= 0.0:
             if stop_at < 1.0:
                 for i in range(n):
-                    y_new[i] = _dense_at(F, y, stop_at, i)
+                    y_new[i] = dense_at(F, y, stop_at, i)
                 t_new = t + stop_at * hh
             if stop_kind == STOP_OVERTURN:
                 y_new[0] = theta_ot
