@@ -76,7 +76,7 @@ def error_norm(y, y_new, K, h, rtol, atol, n):
 @njit(cache=True)
 def dense_coefficients(t, y, y_new, K, h, F, ytmp, n, par, active, kind, params, sx, sy, dirx, diry):
     """The 7th-order dense-output coefficients F[0..6] of the last step (3 extra stages)."""
-    # The stage loop below repeats _step's on purpose: factored into one @njit helper (also with
+    # The stage loop below repeats dop853_step's on purpose: factored into one @njit helper (also with
     # inline="always") the 30-s pair benchmark ran 4-7 % slower; as one helper taking the stage range,
     # 7 % slower (rigid 5.30 → 5.70 ms, spring-dashpot 4.09 → 4.43 ms, same window; 2026-11-23).
     linear = kind == EXC_SAMPLES or not active

@@ -202,3 +202,17 @@ def test_cost_reason_names_micro_rocking():
     # an ordinary record pair is not called micro-rocking
     ordinary = simulate_cylinder(cyl, parse_pair("record:p695-ff/1,resultant_pga=0.3g", gravity=cyl.g).pair)
     assert "micro-rocking" not in ordinary.cost_reason()
+
+
+def test_without_a_rest_rule_a_seed_phase_that_comes_back_crosses_to_the_other_side():
+    # rest_velocity = 0: the pair at 1.001 g tan α uplifts (4.54 s), comes back within the seed phase and
+    # crosses; on the other side the inertia force restores (the seed phase keeps the force on its side), so
+    # the body rocks at seed level, without loss (c_r = 1), instead of being driven away.  (Like the planar
+    # engine's block without a rest velocity, it never stops: 419,566 crossings to the end of the record.)
+    cyl = THRESHOLD
+    pair = suite_pairs("p695-farfield-pairs", gravity=cyl.g)[0]
+    scaled = pair.scaled(1.001 * cyl.g * cyl.tan_alpha / pair.resultant_pga)
+    r = simulate_cylinder(cyl, scaled, rest_velocity=0.0, theta_seed=1e-9, t_end=5.0)
+    assert r.status == "completed" and r.times_of("rest").size == 0
+    assert r.times_of("planar-crossing").size >= 2
+    assert r.theta_max < 1e-6 * cyl.alpha
