@@ -43,6 +43,10 @@ class _PlainStages:
             self._say(f"{self.stage}: {count}done in {time.perf_counter() - self.t0:.0f} s")
         self.stage = None
 
+    def note(self, text: str) -> None:
+        """A line of its own while a stage runs (e.g. why it is slow)."""
+        self._say(text)
+
     def __call__(self, stage: str, done: int, total: int) -> None:
         now = time.perf_counter()
         if stage != self.stage:
@@ -77,6 +81,9 @@ def progress_bars(console: Console | None = None, *, disable: bool = False):
                 bar.update(t, completed=bar.tasks[t].total)
             tasks[stage] = bar.add_task(escape(stage), total=total)   # user text (names, ids) verbatim
         bar.update(tasks[stage], completed=min(done, total), total=total)
+
+    # a line printed above the bars while a stage runs (e.g. why it is slow)
+    progress.note = lambda text: bar.console.print(escape(text), highlight=False, soft_wrap=True)
 
     with bar:
         yield progress

@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import time
 
 import numpy as np
 
@@ -162,9 +163,32 @@ class PairOutcome:
         return row
 
 
-def _run_3d(cyl, pair, a, *, rtol=None, atol=None) -> PairRun:
+SLOW_RUN_SECONDS = 1.0
+"""A 3D analysis longer than this (≈ 100 × a 30-s pair's) is noted on the console with its reason."""
+
+
+def _slow_notes(progress):
+    """``note(pair id, text)`` printing one line per slow pair (the first slow run of each pair) through the
+    progress display's ``note``, or None without one."""
+    say = getattr(progress, "note", None)
+    if say is None:
+        return None
+    seen = set()
+
+    def note(name, text):
+        if name not in seen:
+            seen.add(name)
+            say(f"slow 3D analysis, {name}: {text}")
+    return note
+
+
+def _run_3d(cyl, pair, a, *, rtol=None, atol=None, note=None) -> PairRun:
+    t0 = time.perf_counter()
     r = simulate_cylinder(cyl, pair, free_vibration=a.free_vibration, rtol=rtol or a.rtol, atol=atol or a.atol,
                           rest_velocity=a.rest_velocity)
+    seconds = time.perf_counter() - t0
+    if note is not None and seconds > SLOW_RUN_SECONDS:
+        note(pair.name, f"{seconds:.1f} s, {r.cost_reason()}")
     AnalysisCount.add(1)
     return PairRun(r.theta_max / cyl.alpha, r.theta_max / cyl.theta_overturn, r.overturned, r.overturn_mode,
                    r.quasi_impacts, r.uplift_time, r.status,
@@ -288,7 +312,7 @@ def _summary(records: list[PairOutcome], e, ensemble: dict | None, planar_run: b
     return out
 
 
-def _ensembles(cyl, pairs, factors, nominal: list[PairRun], a, progress) -> dict | None:
+def _ensembles(cyl, pairs, factors, nominal: list[PairRun], a, progress, note=None) -> dict | None:
     """The perturbation ensemble (thesis Ch. 7): ``ensemble_size`` runs of the whole suite, each pair's
     amplitude × (1 ± 0.1 %) and the tolerances one decade tighter; None for ``ensemble_size = 0``."""
     size, n = a.ensemble_size, len(pairs)
@@ -299,7 +323,7 @@ def _ensembles(cyl, pairs, factors, nominal: list[PairRun], a, progress) -> dict
     for m in range(size):
         for i, pair in enumerate(pairs):
             run = _run_3d(cyl, pair.scaled(factors[i] * amplitude[m, i]), a, rtol=a.rtol * TOLERANCE_FACTOR,
-                          atol=a.atol * TOLERANCE_FACTOR)
+                          atol=a.atol * TOLERANCE_FACTOR, note=note)
             overturned[m, i] = run.overturned
             if progress is not None:
                 progress(f"perturbation ensembles ({size} runs per pair)", m * n + i + 1, size * n)
@@ -386,6 +410,7 @@ def run_cylinder_check(project, progress=None, margins: bool = True, *, records:
     require_suite_size(rule, len(pairs), len(pairs), e.suites, file=getattr(project, "path", None),
                        key="excitation")
     block = planar_block(cyl)
+    note = _slow_notes(progress)
     records_out = []
     for i, ((suite, pair), factor) in enumerate(zip(pairs, sp.factors)):
         scaled = pair.scaled(factor)
@@ -395,8 +420,8 @@ def run_cylinder_check(project, progress=None, margins: bool = True, *, records:
                 planar[comp] = _planar_component(block, accel, pair.dt, a)
         ratios = [sd / (2.0 * cyl.base_radius) for sd in sp.sd_max[i]]
         records_out.append(PairOutcome(pair.meta.get("id", pair.name), suite, pair.meta, factor, scaled.resultant_pga,
-                                       _run_3d(cyl, scaled, a), planar["x"], planar["y"], ratios[0], ratios[1],
-                                       cyl.damped))
+                                       _run_3d(cyl, scaled, a, note=note), planar["x"], planar["y"], ratios[0],
+                                       ratios[1], cyl.damped))
         if progress is not None:
             progress("cylinder and planar analyses" if not verdict_only else "cylinder analyses", i + 1, len(pairs))
     records = records_out
@@ -404,11 +429,11 @@ def run_cylinder_check(project, progress=None, margins: bool = True, *, records:
     margins = margins and not decided
     if margins:
         found = pair_margins(cyl, [p.scaled(f) for (_, p), f in zip(pairs, sp.factors)], [o.run for o in records], a,
-                             lambda pair, rtol: _run_3d(cyl, pair, a, rtol=rtol), progress)
+                             lambda pair, rtol: _run_3d(cyl, pair, a, rtol=rtol, note=note), progress)
         for o, m in zip(records, found):
             o.margin = m
     ens = None if verdict_only else _ensembles(cyl, [p for _, p in pairs], sp.factors, [o.run for o in records], a,
-                                               progress)
+                                               progress, _slow_notes(progress))
     if ens is not None:
         for i, o in enumerate(records):
             o.ensemble_fraction, o.outcome_robust = float(ens["fractions"][i]), bool(ens["robust"][i])

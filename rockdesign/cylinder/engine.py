@@ -18,17 +18,23 @@ from ..motions.pairs import MotionPair, no_pair
 from .eom import parameters
 from .kernel import (EV_CROSSING, EV_OVERTURN, EV_QUASI_IMPACT, EV_REST, EV_THETA_MAX, EV_UPLIFT, ST_COMPLETED,
                      ST_OVERTURNED, ST_STEP_COLLAPSED, ST_STEP_LIMIT, integrate)
-from .quantities import restitution_root, uplift_acceleration
+from .quantities import restitution_root
 from .system import Cylinder
 
 DEFAULT_RTOL = 1e-10
 DEFAULT_ATOL = 1e-12
-THETA_SEED = 1e-7
-"""Tilt [rad] at which an uplifting cylinder starts (θ = 0 is the singular point of Eq 5.23)."""
 QUASI_IMPACT_TILT = 0.01
 """A minimum of θ below this fraction of α is counted as a quasi-impact (Sec 5.4.1)."""
 DEFAULT_REST_VELOCITY = 5e-4
-"""v_rest [rad/s] of the damped model's rest rule (energy ½ M R² v_rest², as the planar engine)."""
+"""v_rest [rad/s] of the rest rule (energy ½ M R² v_rest², the planar engine's |θ̇⁺| < v_rest, SPEC §3.6)."""
+UPLIFT_HYSTERESIS = 1e-9
+"""Uplift needs θ̈ at θ = θ̇ = φ̇ = 0 (Eq 5.22) above this fraction of g/R: the planar engine's chatter guard
+(``rockdesign.dynamics.model.UPLIFT_HYSTERESIS``, SPEC §3.6), |ü_g| ≥ g tan α + 1e-9 g M/cos α."""
+SEED_FRACTION = 1e-2
+"""θ_seed/θ_rest: an uplift starts at the tilt whose potential energy is this fraction of the rest energy
+(:func:`seed_tilt`), so that the seed cannot decide a rest."""
+THETA_SEED = 1e-9
+"""θ_seed [rad] without a rest rule (rest_velocity = 0), where :func:`seed_tilt` has no rest energy to scale."""
 MAX_STEPS = 20_000_000
 STATUS = {ST_COMPLETED: "completed", ST_OVERTURNED: "overturned (θ reached θ_ot)",
           ST_STEP_COLLAPSED: "step size collapsed", ST_STEP_LIMIT: "step limit reached"}
@@ -40,6 +46,36 @@ SPIN_TILT_MIN = 0.2
 """θ/α above which the spin φ̇ is reported.  Near θ = 0 the contact point whirls round the rim: φ̇ grows like
 the vertical angular momentum over sin²θ, without bound at a quasi-impact (Sec 5.4.1), while the cylinder
 barely moves; a spin read there is the speed of the contact point, not a rotation of the body."""
+
+
+def rest_energy(R: float, alpha: float, rest_velocity: float) -> float:
+    """E_rest = ½ M R² v_rest² [J/kg], M = (15 + cos²α)/12 (Eq 5.22): the rocking energy below which a
+    quasi-impact ends in rest — at a planar crossing (θ = 0, φ̇ = 0) exactly the planar engine's |θ̇⁺| < v_rest
+    for the block of equal inertia (I_O/m = M R², λ = (3 + cos²α)/12, Eq 5.20)."""
+    return 0.5 * (15.0 + math.cos(alpha) ** 2) / 12.0 * R * R * rest_velocity ** 2
+
+
+def uplift_level(alpha: float, g: float) -> float:
+    """|ü_g| [m/s²] at which a resting cylinder uplifts: Eq 5.24's g tan α plus the hysteresis.
+
+    Eq 5.22 at θ = θ̇ = φ̇ = 0, tilting toward the inertia force: M R θ̈ = |ü_g| cos α − g sin α; uplift when
+    θ̈ > :data:`UPLIFT_HYSTERESIS`·g/R, i.e. |ü_g| > g tan α + 1e-9 g M/cos α — the planar engine's criterion
+    for the block of equal inertia (M = 1 + λ), so both engines uplift at the same instant."""
+    M = (15.0 + math.cos(alpha) ** 2) / 12.0
+    return g * math.tan(alpha) + UPLIFT_HYSTERESIS * g * M / math.cos(alpha)
+
+
+def seed_tilt(R: float, alpha: float, g: float, rest_velocity: float) -> float:
+    """θ_seed [rad]: :data:`SEED_FRACTION` of θ_rest, the tilt whose potential gR(cos(α−θ) − cos α) is the
+    rest energy (θ_rest ≈ M R v_rest²/(2 g sin α), 7.7e-8 rad for 2H = 2.5 m, tan α = 0.3).
+
+    The seed is a numerical device (Eq 5.23 is singular at θ = 0; the planar engine uplifts at θ = 0 with no
+    energy): its potential energy, V(θ_seed) ≈ SEED_FRACTION · E_rest, stays far below the rest energy, so a
+    cylinder that barely uplifts rests at its first quasi-impact whatever the seed (docs/cylinder.md)."""
+    if rest_velocity <= 0.0:
+        return THETA_SEED
+    e = rest_energy(R, alpha, rest_velocity)
+    return SEED_FRACTION * e / (g * R * math.sin(alpha))
 
 
 @dataclass(frozen=True)
@@ -142,6 +178,25 @@ class CylinderResponse:
             return "dynamic"
         return "exceeded" if self.theta_max >= self.alpha else "none"
 
+    def cost_reason(self) -> str:
+        """Why this run took the steps it took, in one sentence (for a console note on a slow analysis).
+
+        Micro-rocking is the known expensive case: a cylinder that barely uplifts (θ_max ≪ α) but keeps more
+        than the rest energy makes quasi-impacts at a period ∝ √θ (the contact point whirls round the rim),
+        each resolved by the step control with tens of steps (docs/cylinder.md, "Rest, uplift and the seed")."""
+        steps, qi = self.solver.get("steps", 0), self.quasi_impacts
+        ratio = self.theta_max / self.alpha
+        per = f"; ≈ {steps / qi:.0f} steps each" if qi else ""
+        head = f"{steps:,} steps, {qi:,} quasi-impacts, θ_max/α = {ratio:.2g}"
+        if qi >= 1000 and ratio < 0.01:
+            why = ("a spin about the vertical that the contact's dashpot does not remove" if self.damped
+                   else "the rigid contact dissipates nothing")
+            return (f"{head}: micro-rocking just above the uplift acceleration, its energy above the rest energy "
+                    f"½ M R² v_rest² ({why}){per}")
+        if qi >= 1000:
+            return f"{head}: long rocking with many quasi-impacts{per}"
+        return f"{head} over {self.t[-1]:.4g} s"
+
     def as_json(self) -> dict:
         """``simulate --json`` for a cylinder: the planar keys plus quasi-impacts, φ_end, N_min/(mg)."""
         out = {
@@ -171,7 +226,7 @@ class CylinderResponse:
 def simulate_cylinder(cyl: Cylinder, pair: MotionPair | None = None, *, t_end: float | None = None,
                       free_vibration: float = 10.0, theta0: float = 0.0, thetadot0: float = 0.0, phi0: float = 0.0,
                       phidot0: float = 0.0, rtol: float = DEFAULT_RTOL, atol: float = DEFAULT_ATOL,
-                      rest_velocity: float = DEFAULT_REST_VELOCITY, theta_seed: float = THETA_SEED,
+                      rest_velocity: float = DEFAULT_REST_VELOCITY, theta_seed: float | None = None,
                       quasi_impact_tilt: float = QUASI_IMPACT_TILT, max_steps: int = MAX_STEPS,
                       output_dt: float = 0.0) -> CylinderResponse:
     """Integrate the cylinder's Eqs 5.22–5.23 (rigid contact) or 5.23, 5.36–5.37 (spring–dashpot).
@@ -182,9 +237,9 @@ def simulate_cylinder(cyl: Cylinder, pair: MotionPair | None = None, *, t_end: f
         t_end: end time [s]; default: end of the excitation + ``free_vibration``.
         theta0, thetadot0, phi0, phidot0: initial state [rad, rad/s] (free vibration).
         rtol, atol: tolerances of the DOP853 step control (rad, rad/s, m, m/s).
-        rest_velocity: v_rest [rad/s] of the damped model's rest rule (docs/cylinder.md).
-        theta_seed: tilt [rad] at which an uplift starts (0 for a planar motion, whose equation is
-            regular at θ = 0).
+        rest_velocity: v_rest [rad/s] of the rest rule, both contacts (docs/cylinder.md); 0: never rest.
+        theta_seed: tilt [rad] at which an uplift starts; default :func:`seed_tilt` (a planar motion, whose
+            equation is regular at θ = 0, starts at 0).
         quasi_impact_tilt: minima of θ below this fraction of α count as quasi-impacts.
         max_steps: bound on the number of steps (status "step limit reached").
         output_dt: > 0 adds the 7th-order dense output on the grid k·output_dt [s] to the history
@@ -200,14 +255,15 @@ def simulate_cylinder(cyl: Cylinder, pair: MotionPair | None = None, *, t_end: f
     sx = np.ascontiguousarray(pair.x if pair.is_record else np.zeros(0), dtype=np.float64)
     sy = np.ascontiguousarray(pair.y if pair.is_record else np.zeros(0), dtype=np.float64)
     dirx, diry = pair.direction
-    up = uplift_acceleration(cyl.alpha, cyl.g)
-    M = (15.0 + math.cos(cyl.alpha) ** 2) / 12.0
-    rest_energy = 0.5 * M * cyl.R ** 2 * rest_velocity ** 2 if cyl.damped else 0.0
+    up = uplift_level(cyl.alpha, cyl.g)
+    e_rest = rest_energy(cyl.R, cyl.alpha, rest_velocity)
+    if theta_seed is None:
+        theta_seed = seed_tilt(cyl.R, cyl.alpha, cyl.g, rest_velocity)
     restitution = restitution_root(cyl.alpha) if cyl.damped else 1.0
     hist, events, stats = integrate(y0, 0.0, float(end), float(pair.duration), par, int(pair.kind),
                                     np.ascontiguousarray(pair.params, dtype=np.float64), sx, sy, float(dirx), float(diry),
                                     float(rtol), float(atol), 0.0 if planar else float(theta_seed), float(cyl.theta_overturn),
-                                    float(quasi_impact_tilt * cyl.alpha), float(rest_energy), float(restitution),
+                                    float(quasi_impact_tilt * cyl.alpha), float(e_rest), float(restitution),
                                     float(up), int(max_steps), float(output_dt))
     t = hist[:, 0]
     ax, ay = pair.acceleration(t)
@@ -222,7 +278,7 @@ def simulate_cylinder(cyl: Cylinder, pair: MotionPair | None = None, *, t_end: f
                ST_STEP_LIMIT: f"{max_steps} steps reached at t = {stats[5]:.6g} s"}[status_code]
     solver = {"method": "DOP853 (numba)", "rtol": rtol, "atol": atol, "steps": int(stats[0]),
               "rejected_steps": int(stats[1]), "rhs_evaluations": int(stats[2]), "dense_outputs": int(stats[3]),
-              "rest_entries": sum(1 for e in ev if e[0] == "rest"), "theta_seed": theta_seed}
+              "rest_entries": sum(1 for e in ev if e[0] == "rest"), "theta_seed": 0.0 if planar else theta_seed}
     return CylinderResponse(t, hist[:, 1], hist[:, 2], hist[:, 3], hist[:, 4], hist[:, 5], hist[:, 6], hist[:, 7],
                             ax, ay, ev, cyl.alpha, cyl.theta_overturn, cyl.R, cyl.half_height, cyl.base_radius,
                             cyl.damped, planar, status, message, solver)

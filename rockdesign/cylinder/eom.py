@@ -37,7 +37,10 @@ def parameters(R: float, alpha: float, g: float, omega_n: float = 0.0, zeta: flo
                damped: bool = False, planar: bool = False) -> np.ndarray:
     """The float64 parameter vector of the kernels: R [m], α [rad], g [m/s²], ω_n [rad/s], ζ [-], damped flag,
     the precomputed trigonometry sinα, cosα, sin²α, cos²α, sin2α, M = (15 + cos²α)/12, and the planar
-    flag (φ̇ ≡ 0: a one-directional excitation without initial spin, Eq 5.26)."""
+    flag (φ̇ ≡ 0: a one-directional excitation without initial spin, Eq 5.26).  The kernel sets the flag to
+    2 for the seed phase after an uplift (:mod:`.kernel`): φ̈ ≡ 0 and ü_gx cosφ + ü_gy sinφ = ∓|ü_g| in
+    Eq 5.22 (the azimuth follows the force while θ is tiny; − while the body tilts toward the inertia force,
+    + after a crossing to the other side)."""
     sa, ca = math.sin(alpha), math.cos(alpha)
     return np.array([R, alpha, g, omega_n, zeta, 1.0 if damped else 0.0, sa, ca, sa * sa, ca * ca,
                      math.sin(2 * alpha), (15.0 + ca * ca) / 12.0,
@@ -100,6 +103,8 @@ def rhs_ground(y, out, par, ax, ay):
     X = (sth * cth * (1.25 * s2 - 4.0 / 3.0 * c2) - 1.5 * sth * s2
          - sa * ca * 2.0 * (sth * ch + cth * sh) * sh)   # cos2θ − cosθ = −2 sin(3θ/2) sin(θ/2)
     F = ax * cph + ay * sph
+    if par[P_PLANAR] > 1.5:                                  # the seed phase: the force's magnitude, on its side
+        F = -math.sqrt(ax * ax + ay * ay) if F <= 0.0 else math.sqrt(ax * ax + ay * ay)
     if par[P_DAMPED] > 0.5:
         om = par[P_OMEGA]
         ze = par[P_ZETA]

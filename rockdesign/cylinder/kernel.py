@@ -2,16 +2,22 @@
 
 Hand-written because scipy's ``solve_ivp`` calls Python per stage (≈100× slower, see
 ``benchmarks/bench_cylinder.py``) and cannot land on record samples, uplift from rest or apply the
-planar reflection.  The Runge–Kutta tableau (Hairer's DOP853: 12 stages, error estimators of order
-5 and 3, 3 extra stages for the dense output) is scipy's (``scipy.integrate._ivp.dop853_coefficients``);
-the step control is scipy's (safety 0.9, factors 0.2–10, exponent −1/8).
+planar reflection.  The step, its error norm and dense output are :mod:`.stepper`'s (Hairer's DOP853,
+scipy's tableau); the step control is scipy's (safety 0.9, factors 0.2–10, exponent −1/8).
 
 One run (:func:`integrate`):
 
-* at rest, wait until the resultant |ü_g| = √(ü_gx² + ü_gy²) reaches g tan α (Eq 5.24), found
-  exactly on each linear record segment (a quadratic in t) or by a T_p/2000 scan and bisection for
-  pulses; then start at θ = θ_seed, θ̇ = φ̇ = 0 toward φ0 = atan2(−ü_gy, −ü_gx) (Eq 5.25 with its
+* at rest, wait until the resultant |ü_g| = √(ü_gx² + ü_gy²) reaches ``up`` (Eq 5.24's g tan α plus the
+  hysteresis), found exactly on each linear record segment (a quadratic in t) or by a T_p/2000 scan and
+  bisection for pulses; then start at θ = θ̇ = φ̇ = 0 toward φ0 = atan2(−ü_gy, −ü_gx) (Eq 5.25 with its
   quadrant);
+* the seed phase: from θ = 0 up to θ = θ_seed the body tilts toward the inertia force by Eq 5.22 alone
+  (φ̈ ≡ 0, ü_gx cosφ + ü_gy sinφ = −|ü_g|: regular at θ = 0, where Eq 5.23 is singular); at θ_seed the
+  3D equations take over with φ = the azimuth of −ü_g and φ̇ its rate of turn (:func:`_force_direction`:
+  Eq 5.23 locks the azimuth to the force as θ → 0, its stiffness cos α |ü_g|/(R J/θ) being unbounded).
+  The state at θ_seed is thus the small-tilt solution from rest, not a disturbance of size θ_seed: θ_max
+  does not depend on the seed to first order (docs/cylinder.md).  A seed phase that comes back to θ = 0
+  is a planar crossing (and rests below the rest energy, as the planar engine's block);
 * steps end exactly on every record sample (records are piecewise linear) and on the end of the
   excitation (the right-hand side is re-evaluated there with ü_g = 0); a step that would stop short of
   a sample by less than 25 % of its size is stretched onto it; within a step a record's ü_g is linear,
@@ -21,9 +27,14 @@ One run (:func:`integrate`):
   θ (θ̇: − → +; a minimum below ``quasi_tilt`` is a quasi-impact), maxima of θ, and — only for an
   exactly planar motion (φ̇ ≡ 0, a one-directional excitation) — θ = 0, where the body switches to the
   opposite rim point: θ → −θ, θ̇ → −r θ̇, φ → φ + π (r = 1 rigid, √c_r of Eq 5.41 damped);
-* rest rule (damped model): at a quasi-impact or planar crossing whose rocking energy (the contact
-  spring excluded: its deflection under the rocking body's own acceleration is no motion to end) is at
-  most ½ M R² v_rest² while |ü_g| < g tan α, the cylinder rests (θ = θ̇ = φ̇ = w_T = ẇ_T = 0, φ kept).
+* rest rule (both contacts, the planar engine's, SPEC §3.6): at a quasi-impact (a minimum of θ below
+  ``quasi_tilt``, or in 3D the end of a step below ``quasi_tilt`` on the way to one) or a planar crossing
+  whose rocking energy ½ R²(M θ̇² + J φ̇²) + gR(cos(α−θ) − cos α)
+  (Eqs 5.22–5.23; the contact spring excluded: its deflection under the rocking body's own acceleration
+  is no motion to end) is below ``rest_energy`` = ½ M R² v_rest², the cylinder rests (θ = θ̇ = φ̇ = w_T =
+  ẇ_T = 0, φ kept).  At a planar crossing this is the planar rule |θ̇⁺| < v_rest.  At rest it uplifts
+  when |ü_g| reaches ``up`` (g tan α plus the planar engine's hysteresis, :mod:`.engine`) — at once if
+  |ü_g| is already beyond it, as the planar engine's rest → uplift.  ``rest_energy`` = 0 disables the rule.
 """
 from __future__ import annotations
 
@@ -31,18 +42,12 @@ import math
 
 import numpy as np
 from numba import njit
-from scipy.integrate._ivp import dop853_coefficients as _dop
 
-from ..motions.excitation import EXC_SAMPLES, next_breakpoint
+from ..motions.excitation import next_breakpoint
 from .uplift import uplift_time
-from .eom import contact_force_ratio, ground_xy, rhs, rhs_ground, rocking_energy
+from .eom import contact_force_ratio, ground_xy, rhs, rocking_energy
+from .stepper import dense_at, dense_coefficients, dense_root, dop853_step, error_norm
 
-A = np.ascontiguousarray(_dop.A)
-B = np.ascontiguousarray(_dop.B)
-C = np.ascontiguousarray(_dop.C)
-E3 = np.ascontiguousarray(_dop.E3)
-E5 = np.ascontiguousarray(_dop.E5)
-D = np.ascontiguousarray(_dop.D)
 SAFETY = 0.9
 MIN_FACTOR = 0.2
 MAX_FACTOR = 10.0
@@ -53,133 +58,27 @@ leaving a sliver step (measured: −5 % right-hand sides for the damped model, e
 
 # event codes
 EV_UPLIFT, EV_QUASI_IMPACT, EV_THETA_MAX, EV_CROSSING, EV_REST, EV_OVERTURN = 0, 1, 2, 3, 4, 5
+# where an accepted step is cut
+STOP_NONE, STOP_OVERTURN, STOP_SEEDED, STOP_CROSSING, STOP_REST = 0, 1, 2, 3, 4
 # status codes
 ST_COMPLETED, ST_OVERTURNED, ST_STEP_COLLAPSED, ST_STEP_LIMIT = 0, 1, 2, 3
 HISTORY_COLUMNS = 8          # t, θ, θ̇, φ, φ̇, w_T, ẇ_T, N/(mg)
 
 
 @njit(cache=True)
-def _step(t, y, f0, h, K, y_new, ytmp, n, par, active, kind, params, sx, sy, dirx, diry):
-    """One DOP853 step of size h: fills K[0..12] (K[12] = f(t+h, y_new)) and y_new.
-
-    A step never crosses a record sample, so a record's ü_g is linear in it: evaluated at both ends
-    only and interpolated at the stages (pulses are evaluated at every stage)."""
-    for i in range(n):
-        K[0, i] = f0[i]
-    linear = kind == EXC_SAMPLES or not active
-    ax0, ay0 = ground_xy(t, active, kind, params, sx, sy, dirx, diry)
-    ax1, ay1 = ground_xy(t + h, active, kind, params, sx, sy, dirx, diry)
-    for s in range(1, 12):
-        for i in range(n):
-            acc = 0.0
-            for j in range(s):
-                acc += A[s, j] * K[j, i]
-            ytmp[i] = y[i] + h * acc
-        if linear:
-            ax = ax0 + C[s] * (ax1 - ax0)
-            ay = ay0 + C[s] * (ay1 - ay0)
-        else:
-            ax, ay = ground_xy(t + C[s] * h, active, kind, params, sx, sy, dirx, diry)
-        rhs_ground(ytmp, K[s], par, ax, ay)
-    for i in range(n):
-        acc = 0.0
-        for j in range(12):
-            acc += B[j] * K[j, i]
-        y_new[i] = y[i] + h * acc
-    rhs_ground(y_new, K[12], par, ax1, ay1)
-
-
-@njit(cache=True)
-def _error_norm(y, y_new, K, h, rtol, atol, n):
-    """scipy's DOP853 error norm (5th- and 3rd-order estimators)."""
-    e5 = 0.0
-    e3 = 0.0
-    for i in range(n):
-        sc = atol + rtol * max(abs(y[i]), abs(y_new[i]))
-        a5 = 0.0
-        a3 = 0.0
-        for j in range(13):
-            a5 += E5[j] * K[j, i]
-            a3 += E3[j] * K[j, i]
-        e5 += (a5 / sc) ** 2
-        e3 += (a3 / sc) ** 2
-    if e5 == 0.0 and e3 == 0.0:
-        return 0.0
-    return abs(h) * e5 / math.sqrt((e5 + 0.01 * e3) * n)
-
-
-@njit(cache=True)
-def _dense(t, y, y_new, K, h, F, ytmp, n, par, active, kind, params, sx, sy, dirx, diry):
-    """The 7th-order dense-output coefficients F[0..6] of the last step (3 extra stages)."""
-    # The stage loop below repeats _step's on purpose: factored into one @njit helper (also with
-    # inline="always") the 30-s pair benchmark ran 4-7 % slower; as one helper taking the stage range,
-    # 7 % slower (rigid 5.30 → 5.70 ms, spring-dashpot 4.09 → 4.43 ms, same window; 2026-11-23).
-    linear = kind == EXC_SAMPLES or not active
-    ax0, ay0 = ground_xy(t, active, kind, params, sx, sy, dirx, diry)
-    ax1, ay1 = ground_xy(t + h, active, kind, params, sx, sy, dirx, diry)
-    for s in range(13, 16):
-        for i in range(n):
-            acc = 0.0
-            for j in range(s):
-                acc += A[s, j] * K[j, i]
-            ytmp[i] = y[i] + h * acc
-        if linear:
-            ax = ax0 + C[s] * (ax1 - ax0)
-            ay = ay0 + C[s] * (ay1 - ay0)
-        else:
-            ax, ay = ground_xy(t + C[s] * h, active, kind, params, sx, sy, dirx, diry)
-        rhs_ground(ytmp, K[s], par, ax, ay)
-    for i in range(n):
-        dy = y_new[i] - y[i]
-        F[0, i] = dy
-        F[1, i] = h * K[0, i] - dy
-        F[2, i] = 2.0 * dy - h * (K[12, i] + K[0, i])
-        for r in range(4):
-            acc = 0.0
-            for j in range(16):
-                acc += D[r, j] * K[j, i]
-            F[3 + r, i] = h * acc
-
-
-@njit(cache=True)
-def _dense_at(F, y, x, i):
-    """Component i of the dense output at x = (t − t_old)/h ∈ [0, 1]."""
-    v = 0.0
-    for k in range(6, -1, -1):
-        v += F[k, i]
-        if (6 - k) % 2 == 0:
-            v *= x
-        else:
-            v *= 1.0 - x
-    return v + y[i]
-
-
-@njit(cache=True)
-def _root(F, y, i, level, xa, xb):
-    """x in [xa, xb] where component i of the dense output equals ``level`` (bracketed; bisection+secant)."""
-    fa = _dense_at(F, y, xa, i) - level
-    fb = _dense_at(F, y, xb, i) - level
-    for _ in range(200):
-        if xb - xa <= 1e-15:
-            break
-        xm = xa - fa * (xb - xa) / (fb - fa) if fb != fa else 0.5 * (xa + xb)
-        if not (xa < xm < xb) or _ > 60:
-            xm = 0.5 * (xa + xb)
-        fm = _dense_at(F, y, xm, i) - level
-        if fm == 0.0:
-            return xm
-        if (fm < 0.0) == (fa < 0.0):
-            xa, fa = xm, fm
-        else:
-            xb, fb = xm, fm
-        if _ % 3 == 2:                                   # guarantee halving now and then
-            xm = 0.5 * (xa + xb)
-            fm = _dense_at(F, y, xm, i) - level
-            if (fm < 0.0) == (fa < 0.0):
-                xa, fa = xm, fm
-            else:
-                xb, fb = xm, fm
-    return 0.5 * (xa + xb)
+def _force_direction(t, active, kind, params, sx, sy, dirx, diry):
+    """(ψ, ψ̇): the azimuth [rad] of the inertia force −ü_g at t and its rate of turn [rad/s],
+    ψ̇ = (ü_gx d/dt ü_gy − ü_gy d/dt ü_gx)/|ü_g|² (central difference over ±1e-7 s; a record is linear there
+    but at its samples)."""
+    ax, ay = ground_xy(t, active, kind, params, sx, sy, dirx, diry)
+    d = 1e-7
+    bx, by = ground_xy(t + d, active, kind, params, sx, sy, dirx, diry)
+    cx, cy = ground_xy(max(t - d, 0.0), active, kind, params, sx, sy, dirx, diry)
+    span = t + d - max(t - d, 0.0)
+    a2 = ax * ax + ay * ay
+    if a2 == 0.0:
+        return math.atan2(-ay, -ax), 0.0
+    return math.atan2(-ay, -ax), (ax * (by - cy) - ay * (bx - cx)) / (span * a2)
 
 
 @njit(cache=True)
@@ -216,12 +115,19 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
               theta_ot, quasi_tilt, rest_energy, planar_restitution, up, max_steps, out_dt):
     """Integrate one cylinder from (t0, y0) to t_end (module docstring).
 
+    ``theta_seed`` [rad]: the tilt an uplift starts from (θ = 0 is the singular point of Eq 5.23; 0 for a
+    planar run); ``rest_energy`` [J/kg]: the rest rule's energy (0: no rest); ``up`` [m/s²]: the resultant
+    |ü_g| at which a resting cylinder uplifts (Eq 5.24 with the hysteresis, :func:`.engine.uplift_level`).
     ``out_dt`` > 0 adds dense-output rows on the grid k·out_dt to the history.
     Returns (history rows [t, θ, θ̇, φ, φ̇, w_T, ẇ_T, N/(mg)] at every accepted step and event,
     events rows [code, t, θ, value], stats [steps, rejected, rhs evaluations, dense outputs, status,
     t_stop]).
     """
     n = 6 if par[5] > 0.5 else 4
+    par_seed = par.copy()
+    par_seed[12] = 2.0          # the seed phase: Eq 5.22 toward the inertia force, φ̈ ≡ 0 (regular at θ = 0)
+    pc = par                    # the equations in force: par, or par_seed while seeding
+    seeding = False
     y = np.zeros(6)
     y_new = np.zeros(6)
     ytmp = np.zeros(6)
@@ -249,12 +155,12 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
     h = 0.0
     active = t < t_exc_end
     if not resting:
-        rhs(t, y, f, par, active, kind, params, sx, sy, dirx, diry)
+        rhs(t, y, f, pc, active, kind, params, sx, sy, dirx, diry)
         nfev += 1
     hist, nh = _record(hist, nh, t, y, f, par, row)
     while t < t_end:
         if resting:
-            tu = uplift_time(t, min(t_end, t_exc_end), up * (1.0 + 1e-12), kind, params, sx, sy, dirx, diry)
+            tu = uplift_time(t, min(t_end, t_exc_end), up, kind, params, sx, sy, dirx, diry)
             if out_dt > 0.0:                      # grid rows while at rest
                 t_hi = min(tu, t_end)
                 while k_out * out_dt < t_hi - 1e-12 * max(1.0, t_hi):
@@ -267,7 +173,9 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
                 break
             ax, ay = ground_xy(tu, True, kind, params, sx, sy, dirx, diry)
             t = tu
-            y[0] = theta_seed
+            seeding = theta_seed > 0.0
+            pc = par_seed if seeding else par
+            y[0] = 0.0
             y[1] = 0.0
             y[2] = math.atan2(-ay, -ax)
             y[3] = 0.0
@@ -275,7 +183,7 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
             y[5] = 0.0
             resting = False
             active = t < t_exc_end
-            rhs(t, y, f, par, active, kind, params, sx, sy, dirx, diry)
+            rhs(t, y, f, pc, active, kind, params, sx, sy, dirx, diry)
             nfev += 1
             hist, nh = _record(hist, nh, t, y, f, par, row)
             events, ne = _event(events, ne, EV_UPLIFT, t, y[0], y[2], ev)
@@ -310,10 +218,10 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
             if t_new >= t_stop - 1e-12 * max(1.0, abs(t_stop)) or (not rejected_now and t_stop - t <= STRETCH * h):
                 t_new = t_stop
             hh = t_new - t
-            _step(t, y, f, hh, K, y_new, ytmp, n, par, active, kind, params, sx, sy, dirx, diry)
+            dop853_step(t, y, f, hh, K, y_new, ytmp, n, pc, active, kind, params, sx, sy, dirx, diry)
             nfev += 12
-            err = _error_norm(y, y_new, K, hh, rtol, atol, n)
-            if y_new[0] < 0.0 and par[12] < 0.5:
+            err = error_norm(y, y_new, K, hh, rtol, atol, n)
+            if y_new[0] < 0.0 and pc[12] < 0.5:
                 err = 10.0           # θ < 0 off the planar case: the step overshot a quasi-impact
             if err < 1.0 and math.isfinite(err):
                 factor = MAX_FACTOR if err == 0.0 else min(MAX_FACTOR, SAFETY * err ** EXPONENT)
@@ -331,9 +239,11 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
         steps += 1
         # ---- events on the dense output of the accepted step [t, t_new]
         have_dense = False
-        stop_at = -1.0            # x where the step is cut (overturn, rest, crossing)
-        if y_new[0] >= theta_ot or y_new[0] < 0.0 or (y[1] < 0.0 <= y_new[1]) or (y[1] > 0.0 >= y_new[1]):
-            _dense(t, y, y_new, K, hh, F, ytmp, n, par, active, kind, params, sx, sy, dirx, diry)
+        stop_at = -1.0            # x where the step is cut (overturn, rest, crossing, end of the seed phase)
+        stop_kind = STOP_NONE
+        if (y_new[0] >= theta_ot or y_new[0] < 0.0 or (y[1] < 0.0 <= y_new[1]) or (y[1] > 0.0 >= y_new[1])
+                or (seeding and y_new[0] >= theta_seed)):
+            dense_coefficients(t, y, y_new, K, hh, F, ytmp, n, pc, active, kind, params, sx, sy, dirx, diry)
             nfev += 3
             ndense += 1
             have_dense = True
@@ -344,39 +254,52 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
             ta_ = y[0]
             for k in range(1, 17):
                 xb = k / 16.0
-                vb = _dense_at(F, y, xb, 1) if k < 16 else y_new[1]
-                tb_ = _dense_at(F, y, xb, 0) if k < 16 else y_new[0]
+                vb = dense_at(F, y, xb, 1) if k < 16 else y_new[1]
+                tb_ = dense_at(F, y, xb, 0) if k < 16 else y_new[0]
                 if tb_ >= theta_ot and ta_ < theta_ot:
-                    x = _root(F, y, 0, theta_ot, xa, xb)
+                    x = dense_root(F, y, 0, theta_ot, xa, xb)
                     stop_at = x
                     tt = t + x * hh
-                    events, ne = _event(events, ne, EV_OVERTURN, tt, theta_ot, _dense_at(F, y, x, 3), ev)
+                    events, ne = _event(events, ne, EV_OVERTURN, tt, theta_ot, dense_at(F, y, x, 3), ev)
                     status = ST_OVERTURNED
+                    stop_kind = STOP_OVERTURN
+                    break
+                if seeding and tb_ >= theta_seed > ta_:
+                    # the seed phase ends: the 3D equations take over at θ = θ_seed
+                    stop_at = dense_root(F, y, 0, theta_seed, xa, xb)
+                    stop_kind = STOP_SEEDED
                     break
                 if tb_ < 0.0 <= ta_:
                     # exactly planar motion reaches θ = 0: switch to the opposite rim point
-                    x = _root(F, y, 0, 0.0, xa, xb)
+                    x = dense_root(F, y, 0, 0.0, xa, xb)
                     stop_at = x
+                    stop_kind = STOP_CROSSING
                     break
                 if va < 0.0 <= vb:
-                    x = _root(F, y, 1, 0.0, xa, xb)
-                    thmin = _dense_at(F, y, x, 0)
+                    x = dense_root(F, y, 1, 0.0, xa, xb)
+                    thmin = dense_at(F, y, x, 0)
                     if thmin < quasi_tilt:
                         tt = t + x * hh
-                        events, ne = _event(events, ne, EV_QUASI_IMPACT, tt, thmin, _dense_at(F, y, x, 3), ev)
+                        events, ne = _event(events, ne, EV_QUASI_IMPACT, tt, thmin, dense_at(F, y, x, 3), ev)
                         if rest_energy > 0.0:
                             for i in range(6):
-                                ytmp[i] = _dense_at(F, y, x, i) if i < n else 0.0
-                            ax, ay = ground_xy(tt, tt < t_exc_end, kind, params, sx, sy, dirx, diry)
-                            if rocking_energy(ytmp, par) <= rest_energy and ax * ax + ay * ay < up * up:
+                                ytmp[i] = dense_at(F, y, x, i) if i < n else 0.0
+                            if rocking_energy(ytmp, par) < rest_energy:
                                 stop_at = x
+                                stop_kind = STOP_REST
                                 break
                 elif va > 0.0 >= vb:
-                    x = _root(F, y, 1, 0.0, xa, xb)
-                    events, ne = _event(events, ne, EV_THETA_MAX, t + x * hh, _dense_at(F, y, x, 0), 0.0, ev)
+                    x = dense_root(F, y, 1, 0.0, xa, xb)
+                    events, ne = _event(events, ne, EV_THETA_MAX, t + x * hh, dense_at(F, y, x, 0), 0.0, ev)
                 xa = xb
                 va = vb
                 ta_ = tb_
+        if (stop_at < 0.0 and rest_energy > 0.0 and pc[12] < 0.5 and y_new[0] < quasi_tilt and y_new[1] < 0.0
+                and rocking_energy(y_new, par) < rest_energy):
+            # on its way to a quasi-impact with less than the rest energy: at rest now (in 3D the minimum of
+            # an orbit of tiny angular momentum can lie below what the step control resolves)
+            stop_at = 1.0
+            stop_kind = STOP_REST
         if out_dt > 0.0:
             t_hi = t + stop_at * hh if stop_at >= 0.0 else t_new
             while k_out * out_dt <= t_hi - 1e-12 * max(1.0, t_hi):
@@ -385,26 +308,44 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
                 if tg <= t:
                     continue
                 if not have_dense:
-                    _dense(t, y, y_new, K, hh, F, ytmp, n, par, active, kind, params, sx, sy, dirx, diry)
+                    dense_coefficients(t, y, y_new, K, hh, F, ytmp, n, pc, active, kind, params, sx, sy, dirx, diry)
                     nfev += 3
                     ndense += 1
                     have_dense = True
                 for i in range(6):
-                    yg[i] = _dense_at(F, y, (tg - t) / hh, i) if i < n else 0.0
-                rhs(tg, yg, fg, par, active, kind, params, sx, sy, dirx, diry)
+                    yg[i] = dense_at(F, y, (tg - t) / hh, i) if i < n else 0.0
+                rhs(tg, yg, fg, pc, active, kind, params, sx, sy, dirx, diry)
                 hist, nh = _record(hist, nh, tg, yg, fg, par, row)
         if stop_at >= 0.0:
-            tt = t + stop_at * hh
-            for i in range(n):
-                y_new[i] = _dense_at(F, y, stop_at, i)
-            t_new = tt
-            if status == ST_OVERTURNED:
+            if stop_at < 1.0:
+                for i in range(n):
+                    y_new[i] = dense_at(F, y, stop_at, i)
+                t_new = t + stop_at * hh
+            if stop_kind == STOP_OVERTURN:
                 y_new[0] = theta_ot
-                rhs(t_new, y_new, f, par, active, kind, params, sx, sy, dirx, diry)
+                rhs(t_new, y_new, f, pc, active, kind, params, sx, sy, dirx, diry)
                 hist, nh = _record(hist, nh, t_new, y_new, f, par, row)
                 t = t_new
                 break
-            if par[12] > 0.5 and abs(y_new[0]) < 1e-9:
+            if stop_kind == STOP_SEEDED:
+                seeding = False
+                pc = par
+                y_new[0] = theta_seed
+                # while θ ≪ θ_seed the azimuth is locked to the inertia force (Eq 5.23: its stiffness
+                # cos α |ü_g|/(R J/θ) grows without bound as θ → 0): φ = its direction, φ̇ = its rate of turn
+                psi, psid = _force_direction(t_new, t_new < t_exc_end, kind, params, sx, sy, dirx, diry)
+                dpsi = psi - y_new[2]
+                y_new[2] = y_new[2] + dpsi - 2.0 * math.pi * math.floor(dpsi / (2.0 * math.pi) + 0.5)
+                y_new[3] = psid
+                for i in range(n):
+                    y[i] = y_new[i]
+                t = t_new
+                active = t < t_exc_end
+                rhs(t, y, f, pc, active, kind, params, sx, sy, dirx, diry)
+                nfev += 1
+                hist, nh = _record(hist, nh, t, y, f, par, row)
+                continue
+            if stop_kind == STOP_CROSSING:
                 # planar crossing
                 y_new[0] = 0.0
                 thd = y_new[1]
@@ -413,19 +354,20 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
                 y_new[2] = y_new[2] + math.pi
                 for i in range(n):
                     y[i] = y_new[i]
-                ax, ay = ground_xy(t_new, t_new < t_exc_end, kind, params, sx, sy, dirx, diry)
-                if rest_energy > 0.0 and rocking_energy(y, par) <= rest_energy and ax * ax + ay * ay < up * up:
+                if rest_energy > 0.0 and rocking_energy(y, par) < rest_energy:
                     resting = True
                 else:
                     t = t_new
                     active = t < t_exc_end
-                    rhs(t, y, f, par, active, kind, params, sx, sy, dirx, diry)
+                    rhs(t, y, f, pc, active, kind, params, sx, sy, dirx, diry)
                     nfev += 1
                     hist, nh = _record(hist, nh, t, y, f, par, row)
                     continue
             else:
                 resting = True
             if resting:
+                seeding = False
+                pc = par
                 for i in range(6):
                     if i != 2:
                         y[i] = 0.0
@@ -443,7 +385,7 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
         t = t_new
         if active and t >= t_exc_end:
             active = False
-            rhs(t, y, f, par, active, kind, params, sx, sy, dirx, diry)   # right limit: ü_g = 0
+            rhs(t, y, f, pc, active, kind, params, sx, sy, dirx, diry)   # right limit: ü_g = 0
             nfev += 1
         hist, nh = _record(hist, nh, t, y, f, par, row)
     stats = np.array([steps, rejected, nfev, ndense, status, t], dtype=np.float64)

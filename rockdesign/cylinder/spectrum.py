@@ -50,9 +50,10 @@ def parse_cylinder_axis(text: str, which: str) -> tuple[str, np.ndarray]:
 
 
 @njit(cache=True, parallel=True)
-def _grid(pars, scales, params0, sx, sy, t_end, t_exc_end, rtol, atol, theta_seed, theta_ot, quasi_tilt,
+def _grid(pars, scales, params0, sx, sy, t_end, t_exc_end, rtol, atol, seeds, theta_ot, quasi_tilt,
           rest_energy, planar_restitution, ups, out_theta, out_ot, out_qi, workers):
-    """All grid points: pars[i] per size, scales[j] per amplitude; θ_max, overturned, quasi-impacts.
+    """All grid points: pars[i], seeds[i], rest_energy[i], ups[i] per size, scales[j] per amplitude; θ_max,
+    overturned, quasi-impacts.
 
     ``workers`` workers (one per numba thread) take the points one at a time from a shared counter
     (:mod:`rockdesign.execution.scheduling`), so a busy core does not hold up the grid."""
@@ -68,7 +69,7 @@ def _grid(pars, scales, params0, sx, sy, t_end, t_exc_end, rtol, atol, theta_see
             params[0] = scales[j]
             y0 = np.zeros(6)
             hist, events, stats = integrate(y0, 0.0, t_end, t_exc_end, pars[i], 0, params, sx, sy, 1.0, 1.0, rtol,
-                                            atol, theta_seed, theta_ot, quasi_tilt, rest_energy[i],
+                                            atol, seeds[i], theta_ot, quasi_tilt, rest_energy[i],
                                             planar_restitution, ups[i], 20_000_000, 0.0)
             th = 0.0
             for r in range(hist.shape[0]):
@@ -109,7 +110,7 @@ def cylinder_spectrum(cyl, pair, R_values, pga_over_up, *, rtol: float = 1e-10, 
     """The spectrum of ``cyl``'s slenderness and contact under ``pair`` (any size R [m] of the grid).
 
     ``progress(done, total)`` is called as blocks of grid points finish (points done, all points)."""
-    from .engine import QUASI_IMPACT_TILT, THETA_SEED
+    from .engine import QUASI_IMPACT_TILT, rest_energy, seed_tilt, uplift_level
     from .quantities import restitution_root
     if not pair.is_record or pair.planar:
         raise CylinderSpectrumError("a cylinder spectrum needs a record pair", key="--record",
@@ -118,9 +119,10 @@ def cylinder_spectrum(cyl, pair, R_values, pga_over_up, *, rtol: float = 1e-10, 
     up = g * math.tan(alpha)
     R_values = np.asarray(R_values, dtype=float)
     pars = np.array([parameters(R, alpha, g, cyl.contact_frequency, cyl.contact_damping, cyl.damped) for R in R_values])
-    M = (15.0 + math.cos(alpha) ** 2) / 12.0
-    rest = np.array([0.5 * M * R * R * rest_velocity ** 2 if cyl.damped else 0.0 for R in R_values])
-    ups = np.full(R_values.size, up)
+    # the engine's rest rule, seed and uplift level (engine.simulate_cylinder) at every size
+    rest = np.array([rest_energy(R, alpha, rest_velocity) for R in R_values])
+    seeds = np.array([seed_tilt(R, alpha, g, rest_velocity) for R in R_values])
+    ups = np.full(R_values.size, uplift_level(alpha, g))
     base = pair.resultant_pga / pair.scale
     scales = np.asarray(pga_over_up, dtype=float) * up / base
     ny, nx = scales.size, R_values.size
@@ -132,7 +134,7 @@ def cylinder_spectrum(cyl, pair, R_values, pga_over_up, *, rtol: float = 1e-10, 
     for a in range(0, ny, rows):
         b = min(ny, a + rows)
         _grid(pars, scales[a:b], np.array([1.0, pair.dt]), pair.x, pair.y, pair.duration + free_vibration,
-              pair.duration, rtol, atol, THETA_SEED, cyl.theta_overturn, QUASI_IMPACT_TILT * alpha, rest,
+              pair.duration, rtol, atol, seeds, cyl.theta_overturn, QUASI_IMPACT_TILT * alpha, rest,
               restitution_root(alpha) if cyl.damped else 1.0, ups, theta[a:b], ot[a:b], qi[a:b],
               worker_count((b - a) * nx))
         if progress is not None:

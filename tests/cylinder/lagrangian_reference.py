@@ -27,7 +27,8 @@ class LagrangianCylinder:
         self.I1, self.I2 = B * B / 4 + H * H / 3, B * B / 2
         self.omega_n, self.zeta = omega_n, zeta
 
-    def rhs(self, t, y, ground):
+    def rhs(self, t, y, ground, planar=False):
+        """dy/dt; ``planar``: φ̈ ≡ 0 (the tilt plane held fixed, as while the engine seeds an uplift)."""
         H, B, g, I1, I2 = self.H, self.B, self.g, self.I1, self.I2
         th, thd, ph, phd = y[:4]
         ax, ay = ground(t)
@@ -40,7 +41,7 @@ class LagrangianCylinder:
         a = drho ** 2 + dz ** 2 + I1
         q_th = -drho * (ax * math.cos(ph) + ay * math.sin(ph))
         q_ph = rho * (ax * math.sin(ph) - ay * math.cos(ph))
-        phdd = (q_ph - dJ * thd * phd) / J
+        phdd = 0.0 if planar else (q_ph - dJ * thd * phd) / J
         if self.omega_n is None:
             thdd = (0.5 * dJ * phd ** 2 - g * dz + q_th) / a
             return [thd, thdd, phd, phdd]
@@ -70,17 +71,22 @@ def uplift(t_samples, ax, ay, threshold):
 
 
 def integrate_record(model: LagrangianCylinder, t_samples, ax, ay, t_stop, theta_seed=1e-7, rtol=1e-11,
-                     atol=1e-13):
-    """From rest: uplift, then DOP853 sample interval by sample interval (the kinks of the record) to t_stop.
-    Returns (t_uplift, t, y) with y[:, k] at the record samples after uplift."""
+                     atol=1e-13, threshold=None, seed_phase=False):
+    """From rest: uplift (at |ü_g| = ``threshold``, default g tan α) to θ = ``theta_seed`` (at once, θ̇ = φ̇ = 0,
+    or by the engine's seed phase, :func:`_seed_phase`), then DOP853 sample interval by sample interval (the
+    kinks of the record) to t_stop.  Returns (t_uplift, t, y) with y[:, k] at the uplift and the record
+    samples after the seed."""
     alpha = math.atan2(model.B, model.H)
-    t_up = uplift(t_samples, ax, ay, model.g * math.tan(alpha))
+    t_up = uplift(t_samples, ax, ay, model.g * math.tan(alpha) if threshold is None else threshold)
     ground = record_ground(t_samples, ax, ay)
     gx, gy = ground(t_up)
     n = 4 if model.omega_n is None else 6
     y = np.zeros(n)
     y[0], y[2] = theta_seed, math.atan2(-gy, -gx)
-    knots = [t_up] + [t for t in t_samples if t_up < t <= t_stop]
+    t_start = t_up
+    if seed_phase:
+        t_start, y = _seed_phase(model, t_samples, ax, ay, t_up, theta_seed, n, rtol, atol)
+    knots = [t_start] + [t for t in t_samples if t_start < t <= t_stop]
     out_t, out_y = [t_up], [y.copy()]
     for t0, t1 in zip(knots[:-1], knots[1:]):
         sol = solve_ivp(model.rhs, (t0, t1), y, method="DOP853", rtol=rtol, atol=atol, args=(ground,))
@@ -88,3 +94,33 @@ def integrate_record(model: LagrangianCylinder, t_samples, ax, ay, t_stop, theta
         out_t.append(t1)
         out_y.append(y.copy())
     return t_up, np.array(out_t), np.array(out_y).T
+
+
+def _seed_phase(model, t_samples, ax, ay, t_up, theta_seed, n, rtol, atol):
+    """The engine's seed rule (docs/cylinder.md), written from its statement: from rest at t_up the body tilts
+    toward the inertia force −ü_g(t) (the force of magnitude |ü_g| in the tilt plane, φ̇ ≡ 0) until θ = θ_seed;
+    there φ = the azimuth of −ü_g and φ̇ its rate of turn (ü_g is linear between the samples).
+    Returns (t, state) at the end of the seed phase."""
+    ground = record_ground(t_samples, ax, ay)
+    along = lambda t: (-math.hypot(*ground(t)), 0.0)  # noqa: E731 (the force along φ = 0)
+    y = np.zeros(n)
+    reached = lambda t, y, *args: y[0] - theta_seed  # noqa: E731
+    reached.terminal, reached.direction = True, 1
+    knots = [t_up] + [t for t in t_samples if t > t_up]
+    for t0, t1 in zip(knots[:-1], knots[1:]):
+        sol = solve_ivp(model.rhs, (t0, t1), y, method="DOP853", rtol=rtol, atol=atol * 1e-6,
+                        args=(along, True), events=reached)
+        if sol.status == 1:
+            t_s, y = sol.t_events[0][0], sol.y_events[0][0].copy()
+            break
+        y = sol.y[:, -1]
+    else:
+        raise ValueError("the seed phase never reached θ_seed")
+    i = int(np.searchsorted(t_samples, t_s)) - 1
+    dt = t_samples[i + 1] - t_samples[i]
+    gx, gy = ground(t_s)
+    dgx, dgy = (ax[i + 1] - ax[i]) / dt, (ay[i + 1] - ay[i]) / dt
+    y[0] = theta_seed
+    y[2] = math.atan2(-gy, -gx)
+    y[3] = (gx * dgy - gy * dgx) / (gx * gx + gy * gy)
+    return t_s, y

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from lagrangian_reference import LagrangianCylinder, integrate_record
-from rockdesign.cylinder.engine import simulate_cylinder
+from rockdesign.cylinder.engine import simulate_cylinder, uplift_level
 from rockdesign.cylinder.system import cylinder
 from rockdesign.motions.pairs import parse_pair
 
@@ -19,7 +19,9 @@ def test_record_pair_against_the_lagrangian_reference(contact):
     r = simulate_cylinder(cyl, pair, t_end=12.0)
     model = LagrangianCylinder(cyl.half_height, cyl.base_radius, cyl.g,
                                cyl.contact_frequency if cyl.damped else None, cyl.contact_damping)
-    t_up, t_ref, y_ref = integrate_record(model, t_s, ax, ay, t_stop=9.0)
+    # the same uplift level (g tan α plus the planar engine's hysteresis, ~5e-9 relative) and seed rule as the engine
+    t_up, t_ref, y_ref = integrate_record(model, t_s, ax, ay, t_stop=9.0, theta_seed=r.solver["theta_seed"],
+                                          threshold=uplift_level(cyl.alpha, cyl.g), seed_phase=True)
     assert r.uplift_time == pytest.approx(t_up, abs=1e-12)
     # the engine's history holds every record sample after uplift (steps land on them)
     idx = np.searchsorted(r.t, t_ref[1:])

@@ -21,8 +21,8 @@ TOML = f"""\
 name = "design cylinder"
 
 [cylinder]
-height = "3 m"
-diameter = "0.6 m"
+height = "2.8 m"
+diameter = "0.7 m"
 density = "2.6 t/m^3"
 
 [excitation]
@@ -34,7 +34,7 @@ acceptance = "binomial"
 overturn_probability_limit = 0.8   # a small test suite: two pairs show P ≤ 80 % with none overturning
 ensemble_size = 1
 """
-VARY = ["cylinder.diameter=0.4m:0.6m:2", "cylinder.height=2.8m:3m:2"]
+VARY = ["cylinder.diameter=0.4m:0.7m:2", "cylinder.height=2.8m:3m:2"]
 runner = CliRunner()
 
 
@@ -123,7 +123,7 @@ def test_an_impossible_diameter_is_an_invalid_cell(two_pairs, tmp_path):
     path = tmp_path / "cyl.toml"
     path.write_text(TOML, encoding="utf-8")
     out = tmp_path / "d"
-    res = runner.invoke(app, ["design", str(path), "--vary", "cylinder.diameter=0.6m:3.2m:2", "-o", str(out)])
+    res = runner.invoke(app, ["design", str(path), "--vary", "cylinder.diameter=0.7m:3.2m:2", "-o", str(out)])
     assert res.exit_code == 0, res.output
     data = json.loads((out / "design.json").read_text(encoding="utf-8"))
     ok, bad = data["cells"]
