@@ -34,7 +34,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 import rockdesign.cylinder.engine as engine  # noqa: E402
-from rockdesign.checks.cylinder_check import run_cylinder_check  # noqa: E402
+from rockdesign.cylinder.check import run_cylinder_check  # noqa: E402
 from rockdesign.cylinder.system import cylinder  # noqa: E402
 from rockdesign.kinds import parse_document  # noqa: E402
 from rockdesign.motions.pairs import suite_pairs  # noqa: E402

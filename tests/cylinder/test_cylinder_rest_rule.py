@@ -18,12 +18,12 @@ from scipy.optimize import brentq
 from rockdesign.cylinder.engine import DEFAULT_REST_VELOCITY, rest_energy, seed_tilt, simulate_cylinder, uplift_level
 from rockdesign.cylinder.eom import energy, parameters
 from rockdesign.cylinder.system import cylinder
-from rockdesign.dynamics.engine import _rigid_uplift_thresholds
-from rockdesign.dynamics.model import ModelChoice, system_parameters
-from rockdesign.dynamics.simulate import simulate
+from rockdesign.planar.dynamics.engine import _rigid_uplift_thresholds
+from rockdesign.planar.dynamics.model import ModelChoice, system_parameters
+from rockdesign.planar.dynamics.simulate import simulate
 from rockdesign.motions.motion import record_motion
 from rockdesign.motions.pairs import parse_pair, suite_pairs
-from rockdesign.systems import Column, RockingSystem
+from rockdesign.planar.system import Column, RockingSystem
 
 V_REST = DEFAULT_REST_VELOCITY
 EXAMPLE = cylinder(3.0, 0.6)                       # 2H = 3 m, tan α = 0.2 (thesis Ch. 5, examples/cylinder.toml)
