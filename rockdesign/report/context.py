@@ -12,7 +12,7 @@ from .. import __version__
 from ..kernel_cache import sources_digest
 
 
-SOFTWARE = ("rockdesign", "numpy", "scipy", "numba", "matplotlib", "weasyprint", "typst", "pikepdf", "jinja2", "pint")
+SOFTWARE = ("rockdesign", "numpy", "scipy", "numba", "matplotlib", "weasyprint", "jinja2", "pint")
 """Packages whose versions the report lists (besides Python)."""
 
 

@@ -15,17 +15,10 @@ def ink_box(fig):
     """The box (inches) that ``bbox_inches="tight"`` would crop ``fig`` to, found by laying the figure out
     once without drawing it: for figures whose axes keep an aspect ratio (drawings to scale), which leave
     blank bands in their figure size.  Saving with it crops the same way, and the size is known before
-    drawing (:func:`view_box_of`)."""
+    drawing."""
     import matplotlib
     fig.draw_without_rendering()
     return fig.get_tightbbox().padded(matplotlib.rcParams["savefig.pad_inches"])
-
-
-def view_box_of(fig, crop=None) -> str:
-    """The ``viewBox`` matplotlib writes for ``fig`` saved uncropped, or cropped to the box ``crop``
-    (:func:`ink_box`): its size in points."""
-    width, height = (72.0 * v for v in ((crop.width, crop.height) if crop is not None else fig.get_size_inches()))
-    return " ".join(("0", "0", *(f"{v:f}".rstrip("0").rstrip(".") for v in (width, height))))
 
 
 def svg(fig, prefix: str, *, crop=True) -> str:
@@ -33,9 +26,9 @@ def svg(fig, prefix: str, *, crop=True) -> str:
 
     ``crop``: True cuts the drawing to its ink (``bbox_inches="tight"``, one more drawing pass); a box
     of :func:`ink_box` cuts it to that box; False keeps the figure size, which the figure's layout
-    engine fills.  Without True the viewBox is known before drawing (:func:`view_box_of`)."""
+    engine fills."""
     buf = io.StringIO()
-    # every line stays vector (the PDF's figures are drawn by typst: rockdesign.report.stamped_pdf), and
+    # every line stays vector (WeasyPrint draws the SVG into the PDF), and
     # text stays text (searchable in the PDF)
     with plt.rc_context({"svg.hashsalt": SVG_SALT, "svg.fonttype": "none"}):
         fig.savefig(buf, format="svg", metadata={"Date": None, "Creator": None},

@@ -6,9 +6,8 @@ import jinja2
 
 from ...paths import templates_dir
 from ...report.formatting import DIGITS
-from ...report import stamped_pdf
 from ...report.render import TEMPLATE, environment, stylesheet
-from ...report.svg import ink_box, svg, view_box_of
+from ...report.svg import ink_box, svg
 from . import figures
 from .demand_figures import demand_figure, demand_history_figure
 from .drawing import structure_drawing
@@ -50,14 +49,8 @@ def make_figures(result) -> dict[str, tuple]:
     return out
 
 
-def figure_boxes(made: dict) -> dict[str, str]:
-    """An empty SVG per figure of :func:`make_figures` with the viewBox its drawing will have (the figure
-    size in points): the report laid out with these has the figures' page layout."""
-    return {name: stamped_pdf.empty_svg(view_box_of(fig, crop)) for name, (fig, _, crop) in made.items()}
-
-
 def draw_figures(made: dict) -> dict[str, str]:
-    """The SVG of each figure of :func:`make_figures` (the viewBox :func:`figure_boxes` announced)."""
+    """The SVG of each figure of :func:`make_figures`."""
     return {name: svg(fig, prefix, crop=crop if crop is not None else False) for name, (fig, prefix, crop) in made.items()}
 
 
