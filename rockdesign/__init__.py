@@ -23,7 +23,7 @@ _EXPORTS = {
     # the library (every kind of structure through one front door: rockdesign.library, rockdesign.kinds)
     "load_project": "rockdesign.library", "parse_project": "rockdesign.library",
     "design_quantities": "rockdesign.library", "simulate": "rockdesign.library", "check": "rockdesign.library",
-    "write_report": "rockdesign.library", "Quantities": "rockdesign.library",
+    "write_report": "rockdesign.library", "Quantities": "rockdesign.library", "spectrum": "rockdesign.library",
     "SimulationResponse": "rockdesign.planar.simulation:SimulationResult",
     "CylinderSimulation": "rockdesign.cylinder.simulation",
     "Project": "rockdesign.project_tables",
