@@ -77,17 +77,6 @@ def output_folder(path: Path, key: str) -> Path:
     return path
 
 
-def refuse_given(ctx, options: dict[str, str], used_by: str, expected: str) -> None:
-    """Refuse options the user gave that this run would ignore: ``options`` maps a parameter name of
-    the command to its option (``{"pulse": "--pulse"}``); ``ctx`` is the command's typer context."""
-    for name, flag in options.items():
-        source = ctx.get_parameter_source(name)
-        if source is not None and source.name in ("COMMANDLINE", "ENVIRONMENT"):
-            value = ctx.params.get(name)
-            raise RockdesignError(f"{flag} is not used by {used_by}", key=flag, expected=expected,
-                                  found=f"{flag} {value!r}" if not isinstance(value, bool) else flag)
-
-
 def repeated_option(command, args: list[str]) -> None:
     """Refuse an option given twice (``--table a=1 --table a=2``: click would keep the last silently);
     options declared repeatable (``--equivalent-at``) may repeat."""
