@@ -28,7 +28,7 @@ def parse_display_units(spec: str | None, gravity: float) -> list[tuple[str, obj
         try:
             out.append((token, ureg.Quantity(1.0, ureg.parse_units(token.replace("^", "**")))))
         except Exception:
-            raise RockdesignError("unknown display unit", key="--units", expected="pint units such as mm, deg, kN, g",
+            raise RockdesignError("unknown display unit", key="units", expected="pint units such as mm, deg, kN, g",
                                   found=f"'{token}'") from None
     return out
 

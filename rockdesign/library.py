@@ -6,31 +6,35 @@
     r = rd.simulate(project, "ricker-anti:ap=0.38g,Tp=0.95s")   # r.theta_max [rad], r.t [s], r.theta [rad]
     c = rd.check(project, progress=False)               # c.verdict, c.records, c.fragility, c.as_json()
     rd.write_report(c, "out/")                          # report.pdf/html, results.json/csv
+    s = rd.spectrum(project, pulse="sine", out_dir="spec/")   # s.spectrum.theta_max_over_alpha, s.as_json()
 
 Every kind of structure — planar (column, frame, podium) and the 3D cylinder — goes through these
 same functions: each asks the registry (:mod:`rockdesign.kinds`) once for the project's kind and
 calls it.  Every result is a typed object whose ``as_json()`` is exactly the JSON of the matching CLI
-command (``quantities --json``, ``simulate --json``, ``check --json``).  Errors are
+command (``quantities --json``, ``simulate --json``, ``check --json``, ``spectrum --json``).  Errors are
 :class:`rockdesign.RockdesignError` subclasses whose ``key`` names the offending parameter of the
 function called (``motion``, ``model``, ``t_end``...), not a command-line flag.
 
 The second group of functions (:func:`simulation_request`, :func:`run_simulation`,
 :func:`check_options`, :func:`prepare_check`, :func:`run_check`, :func:`check_output_folder`,
 :func:`write_capacity_curve`, :func:`compile_kernels`) are the steps the commands take one by one
-(validate everything, compile on a first run, analyse, write); their errors name the command-line
-options.
+(validate everything, compile on a first run, analyse, write); their errors name parameters too, which the
+command line shows as its options.
+
+The other commands have their functions beside these (``rd.records_list`` … ``rd.records_scale_model``,
+``rd.calibration``, ``rd.validation``, ``rd.ensemble``, ``rd.benchmark``, ``rd.design``; docs/api.md).
 """
 from __future__ import annotations
 
-import functools
 import tomllib
 from collections.abc import Mapping
 from pathlib import Path
 
 from .execution import compilation
-from .errors import ProjectError, RockdesignError
+from .errors import ProjectError
 from .execution.executor import make_executor
 from .kinds import kind_of, kind_of_document
+from .kinds.base import SpectrumOptions
 from .outdir import OutputFolder
 from .progress import progress_bars
 from .project_tables import Project, read_document
@@ -38,24 +42,8 @@ from .quantity import Quantity
 from .report.document import write_document
 from .report.results import json_text, write_results_csv, write_results_json  # noqa: F401 (json_text: the CLI)
 
-__all__ = ["load_project", "parse_project", "design_quantities", "simulate", "check", "write_report",
+__all__ = ["load_project", "parse_project", "design_quantities", "simulate", "check", "write_report", "spectrum",
            "Quantities"]
-
-def _parameter_names(func):
-    """Re-key errors raised below with a command-line flag (``--t-end``) to the parameter (``t_end``)."""
-
-    @functools.wraps(func)
-    def wrapper(*args, **kwargs):
-        try:
-            return func(*args, **kwargs)
-        except RockdesignError as exc:
-            if exc.key and exc.key.startswith("-"):
-                exc.key = exc.key.split("/")[-1].lstrip("-").replace("-", "_")
-                exc.args = (exc.format(),)
-            raise
-
-    return wrapper
-
 
 def _require_project(project, function: str) -> None:
     if not isinstance(project, Project):
@@ -151,12 +139,6 @@ def write_capacity_curve(project: Project, path) -> None:
     kind_of(project).write_curve(project, path)
 
 
-def spectrum_excitation(project: Project) -> str:
-    """What a rocking spectrum of the project runs over: "pulse" (planar structures, docs/spectra.md) or
-    "record pair" (a cylinder, docs/cylinder.md)."""
-    return kind_of(project).spectrum_excitation
-
-
 # --- one time-history analysis -------------------------------------------------------------------
 def simulation_request(project: Project, motion, *, model: str = "auto", t_end: float | None = None,
                        rtol: float | None = None, records_dir: str | Path | None = None):
@@ -176,7 +158,6 @@ def run_simulation(request, *, say=None):
     return kind.run_simulation(request)
 
 
-@_parameter_names
 def simulate(project: Project, motion, *, model: str = "auto", t_end: float | None = None,
              rtol: float | None = None, records_dir: str | Path | None = None):
     """One nonlinear time-history analysis of a project (thesis Eq 3.12 / 3.46 / 4.13; Eqs 5.22–5.31 for
@@ -239,7 +220,6 @@ def run_check(project: Project, *, progress: bool = False, records_dir=None, mar
             owned.close()
 
 
-@_parameter_names
 def check(project: Project, *, progress: bool = False, records_dir: str | Path | None = None,
           margins: bool = True, executor=None):
     """The design check of a project (the work of ``rockdesign check``), for every kind of structure.
@@ -267,7 +247,6 @@ def check_output_folder(project: Project, target, *, key: str = "out_dir") -> Ou
     return kind_of(project).output_folder(target, key=key)
 
 
-@_parameter_names
 def write_report(result, out_dir, *, pdf: bool = True, html: bool = True) -> Path:
     """Write a check's ``report.pdf``, ``report.html``, ``results.json``, ``results.csv`` (and its
     figures) into ``out_dir``.
@@ -287,6 +266,74 @@ def write_report(result, out_dir, *, pdf: bool = True, html: bool = True) -> Pat
         write_results_csv(data, tmp / "results.csv", columns=kind.csv_columns)
         write_document(kind.report(result), tmp, pdf=pdf, html=html)
     return folder.target
+
+
+# --- rocking spectra ------------------------------------------------------------------------------
+def spectrum(project: Project, *, pulse: str | None = None, record: str | None = None, x=None, y=None,
+             relative: Project | str | Path | None = None, out_dir: str | Path | None = None, executor=None,
+             model: str | None = None, structure: str | None = None, overturn: str | None = None,
+             t_free: float | None = None, rtol: float | None = None, tm_ratio: float | None = None,
+             chunk_rows: int | None = None, resume: bool | None = None, keep_chunks: bool | None = None,
+             energy_stop: bool | None = None, stop_at_capacity: bool | None = None, polyakov: bool | None = None,
+             equivalent_at=None, figures: bool | None = None, progress=False, say=None):
+    """The rocking spectrum of a project, written into ``out_dir`` (the work of ``rockdesign spectrum``;
+    docs/spectra.md, docs/cylinder.md).
+
+    A planar structure runs over a pulse family: θ_max/α, overturning by impacts, the limit states of Table 3.5
+    and Polyakov's line over ω_p/p × a_p/(g tan α) (thesis Sec 3.3.2, Figs 3.19–3.20, 4.6–4.7).  A cylinder runs
+    one record pair over sizes R × resultant PGA/(g tan α) (Figs 5.16–5.17).  An option the project's kind does
+    not use is refused, naming it; None leaves an option at the kind's default.
+
+    Args:
+        project: a :class:`Project`.
+        pulse: planar: ``ricker-anti`` | ``ricker-sym`` | ``sine`` | ``cycloidal-a`` | ``cycloidal-b`` |
+            ``cycloidal-c`` (required).
+        record: cylinder: the record pair, ``p695-ff/11`` or a ``record:``/``files:`` motion string (required).
+        x, y: axes ``AXIS:lo:hi:n`` — planar ``omega_p/p`` | ``omega_p/p_hat`` | ``Tp`` [s] (default
+            ``omega_p/p:0.5:12:801``) and ``ap/up`` | ``ap/g`` (default ``ap/up:0:12:401``); cylinder ``R`` [m]
+            (default ``R:0.5:30:60``) and ``pga/up`` (default ``pga/up:1:6:51``).
+        relative: a reference project of the same kind (a :class:`Project` or its file): the relative spectrum
+            (Δθ_max/α, Eq 3.64; the equivalent size, Eq 3.65).
+        out_dir: the output folder (default ``<project file stem>-spectrum-<pulse or pair>``).
+        executor: planar: a dask value ``"local:N"`` or a scheduler address (started and closed here), or a
+            started executor of :mod:`rockdesign.execution.executor`; default this machine's cores.
+        model, structure, overturn, t_free, rtol: planar: the equations (``auto`` | ``exact`` | ``linear``), the
+            structural model, the overturning criterion (``static`` | ``dynamic``), the free vibration [s] after
+            the pulse and the relative tolerance (default: the project's ``[analysis]``).
+        tm_ratio: planar: Ricker wavelet centre t_m/T_p (default 1.5, thesis Table 3.4).
+        chunk_rows, resume, keep_chunks: planar: grid rows per chunk; reuse the chunks of an interrupted run with
+            identical inputs (default True); keep the chunk files (default False).
+        energy_stop, stop_at_capacity: planar: stop an analysis once the energy bound proves θ_max final (default
+            True); stop at θc under the static criterion (default False).
+        polyakov: planar: Polyakov's overturning line (default True).
+        equivalent_at: planar, with ``relative``: the ordinates y of the equivalent size (Eq 3.65).
+        figures: write the figures (default True).
+        progress: True draws progress bars (rich; a terminal or a notebook), or a function
+            ``progress(stage, done, total)``.
+        say: a print function announcing a first-run compilation.
+
+    Returns:
+        The kind's spectrum: ``out_dir``, ``as_json()`` (= summary.json), ``spectrum`` (arrays over the grid),
+        ``reference``, ``title`` and ``summary_rows()``.  A planar run interrupted by Ctrl-C raises
+        KeyboardInterrupt saying how many chunks were kept: the same call resumes from them.
+    """
+    _require_project(project, "spectrum")
+    if isinstance(relative, (str, Path)):
+        relative = load_project(relative)
+    elif relative is not None and not isinstance(relative, Project):
+        raise ProjectError("a relative spectrum needs a reference project", key="relative",
+                           expected="a Project or a project file", found=type(relative).__name__)
+    given = {name: value for name, value in (
+        ("pulse", pulse), ("record", record), ("x", x), ("y", y), ("relative", relative), ("out_dir", out_dir),
+        ("executor", executor), ("model", model), ("structure", structure), ("overturn", overturn),
+        ("t_free", t_free), ("rtol", rtol), ("tm_ratio", tm_ratio), ("chunk_rows", chunk_rows), ("resume", resume),
+        ("keep_chunks", keep_chunks), ("energy_stop", energy_stop), ("stop_at_capacity", stop_at_capacity),
+        ("polyakov", polyakov), ("equivalent_at", equivalent_at), ("figures", figures)) if value is not None}
+    kind = kind_of(project)
+    if progress is True:
+        with progress_bars() as tick:
+            return kind.spectrum(project, SpectrumOptions(given, progress=tick, say=say))
+    return kind.spectrum(project, SpectrumOptions(given, progress=progress or None, say=say))
 
 
 def compile_kernels(command: str, say=None) -> float:

@@ -98,12 +98,16 @@ def command_options(func) -> dict[str, str]:
 
 
 def option_of(key: str | None, options: dict[str, str]) -> str | None:
-    """The command-line option that the library parameter ``key`` (``records_dir``, ``scale.target``) stands
-    for, or None when it names none."""
+    """The command-line option that the library parameter ``key`` stands for, or None when it names none:
+    ``records_dir`` → ``--records-dir``, an item of a parameter ``table.d`` → ``--table d``, two parameters
+    ``x/y`` → ``--x/--y``."""
     if not key:
         return None
     head, dot, rest = key.partition(".")
-    return options[head] + dot + rest if head in options else None
+    names = head.split("/")
+    if not all(name in options for name in names):
+        return None
+    return "/".join(options[name] for name in names) + (f" {rest}" if dot else "")
 
 
 def _report_errors(func, options: dict[str, str] | None = None):
@@ -189,7 +193,7 @@ def quantities(project: Path = typer.Argument(..., help="Project file (TOML)"),
 
 
 @app.command()
-@handle_errors
+@handle_errors(motion="--motion")
 def simulate(project: Path = typer.Argument(..., help="Project file (TOML)"),
              motion: str = typer.Option(..., "--motion", "-m", help="e.g. 'ricker-anti:ap=0.38g,Tp=0.95s', "
                                         "'free:theta0=0.8alpha', 'record:p695-ff/11a,scale=1.5', 'file:X.AT2'"),

@@ -1,7 +1,7 @@
 """``rockdesign calibrate | validate | ensemble``: experiments (thesis Ch. 6–7, docs/experiments.md).
 
-``records scale-model`` lives in :mod:`rockdesign.cli.records` and calls
-:func:`scale_model_command` here.
+The commands parse their options, call ``rd.calibration``, ``rd.validation`` and ``rd.ensemble``
+(:mod:`rockdesign.experiments.run`) and print; ``records scale-model`` lives in :mod:`rockdesign.cli.records`.
 """
 from __future__ import annotations
 
@@ -12,7 +12,6 @@ from typing import Optional
 
 import typer
 from rich.console import Console
-from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
 from ..console import make_console
@@ -27,12 +26,6 @@ def _console() -> Console:
 
 def _fmt(value, digits: int = 4) -> str:
     return "–" if value is None else f"{value:.{digits}g}"
-
-
-def _save(fig, path: Path) -> None:
-    from .. import save_figure as save
-    Path(path).parent.mkdir(parents=True, exist_ok=True)
-    save(fig, path)
 
 
 def calibration_table(cal, console: Console) -> None:
@@ -95,57 +88,6 @@ def validation_tables(data: dict, console: Console) -> None:
         console.print(table)
 
 
-def scale_model_command(record_id: str, length_ratio: float, table: Optional[str], out: Optional[Path],
-                        plot: Optional[Path], band: Optional[str], as_json: bool, gravity: float, motion) -> int:
-    """Body of ``records scale-model`` (the motion already loaded): returns the exit code (1 = a limit exceeded)."""
-    from ..errors import MotionError
-    from .. import parse_limits, scale_record, write_at2
-    from .inputs import FIGURE_SUFFIXES, output_file
-    output_file(out, "-o/--out")
-    output_file(plot, "--plot", FIGURE_SUFFIXES)
-    limits = parse_limits(table, gravity)
-    corners = None
-    if band:
-        try:
-            lo, hi = (float(x) for x in band.split(":"))
-        except ValueError:
-            raise MotionError("invalid filter corners", key="--band", expected="low:high in Hz, e.g. 0.6:150",
-                              found=repr(band)) from None
-        corners = (lo, hi)
-    scaled = scale_record(motion, length_ratio, corners=corners, limits=limits)
-    if out is not None:
-        write_at2(scaled, out, gravity, motion.meta)
-    if plot is not None:
-        from .. import scale_model_figure
-        _save(scale_model_figure(scaled, gravity, limits, f"{record_id} for R_m/R_p = {length_ratio:g} (Eq 6.5)"),
-              plot)
-    data = scaled.as_json()
-    if as_json:
-        sys.stdout.write(json.dumps(data) + "\n")
-        return 1 if scaled.exceeded else 0
-    console = _console()
-    console.print(f"{record_id}: time scale √(R_m/R_p) = {scaled.time_factor:.5g} (Eq 6.5): dt {motion.dt:g} s → "
-                  f"{scaled.dt:.6g} s, duration {scaled.duration:.4g} s; accelerations unchanged")
-    console.print(f"baseline correction and zero-phase Butterworth band-pass (order 4, sosfiltfilt): "
-                  f"{scaled.corners[0]:.4g}–{scaled.corners[1]:.4g} Hz")
-    t = Table(title="peaks after correction vs table limits")
-    for col in ("quantity", "peak", "limit", "utilisation", ""):
-        t.add_column(col)
-    peaks = scaled.peaks
-    for key, label, unit, factor in (("a", "acceleration", "g", 1.0 / gravity), ("v", "velocity", "m/s", 1.0),
-                                     ("d", "displacement", "m", 1.0)):
-        limit = limits.get(key)
-        t.add_row(label, f"{peaks[key] * factor:.4g} {unit}", "–" if limit is None else f"{limit * factor:.4g} {unit}",
-                  "–" if limit is None else f"{peaks[key] / limit:.3g}",
-                  "" if limit is None else ("EXCEEDED" if key in scaled.exceeded else "ok"))
-    console.print(t)
-    if out is not None:
-        console.print(f"wrote {out} (AT2, units of g)")
-    if plot is not None:
-        console.print(f"plot written to {plot}")
-    return 1 if scaled.exceeded else 0
-
-
 def register(app: typer.Typer, handle_errors) -> None:
     @app.command()
     @handle_errors
@@ -158,20 +100,14 @@ def register(app: typer.Typer, handle_errors) -> None:
                   min_amplitude: float = typer.Option(0.05, "--min-amplitude", help="Ignore half-cycles with "
                                                       "θ0 below this fraction of α.")):
         """Back-calculate p, λ and c_r (left/right) from a free-vibration test (thesis Sec 6.3.5, 6.4.3)."""
-        from .. import calibrate as run, simulated_history
-        from .. import read_tilt_csv
-        from ..library import load_project
+        import rockdesign as rd
         from .inputs import FIGURE_SUFFIXES, output_file
         output_file(plot, "--plot", FIGURE_SUFFIXES)
-        proj = load_project(project)
-        history = read_tilt_csv(free_vibration)
-        cal = run(proj.system, history, max_half_cycles=half_cycles, min_amplitude=min_amplitude)
+        proj = rd.load_project(project)
+        run = rd.calibration(proj, free_vibration, half_cycles=half_cycles, min_amplitude=min_amplitude)
+        cal, history = run.calibration, run.history
         if plot is not None:
-            from .inputs import compile_kernels
-            from .. import calibration_figure
-            compile_kernels("calibrate")
-            sim = simulated_history(proj.system, cal, history)
-            _save(calibration_figure(history, cal, sim, f"{proj.name}: {free_vibration.name}"), plot)
+            run.write_figure(plot, say=make_console(stderr=True).print)
         if as_json:
             sys.stdout.write(json.dumps(cal.as_json(), indent=2) + "\n")
             return
@@ -197,22 +133,15 @@ def register(app: typer.Typer, handle_errors) -> None:
                  no_pdf: bool = typer.Option(False, "--no-pdf", metavar=" ", help="With -o: HTML report only."),
                  plot: Optional[Path] = typer.Option(None, "--plot", help="Write the CDF figure (png/svg/pdf).")):
         """Compare test and model statistics of θ_max/α (thesis Ch. 7: Eq 7.1, Tables 7.2, 7.3)."""
-        from .. import read_results_csv, validate as run
+        import rockdesign as rd
         from .inputs import FIGURE_SUFFIXES, output_file, output_folder
         if out is not None:
             output_folder(out, "-o/--out")
         output_file(plot, "--plot", FIGURE_SUFFIXES)
-        result = run(read_results_csv(tests, "tests"), read_results_csv(analyses, "analyses"),
-                     read_results_csv(measured, "analyses_measured_cr") if measured else None, seed=seed)
+        result = rd.validation(tests, analyses, measured=measured, seed=seed, out_dir=out, pdf=not no_pdf)
         data = result.as_json()
-        if out is not None:
-            from .. import write_validation
-            files = {"tests": str(tests), "analyses": str(analyses),
-                     "analyses_measured_cr": str(measured) if measured else None}
-            write_validation(result, out, files, title=f"{tests.name} vs {analyses.name}", pdf=not no_pdf)
         if plot is not None:
-            from .. import validation_figure
-            _save(validation_figure(result, f"{tests.name} vs {analyses.name}"), plot)
+            result.write_figure(plot)
         if as_json:
             sys.stdout.write(json.dumps(data, indent=2) + "\n")
             return
@@ -234,25 +163,15 @@ def register(app: typer.Typer, handle_errors) -> None:
                  records_dir: Optional[Path] = typer.Option(None, "--records-dir", help="Folder of PEER AT2 files."),
                  as_json: bool = typer.Option(False, "--json", metavar=" ", help="Print the results as JSON.")):
         """Run a project over a ground-motion ensemble and write the analyses.csv that 'validate' reads."""
-        from .. import run_ensemble, write_analyses_csv
-        from ..library import load_project
+        import rockdesign as rd
         from .inputs import output_file
         output_file(out, "-o/--out")
-        proj = load_project(project)
+        proj = rd.load_project(project)
         err = make_console(stderr=True)
-        with Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
-                      console=err, disable=as_json and not err.is_terminal) as bar:
-            from .inputs import compile_kernels
-            task = []
-
-            def ready():        # the input is checked: compile (first run), then show the bar
-                compile_kernels("ensemble", bar.console.print)
-                task.append(bar.add_task("ensemble analyses", total=None))
-
-            result = run_ensemble(proj, suite, scale=scale, restitution=restitution,
-                                  records_dir=str(records_dir) if records_dir else None, before_analyses=ready,
-                                  progress=lambda done, total: bar.update(task[0], completed=done, total=total))
-        write_analyses_csv(result, out)
+        with rd.progress_bars(err, disable=as_json and not err.is_terminal) as progress:
+            result = rd.ensemble(proj, suite, scale=scale, restitution=restitution, records_dir=records_dir,
+                                 progress=progress, say=err.print)
+        result.write_csv(out)
         data = result.as_json()
         if as_json:
             sys.stdout.write(json.dumps(data, indent=2) + "\n")

@@ -18,8 +18,6 @@ from ..errors import RockdesignError
 from .. import refuse_wrong_type
 
 FIGURE_SUFFIXES = (".png", ".svg", ".pdf")
-G_RANGE = (9.7, 9.9)
-"""Accepted gravitational accelerations [m/s²] (the same range as ``[analysis] g``)."""
 RTOL_RANGE = (0.0, 1e-3)
 """rtol must be in (0, 1e-3]: the engine's events and margins need at least 1e-3 (as ``[analysis] rtol``)."""
 
@@ -30,15 +28,6 @@ def positive_time(value: float | None, key: str) -> float | None:
         return None
     if not (math.isfinite(value) and value > 0.0):
         raise RockdesignError("out of range", key=key, expected="a finite time > 0 in seconds", found=repr(value))
-    return value
-
-
-def gravity(value: float, key: str = "--gravity") -> float:
-    """g [m/s²] within :data:`G_RANGE` (a negative or zero g would print negative or infinite values in g)."""
-    if not (math.isfinite(value) and G_RANGE[0] <= value <= G_RANGE[1]):
-        raise RockdesignError("out of range", key=key,
-                              expected=f"a gravitational acceleration {G_RANGE[0]:g}–{G_RANGE[1]:g} m/s²",
-                              found=repr(value))
     return value
 
 
@@ -86,28 +75,6 @@ def output_folder(path: Path, key: str) -> Path:
                                       found=f"'{parent}' is a file")
             break
     return path
-
-
-def refuse_given(ctx, options: dict[str, str], used_by: str, expected: str) -> None:
-    """Refuse options the user gave that this run would ignore: ``options`` maps a parameter name of
-    the command to its option (``{"pulse": "--pulse"}``); ``ctx`` is the command's typer context."""
-    for name, flag in options.items():
-        source = ctx.get_parameter_source(name)
-        if source is not None and source.name in ("COMMANDLINE", "ENVIRONMENT"):
-            value = ctx.params.get(name)
-            raise RockdesignError(f"{flag} is not used by {used_by}", key=flag, expected=expected,
-                                  found=f"{flag} {value!r}" if not isinstance(value, bool) else flag)
-
-
-def compile_kernels(command: str, say=None) -> float:
-    """Compile the kernels ``command`` needs on its first run, saying so ("compiling the numerical kernels
-    of `check` (…): expect N–M s at the current machine load") with ``say`` (default: print on stderr): the step after the input was
-    checked and before the analyses (:func:`rockdesign.execution.compilation.prepare`); seconds spent (0
-    when all are cached)."""
-    from ..library import compile_kernels as prepare
-    if say is None:
-        say = make_console(stderr=True).print
-    return prepare(command, say)
 
 
 def repeated_option(command, args: list[str]) -> None:

@@ -7,7 +7,7 @@ into exit code 2 there. Record ids: built-in (``p695-ff/11a``), ``rsn:<RSN>:<com
 from __future__ import annotations
 
 import json
-import math
+import sys
 from pathlib import Path
 from typing import Optional
 
@@ -16,12 +16,11 @@ from rich.console import Console
 from rich.table import Table
 
 from ..console import make_console
-from ..errors import MotionError
 from .. import DEFAULT_BAND, DEFAULT_DAMPING, DEFAULT_N_PERIODS
 from .inputs import OptionsOnce
 
-# the records, spectra and units modules (numba, pint) are imported by the commands that use them: the
-# CLI mounts this module for every command, `--help` and `init` included
+# the library (numba, pint) is imported by the commands that use them: the CLI mounts this module for every
+# command, `--help` and `init` included
 
 app = typer.Typer(cls=OptionsOnce, help="Ground-motion records: list, show, spectra, synthetic ensembles, scale-model records.", no_args_is_help=True)
 
@@ -37,53 +36,13 @@ def _console() -> Console:
     return console
 
 
-def _record_id(text: str) -> str:
-    text = text.strip()
-    return text[7:] if text.lower().startswith("record:") else text
-
-
-def _load(record_id: str, gravity: float, records_dir: Optional[Path]):
-    from .inputs import gravity as check_gravity
-    from .. import plausibility_warnings
-    check_gravity(gravity)
-    from .. import load_record
-    motion = load_record(_record_id(record_id), gravity=gravity, records_dir=records_dir)
-    for text in plausibility_warnings(motion, gravity):
+def _warn(result) -> None:
+    for text in result.warnings:
         make_console(stderr=True, highlight=False, markup=False, soft_wrap=True).print(f"warning: {text}")
-    return motion
 
 
-def _parse_band(text: str) -> tuple[float, float]:
-    parts = text.split(":")
-    try:
-        lo, hi = (float(p) for p in parts)
-    except ValueError:
-        raise MotionError("invalid period band", key="--band", expected="Tmin:Tmax in seconds, e.g. 0.05:10",
-                          found=repr(text)) from None
-    if not (0 < lo < hi and math.isfinite(hi)):
-        raise MotionError("invalid period band", key="--band", expected="0 < Tmin < Tmax", found=repr(text))
-    return lo, hi
-
-
-def _parse_damping(text: str) -> float:
-    from .. import QuantityParseError, parse_quantity
-    try:
-        value = parse_quantity(float(text) if _is_number(text) else text, "dimensionless")
-    except QuantityParseError:
-        raise MotionError("invalid damping", key="--damping", expected="a ratio like 0.02 or '2 %'",
-                          found=repr(text)) from None
-    if not 0.0 <= value < 1.0:
-        raise MotionError("invalid damping", key="--damping", expected="a damping ratio in [0, 1)",
-                          found=repr(text))
-    return value
-
-
-def _is_number(text: str) -> bool:
-    try:
-        float(text)
-    except ValueError:
-        return False
-    return True
+def _say(text: str) -> None:
+    make_console(stderr=True).print(text)
 
 
 def _fmt(value, digits: int = 4) -> str:
@@ -103,12 +62,11 @@ def list_command(
     gravity: float = typer.Option(9.81, "--gravity", help=GRAVITY_HELP),
 ) -> None:
     """List built-in records, or the records of a suite (table: dt in s, PGA in g; --json: SI, PGA in m/s²)."""
-    from .inputs import gravity as check_gravity
-    check_gravity(gravity)
-    from .. import list_records
-    rows = list_records(suite, gravity=gravity, records_dir=records_dir)
+    from .. import records_list
+    listing = records_list(suite, gravity=gravity, records_dir=records_dir)
+    rows = listing.rows
     if as_json:
-        typer.echo(json.dumps(rows))
+        typer.echo(json.dumps(listing.as_json()))
         return
     table = Table(title=f"records of {suite}" if suite else "built-in records (FEMA P695)")
     labels = any(row.get("label") for row in rows)
@@ -122,8 +80,7 @@ def list_command(
         table.add_row(*(([row.get("label", "")] if labels else []) + cells))
     console = _console()
     console.print(table)
-    missing = [r for r in rows if r.get("missing")]
-    for row in missing:
+    for row in listing.missing:
         console.print(f"missing {row['id']}: {row['missing']}")
 
 
@@ -138,14 +95,12 @@ def show_command(
     """Metadata and intensity measures of one record."""
     from .inputs import FIGURE_SUFFIXES, output_file
     output_file(plot, "--plot", FIGURE_SUFFIXES)
-    from .. import motion_measures, record_history_figure, save_figure, sd_max
-    motion = _load(record_id, gravity, records_dir)
-    from .inputs import compile_kernels
-    compile_kernels("records")
-    measures = motion_measures(motion, gravity)
-    sd, period = sd_max(motion, DEFAULT_DAMPING, DEFAULT_BAND)
+    from .. import records_show
+    shown = records_show(record_id, gravity=gravity, records_dir=records_dir, say=_say)
+    _warn(shown)
+    motion, measures, sd, period = shown.motion, shown.measures, shown.sd_max, shown.sd_max_period
     meta = motion.meta
-    table = Table(title=_record_id(record_id), show_header=False)
+    table = Table(title=shown.id, show_header=False)
     table.add_column("quantity")
     table.add_column("value")
     for label, key in (("event", "event"), ("year", "year"), ("station", "station"), ("RSN", "rsn"),
@@ -167,7 +122,7 @@ def show_command(
     table.add_row("SD_max (2 % damping, 0.05–10 s)", f"{sd:.4g} m at T = {period:.3f} s")
     _console().print(table)
     if plot is not None:
-        save_figure(record_history_figure(motion), plot, dpi=130)
+        shown.write_figure(plot)
         _console().print(f"plot written to {plot}")
 
 
@@ -186,25 +141,18 @@ def spectrum_command(
     intensity measures."""
     from .inputs import FIGURE_SUFFIXES, output_file
     output_file(plot, "--plot", FIGURE_SUFFIXES)
-    zeta = _parse_damping(damping)
-    lo, hi = _parse_band(band)
-    from .. import motion_measures, motion_spectrum, period_grid, record_spectrum_figure, save_figure, sd_max
-    motion = _load(record_id, gravity, records_dir)
-    from .inputs import compile_kernels
-    compile_kernels("records")
-    periods = period_grid((lo, hi), n_periods)
-    sd, psv, psa = motion_spectrum(motion, periods, zeta)
-    peak, period = sd_max(motion, zeta, (lo, hi), n_periods)
-    measures = motion_measures(motion, gravity)
-    result = {"id": _record_id(record_id), "damping": zeta, "band": [lo, hi], "periods": periods.tolist(),
-              "SD": sd.tolist(), "PSV": psv.tolist(), "PSA": psa.tolist(), "sd_max": peak, "t_sd_max": period,
-              **{k: measures[k] for k in ("pga", "pgv", "pgd", "arias", "cav", "bracketed_duration",
-                                          "significant_duration", "a_rms", "predominant_frequency")}}
+    from .. import records_spectrum
+    spectrum = records_spectrum(record_id, damping=damping, band=band, n_periods=n_periods, gravity=gravity,
+                                records_dir=records_dir, say=_say)
+    _warn(spectrum)
+    result = spectrum.as_json()
     if plot is not None:
-        save_figure(record_spectrum_figure(result, gravity), plot, dpi=130)
+        spectrum.write_figure(plot)
     if as_json:
         typer.echo(json.dumps(result))
         return
+    zeta, (lo, hi), measures = spectrum.damping, spectrum.band, spectrum.measures
+    peak, period = spectrum.sd_max, spectrum.sd_max_period
     table = Table(title=f"{result['id']}: {100 * zeta:g} % damping, {lo:g}–{hi:g} s", show_header=False)
     table.add_column("quantity")
     table.add_column("value")
@@ -230,21 +178,17 @@ def synth_command(
     gravity: float = typer.Option(9.81, "--gravity", help=GRAVITY_HELP),
 ) -> None:
     """Synthetic ensemble (sgsim stochastic model fitted to the seed), saved as a suite."""
-    from .. import SCALE_CHOICES, synthesize
-    if scale_to not in SCALE_CHOICES:
-        raise MotionError("invalid --scale-to", key="--scale-to", expected=" | ".join(SCALE_CHOICES),
-                          found=repr(scale_to))
     from .inputs import output_folder
     output_folder(out_dir, "--out")
-    motion = _load(seed, gravity, records_dir)
-    from .inputs import compile_kernels
-    compile_kernels("records")                  # (SD_max of the seed and of every member)
-    from .. import progress_bars
+    from .. import progress_bars, records_synth
     with progress_bars() as progress:
-        path, match = synthesize(motion, n, out_dir, seed_value=seed_value, scale_to=scale_to, progress=progress)
+        ensemble = records_synth(seed, n, out_dir, seed_value=seed_value, scale_to=scale_to, gravity=gravity,
+                                 records_dir=records_dir, progress=progress, say=_say)
+    _warn(ensemble)
+    path = ensemble.suite
     console = _console()
     console.print(f"wrote {n} records to {path} (+ {path.with_suffix('.npz').name}, model.json, match.json)")
-    console.print(match.describe())
+    console.print(ensemble.describe())
     console.print(f"use it with [excitation] suites = [\"{path}\"]")
 
 
@@ -262,7 +206,43 @@ def scale_model_command(
 ) -> None:
     """Time-scale a record for a small-scale model (Eq 6.5), correct it and check the shake table's limits
     (exit 1 when a limit is exceeded)."""
-    from .experiments import scale_model_command as run
-    code = run(_record_id(record_id), length_ratio, table, out, plot, band, as_json, gravity,
-               _load(record_id, gravity, records_dir))
-    raise typer.Exit(code)
+    from .inputs import FIGURE_SUFFIXES, output_file
+    output_file(out, "-o/--out")
+    output_file(plot, "--plot", FIGURE_SUFFIXES)
+    from .. import records_scale_model
+    model = records_scale_model(record_id, length_ratio, table=table, band=band, gravity=gravity,
+                                records_dir=records_dir)
+    _warn(model)
+    if out is not None:
+        model.write_at2(out)
+    if plot is not None:
+        model.write_figure(plot)
+    if as_json:
+        sys.stdout.write(json.dumps(model.as_json()) + "\n")
+    else:
+        _scale_model_tables(model, out, plot)
+    raise typer.Exit(1 if model.exceeded else 0)
+
+
+def _scale_model_tables(model, out: Optional[Path], plot: Optional[Path]) -> None:
+    scaled, gravity, limits = model.scaled, model.gravity, model.limits
+    console = _console()
+    console.print(f"{model.id}: time scale √(R_m/R_p) = {scaled.time_factor:.5g} (Eq 6.5): dt {model.motion.dt:g} s "
+                  f"→ {scaled.dt:.6g} s, duration {scaled.duration:.4g} s; accelerations unchanged")
+    console.print(f"baseline correction and zero-phase Butterworth band-pass (order 4, sosfiltfilt): "
+                  f"{scaled.corners[0]:.4g}–{scaled.corners[1]:.4g} Hz")
+    t = Table(title="peaks after correction vs table limits")
+    for col in ("quantity", "peak", "limit", "utilisation", ""):
+        t.add_column(col)
+    peaks = scaled.peaks
+    for key, label, unit, factor in (("a", "acceleration", "g", 1.0 / gravity), ("v", "velocity", "m/s", 1.0),
+                                     ("d", "displacement", "m", 1.0)):
+        limit = limits.get(key)
+        t.add_row(label, f"{peaks[key] * factor:.4g} {unit}", "–" if limit is None else f"{limit * factor:.4g} {unit}",
+                  "–" if limit is None else f"{peaks[key] / limit:.3g}",
+                  "" if limit is None else ("EXCEEDED" if key in scaled.exceeded else "ok"))
+    console.print(t)
+    if out is not None:
+        console.print(f"wrote {out} (AT2, units of g)")
+    if plot is not None:
+        console.print(f"plot written to {plot}")

@@ -13,7 +13,7 @@ from ..errors import RockdesignError
 from ..plots import save
 from .figures import wobbling_figure
 from .report import FIGURE_FILES, cylinder_report_parts
-from . import grid as cylinder_grid, simulation as cylinder_simulation
+from . import grid as cylinder_grid, simulation as cylinder_simulation, spectrum_run as cylinder_spectra
 from ..kinds.base import StructureKind
 
 
@@ -26,7 +26,6 @@ class Cylinder(StructureKind):
     check_kernels = "cylinder-check"
     report_files = frozenset(FIGURE_FILES)
     csv_columns = tuple(cylinder_check.CSV_COLUMNS)
-    spectrum_excitation = "record pair"
     grid = cylinder_grid
     design_rule = cylinder_grid.RULE
     design_skipped = cylinder_grid.SKIPPED
@@ -56,7 +55,7 @@ class Cylinder(StructureKind):
         elif path.suffix.lower() in (".png", ".svg", ".pdf"):
             save(wobbling_figure(project.system), path)
         else:
-            raise RockdesignError("unknown file type", key="--pushover", expected=".csv, .png, .svg or .pdf",
+            raise RockdesignError("unknown file type", key="path", expected=".csv, .png, .svg or .pdf",
                                   found=f"'{path.name}'")
 
     def simulation_request(self, project, motion, *, model, t_end, rtol, records_dir):
@@ -78,3 +77,14 @@ class Cylinder(StructureKind):
 
     def report(self, result):
         return cylinder_report_parts(result)
+
+    def spectrum(self, project, request):
+        """The rocking spectrum of one record pair over R and PGA (Figs 5.16–5.17;
+        :func:`~rockdesign.cylinder.spectrum_run.record_pair_spectrum`)."""
+        options = request.accepted(cylinder_spectra.OPTIONS, "the spectrum of a cylinder (a record pair on R × pga "
+                                   "axes)", "record, x R:…, y pga/up:…, relative, out_dir and figures")
+        reference = options.get("relative")
+        if reference is not None and reference.system.kind not in self.systems:
+            raise RockdesignError("a relative cylinder spectrum needs a second cylinder", key="relative",
+                                  expected="a [cylinder] project", found=f"a {reference.system.kind}")
+        return cylinder_spectra.record_pair_spectrum(project, **options, progress=request.progress, say=request.say)

@@ -119,7 +119,7 @@ class CylinderRequest:
 
 def _cylinder_for(project: Project, model: str):
     if model not in CYLINDER_MODELS:
-        raise ModelError("model does not apply to a cylinder", key="--model", expected=" | ".join(CYLINDER_MODELS),
+        raise ModelError("model does not apply to a cylinder", key="model", expected=" | ".join(CYLINDER_MODELS),
                          found=f"'{model}'")
     cyl = project.system
     if model != "auto":

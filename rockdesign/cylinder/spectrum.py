@@ -36,15 +36,15 @@ def parse_cylinder_axis(text: str, which: str) -> tuple[str, np.ndarray]:
     expected = {"x": "R:lo:hi:n, e.g. R:0.5:30:60", "y": "pga/up:lo:hi:n, e.g. pga/up:1:6:51"}[which]
     want = "R" if which == "x" else "pga/up"
     if not m or m.group(1) != want:
-        raise CylinderSpectrumError("invalid axis for a cylinder spectrum", key=f"--{which}", expected=expected,
+        raise CylinderSpectrumError("invalid axis for a cylinder spectrum", key=which, expected=expected,
                                     found=repr(text))
     try:
         lo, hi, n = float(m.group(2)), float(m.group(3)), int(m.group(4))
     except ValueError:
-        raise CylinderSpectrumError("invalid axis numbers", key=f"--{which}", expected=expected,
+        raise CylinderSpectrumError("invalid axis numbers", key=which, expected=expected,
                                     found=repr(text)) from None
     if not (0 < lo <= hi) or n < 1 or (n > 1 and lo == hi):
-        raise CylinderSpectrumError("invalid axis range", key=f"--{which}", expected="0 < lo < hi and n ≥ 1",
+        raise CylinderSpectrumError("invalid axis range", key=which, expected="0 < lo < hi and n ≥ 1",
                                     found=repr(text))
     return want, np.linspace(lo, hi, n)
 
@@ -113,7 +113,7 @@ def cylinder_spectrum(cyl, pair, R_values, pga_over_up, *, rtol: float = 1e-10, 
     from .engine import QUASI_IMPACT_TILT, rest_energy, seed_tilt, uplift_level
     from .quantities import restitution_root
     if not pair.is_record or pair.planar:
-        raise CylinderSpectrumError("a cylinder spectrum needs a record pair", key="--record",
+        raise CylinderSpectrumError("a cylinder spectrum needs a record pair", key="record",
                                     expected="both components, e.g. p695-ff/11", found=pair.name)
     alpha, g = cyl.alpha, cyl.g
     up = g * math.tan(alpha)

@@ -180,24 +180,24 @@ def check_address(address) -> str:
     cluster: only ``local`` and ``local:N`` start one."""
     text = "" if address is None else str(address).strip()
     if not text:
-        raise ExecutorError("empty dask address", key="--dask",
+        raise ExecutorError("empty dask address", key="executor",
                             expected="local:N (a local cluster of N workers) or a scheduler address such as "
-                                     "tcp://host:8786 (leave --dask out to run in this process)",
+                                     "tcp://host:8786 (or no dask executor, to run in this process)",
                             found=repr(str(address)))
     if text == "local" or text.startswith("local:"):
         rest = text[len("local:"):] if text != "local" else ""
         if rest and not (rest.isdigit() and int(rest) >= 1):
-            raise ExecutorError("invalid local cluster", key="--dask", expected="local:N with N ≥ 1 workers, or a "
+            raise ExecutorError("invalid local cluster", key="executor", expected="local:N with N ≥ 1 workers, or a "
                                 "scheduler address (tcp://host:8786)", found=repr(str(address)))
         return text
     scheme, sep, target = text.rpartition("://")
     if sep and scheme not in SCHEMES:
-        raise ExecutorError("unknown transport of the dask scheduler address", key="--dask",
+        raise ExecutorError("unknown transport of the dask scheduler address", key="executor",
                             expected="a scheduler address " + ", ".join(f"{s}://host:port" for s in SCHEMES)
                             + " or host:port", found=repr(str(address)))
     host, colon, port = target.rstrip("/").rpartition(":")
     if not colon or not port.isdigit() or not host.strip("[]"):
-        raise ExecutorError("invalid dask scheduler address", key="--dask",
+        raise ExecutorError("invalid dask scheduler address", key="executor",
                             expected="local:N or a scheduler address with a host and a port, such as "
                                      "tcp://host:8786", found=repr(str(address)))
     return text
@@ -216,7 +216,7 @@ def reach_scheduler(address: str, timeout: float = PROBE_TIMEOUT) -> None:
             pass
     except (OSError, ValueError) as exc:
         raise ExecutorError(f"cannot reach the dask scheduler ({getattr(exc, 'strerror', None) or exc})",
-                            key="--dask", expected="a running scheduler (dask scheduler; dask worker ADDRESS) "
+                            key="executor", expected="a running scheduler (dask scheduler; dask worker ADDRESS) "
                             "reachable within {:g} s".format(timeout), found=repr(address)) from None
 
 
@@ -239,7 +239,7 @@ class DaskExecutor:
         try:
             import distributed  # noqa: F401
         except ImportError:
-            raise ExecutorError("dask.distributed is not installed", key="--dask",
+            raise ExecutorError("dask.distributed is not installed", key="executor",
                                 expected="pip install 'rockdesign[dask]'", found="no module 'distributed'") from None
         self.address = check_address(address)
         self.warm_up = warm_up
@@ -293,7 +293,7 @@ class DaskExecutor:
                 # TypeError: a tls:// address without dask's TLS configuration (distributed.comm.tls)
                 tls = "" if not self.address.startswith(("tls://", "wss://")) else \
                     " with the TLS certificates of dask's configuration (distributed.comm.tls)"
-                raise ExecutorError(f"cannot connect to the dask scheduler: {exc}", key="--dask",
+                raise ExecutorError(f"cannot connect to the dask scheduler: {exc}", key="executor",
                                     expected="a running scheduler (dask scheduler; dask worker ADDRESS)" + tls,
                                     found=repr(self.address)) from None
         if self.warm_up is not None:

@@ -132,7 +132,7 @@ def calibrate(system: RockingSystem, history: TiltHistory, *, max_half_cycles: i
         min_amplitude: ignore half-cycles with θ0 below this fraction of α.
     """
     if not (math.isfinite(min_amplitude) and 0.0 <= min_amplitude < 1.0):
-        raise ExperimentError("out of range", key="--min-amplitude", expected="a fraction of α, 0 ≤ value < 1 "
+        raise ExperimentError("out of range", key="min_amplitude", expected="a fraction of α, 0 ≤ value < 1 "
                               "(e.g. 0.05)", found=repr(min_amplitude))
     geo = rocking_geometry(system.column)
     alpha = geo.alpha

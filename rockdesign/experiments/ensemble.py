@@ -46,6 +46,10 @@ class EnsembleRun:
                 "n_overturned": n_ot, "p_overturn": n_ot / len(self.runs) if self.runs else None,
                 "records": self.rows()}
 
+    def write_csv(self, path) -> Path:
+        """The analyses.csv that ``validation`` reads (:func:`write_analyses_csv`)."""
+        return write_analyses_csv(self, path)
+
 
 def run_ensemble(project, suite: str, *, scale: float = 1.0, restitution: float | None = None,
                  records_dir=None, progress=None, before_analyses=None) -> EnsembleRun:
@@ -60,25 +64,25 @@ def run_ensemble(project, suite: str, *, scale: float = 1.0, restitution: float 
     a = project.analysis
     if restitution is not None:
         if not 0.0 < restitution <= 1.0:
-            raise ProjectError("invalid coefficient of restitution", key="--restitution", expected="0 < c_r <= 1",
+            raise ProjectError("invalid coefficient of restitution", key="restitution", expected="0 < c_r <= 1",
                                found=repr(restitution))
         system = system.with_restitution(restitution)
     if not (math.isfinite(scale) and scale > 0.0):
-        raise ProjectError("invalid scale factor", key="--scale", expected="a finite factor > 0", found=repr(scale))
-    loaded = load_suite(suite, gravity=system.g, records_dir=records_dir, key="--suite")
+        raise ProjectError("invalid scale factor", key="scale", expected="a finite factor > 0", found=repr(scale))
+    loaded = load_suite(suite, gravity=system.g, records_dir=records_dir, key="suite")
     if not loaded.records:
-        raise ProjectError("the ensemble has no available record", key="--suite", expected="a suite with records",
+        raise ProjectError("the ensemble has no available record", key="suite", expected="a suite with records",
                            found="; ".join(f"{i}: {r}" for i, r in loaded.missing) or "an empty suite")
     if loaded.missing:   # the CSV feeds 'validate': a dropped record would change its count silently
         shown = "; ".join(f"{i}: {r}" for i, r in loaded.missing[:3])
         more = f" and {len(loaded.missing) - 3} more" if len(loaded.missing) > 3 else ""
         raise ProjectError(f"{len(loaded.missing)} of {len(loaded.entries)} records of the ensemble are missing",
-                           key="--suite", expected="every record of the suite available (or --records-dir "
+                           key="suite", expected="every record of the suite available (or records_dir: the folder "
                            "with the PEER AT2 files)", found=shown + more)
     rule = loaded.default_scale
     if rule is not None and rule.method != "factor":
         raise ProjectError("the ensemble's scale rule is not applied by 'ensemble'", file=str(loaded.path),
-                           key="scale", expected="method = \"factor\" (or scale the motions with --scale)",
+                           key="scale", expected="method = \"factor\" (or scale the motions with scale)",
                            found=f"method = \"{rule.method}\"")
     if rule is not None:
         scale *= rule.value

@@ -76,7 +76,7 @@ class ScaledRecord:
 def time_scaled_dt(dt_prototype: float, length_ratio: float) -> float:
     """Δt_m = Δt_p √(R_m/R_p) [s] (Eq 6.5)."""
     if not (length_ratio > 0.0 and math.isfinite(length_ratio)):
-        raise MotionError("invalid length ratio", key="--length-ratio", expected="R_m/R_p > 0 (e.g. 0.025)",
+        raise MotionError("invalid length ratio", key="length_ratio", expected="R_m/R_p > 0 (e.g. 0.025)",
                           found=repr(length_ratio))
     return dt_prototype * math.sqrt(length_ratio)
 
@@ -90,18 +90,18 @@ def parse_limits(text: str | None, gravity: float) -> dict:
         key, sep, value = part.partition("=")
         key = key.strip().lower()
         if not sep or key not in LIMIT_DIMENSIONS:
-            raise MotionError("invalid table limit", key="--table", expected="d=<length>,v=<velocity>,a=<acceleration>",
+            raise MotionError("invalid table limit", key="table", expected="d=<length>,v=<velocity>,a=<acceleration>",
                               found=repr(part.strip()))
         if key in limits:
-            raise MotionError("table limit given twice (only one value would be used)", key=f"--table {key}",
+            raise MotionError("table limit given twice (only one value would be used)", key=f"table.{key}",
                               expected=f"{key}=… once", found=repr(text))
         try:
             limits[key] = parse_quantity(value.strip(), LIMIT_DIMENSIONS[key][0], gravity=gravity)
         except QuantityParseError as exc:
-            raise MotionError("invalid table limit", key=f"--table {key}", expected=str(exc),
+            raise MotionError("invalid table limit", key=f"table.{key}", expected=str(exc),
                               found=repr(value.strip())) from None
         if limits[key] <= 0.0:
-            raise MotionError("invalid table limit", key=f"--table {key}", expected="a positive limit",
+            raise MotionError("invalid table limit", key=f"table.{key}", expected="a positive limit",
                               found=repr(value.strip()))
     return limits
 
@@ -118,7 +118,7 @@ def band_pass(accel: np.ndarray, dt: float, corners: tuple[float, float], order:
     low, high = corners
     nyquist = 0.5 / dt
     if not 0.0 < low < high < nyquist:
-        raise MotionError("invalid filter corners", key="--band", expected=f"0 < low < high < Nyquist = {nyquist:.4g} Hz",
+        raise MotionError("invalid filter corners", key="band", expected=f"0 < low < high < Nyquist = {nyquist:.4g} Hz",
                           found=f"{low:g}:{high:g} Hz")
     a = np.asarray(accel, dtype=float)
     a = (a - a.mean()) * signal.windows.tukey(a.size, 0.05)

@@ -248,7 +248,7 @@ def relative_errors(model: dict, tests: dict) -> dict:
 def split_tests(tests: MixedSample, seed: int) -> tuple[np.ndarray, np.ndarray]:
     """Seeded random split of the test indices into D1 (⌊n/2⌋) and D2 (the rest) (Sec 7.2)."""
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
-        raise ExperimentError("invalid random seed", key="--seed", expected="an integer ≥ 0", found=repr(seed))
+        raise ExperimentError("invalid random seed", key="seed", expected="an integer ≥ 0", found=repr(seed))
     order = np.random.default_rng(seed).permutation(tests.n)
     half = tests.n // 2
     return np.sort(order[:half]), np.sort(order[half:])
@@ -265,7 +265,7 @@ def _model_on(model: MixedSample, tests: MixedSample, d2: np.ndarray, name: str)
                                                                else "")
             raise ExperimentError("tests without a model run of the same id", file=model.file or None, key="id",
                                   expected=f"every test id of '{tests.file or tests.name}' among the ids of "
-                                           f"--{model.name.replace('_', '-')}",
+                                           f"'{model.file or model.name}'",
                                   found=f"{len(missing)} of {tests.n}: {shown}")
         return model.subset(np.array([where[tests.ids[i]] for i in d2]), name), "id"
     if model.n == tests.n:

@@ -22,11 +22,49 @@ A kind must write:
 from __future__ import annotations
 
 import abc
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import RockdesignError
 from ..outdir import RUN_FILES, OutputFolder
 from ..report.document import ReportParts
+
+
+def _shown(value) -> str:
+    """A value given to a library function, as an error message quotes it."""
+    if isinstance(value, (str, Path)):
+        return repr(str(value))
+    if isinstance(value, (bool, int, float, list, tuple)):
+        return repr(value)
+    return getattr(value, "name", None) or type(value).__name__
+
+
+@dataclass(frozen=True)
+class SpectrumOptions:
+    """What ``rd.spectrum`` was asked for, handed to the project's kind.
+
+    Attributes:
+        given: the options given by name (``pulse``, ``record``, ``x``, ``y``, ``relative`` — a loaded
+            :class:`~rockdesign.project_tables.Project` —, ``out_dir``, ``executor``, …); options left at
+            None are not in it, so a kind's defaults apply.
+        progress: ``progress(stage, done, total)`` as analyses finish (:func:`rockdesign.progress.progress_bars`
+            draws it), or None.
+        say: ``say(text)`` prints a line (the first-run compilation is announced with it), or None.
+    """
+
+    given: Mapping[str, object]
+    progress: Callable[[str, int, int], None] | None = None
+    say: Callable[[str], object] | None = None
+
+    def accepted(self, names, used_by: str, expected: str) -> dict:
+        """The given options, or a :class:`~rockdesign.errors.RockdesignError` naming the first one that is not
+        among ``names`` (the kind's options): it is "not used by ``used_by``"."""
+        for name, value in self.given.items():
+            if name not in names:
+                raise RockdesignError(f"not used by {used_by}", key=name, expected=expected,
+                                      found=f"{name}={_shown(value)}")
+        return dict(self.given)
 
 
 def unavailable(what: str, kind: str, key: str):
@@ -50,9 +88,6 @@ class StructureKind(abc.ABC):
     check_compiles_in_background: bool = False
     """Whether the kind's check reads its input while its engine finishes compiling on a first run (it then
     waits for :func:`rockdesign.execution.compilation.finish_compilation` before its analyses)."""
-    spectrum_excitation: str = "pulse"
-    """What the kind's rocking spectrum runs over: "pulse" (planar: a pulse family, thesis Ch. 3) or
-    "record pair" (cylinder: one record pair over R and PGA, Figs 5.16–5.17)."""
     report_files: frozenset[str] = frozenset()
     """Files a check writes into its output folder besides the run files (``ReportParts.files``)."""
     csv_columns: tuple[str, ...] | None = None
@@ -134,10 +169,12 @@ class StructureKind(abc.ABC):
     def report(self, result) -> ReportParts:
         """The parts of the calculation report of a check result (its HTML and figures)."""
 
-    # --- rocking spectra (``rockdesign spectrum``) ------------------------------------------
-    def spectrum(self, project, request, *, executor, progress):
-        """The kind's rocking spectrum over the request's axes (planar: a pulse family, thesis Ch. 3; the
-        cylinder: one record pair over R and PGA, Figs 5.16–5.17)."""
+    # --- rocking spectra (``rd.spectrum``, ``rockdesign spectrum``) ---------------------------
+    def spectrum(self, project, request: SpectrumOptions):
+        """The kind's rocking spectrum, its files written into an output folder (planar: a pulse family, thesis
+        Ch. 3; the cylinder: one record pair over R and PGA, Figs 5.16–5.17): a result with ``out_dir``,
+        ``as_json()`` (= summary.json), ``title`` and ``summary_rows()``.  The kind takes the options of
+        ``request`` it uses (:meth:`SpectrumOptions.accepted`) and refuses the others, naming them."""
         raise unavailable("a rocking spectrum", self.name, "project")
 
     # --- the design grid (rockdesign design, SPEC §15): the kind's ``grid`` module does the work --------

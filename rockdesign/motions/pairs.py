@@ -124,14 +124,14 @@ class MotionPair:
 def pair_of_records(name: str, x: GroundMotion, y: GroundMotion | None, meta: dict | None = None) -> MotionPair:
     """A pair from two record motions on the same time step (y = None: one component along x, planar)."""
     if not x.is_record or (y is not None and not y.is_record):
-        raise MotionError("a record pair needs two records", key="--motion", expected="two sampled records",
+        raise MotionError("a record pair needs two records", key="motion", expected="two sampled records",
                           found=name)
     sx = x.scale * x.samples
     if y is None:
         sy = np.zeros_like(sx)
     else:
         if abs(x.dt - y.dt) > 1e-9 * x.dt:
-            raise MotionError("the two components have different time steps", key="--motion",
+            raise MotionError("the two components have different time steps", key="motion",
                               expected="records sampled at the same dt",
                               found=f"dt = {x.dt:g} s in '{_source(x)}' and {y.dt:g} s in '{_source(y)}'")
         sy = y.scale * y.samples
@@ -153,7 +153,7 @@ def load_pair(pair_id: str, *, gravity: float = 9.81) -> MotionPair:
     from .library import load_record
     m = _PAIR_ID.match(pair_id.strip())
     if not m:
-        raise MotionError("unknown record pair", key="--motion", expected="p695-ff/<1..22>, p695-nfp/<1..14>, "
+        raise MotionError("unknown record pair", key="motion", expected="p695-ff/<1..22>, p695-nfp/<1..14>, "
                           "p695-nfnp/<15..28> (both components), or one component such as p695-ff/11a",
                           found=repr(pair_id))
     prefix, number = m.group(1).lower(), int(m.group(2))
@@ -201,7 +201,7 @@ def _angle(text: str, value: str, name: str = "azimuth") -> float:
         else:
             angle = parse_quantity(v, "angle")
     except (ValueError, QuantityParseError):
-        raise MotionError(f"{name} expects an angle", key="--motion", expected=f"e.g. {name}=30deg or "
+        raise MotionError(f"{name} expects an angle", key="motion", expected=f"e.g. {name}=30deg or "
                           f"{name}=0.5rad", found=f"'{value}' in '{text}'") from None
     return finite(text, name, value, angle)
 
@@ -216,7 +216,7 @@ def _split(text: str, body: str, allowed: tuple[str, ...]) -> tuple[list[str], d
 
 def _apply_scaling(pair: MotionPair, named: dict, text: str, gravity: float, uplift: float) -> MotionPair:
     if "scale" in named and "resultant_pga" in named:
-        raise MotionError("conflicting scalings", key="--motion", expected="scale=… or resultant_pga=…",
+        raise MotionError("conflicting scalings", key="motion", expected="scale=… or resultant_pga=…",
                           found=f"both in '{text}'")
     if "azimuth" in named:
         pair = pair.rotated(_angle(text, named["azimuth"]))
@@ -228,11 +228,11 @@ def _apply_scaling(pair: MotionPair, named: dict, text: str, gravity: float, upl
         try:
             target = float(m.group(1)) * uplift if m else parse_quantity(value, "acceleration", gravity=gravity)
         except QuantityParseError as exc:
-            raise MotionError(f"resultant_pga expects {exc} or a multiple of 'up'", key="--motion",
+            raise MotionError(f"resultant_pga expects {exc} or a multiple of 'up'", key="motion",
                               found=f"'{text}'") from None
         finite(text, "resultant_pga", value, target)
         if not target > 0 or pair.resultant_pga == 0:
-            raise MotionError("resultant_pga must be positive", key="--motion", expected="e.g. resultant_pga=0.3g",
+            raise MotionError("resultant_pga must be positive", key="motion", expected="e.g. resultant_pga=0.3g",
                               found=f"'{text}'")
         pair = pair.scaled(target / pair.resultant_pga)
     return pair
@@ -247,14 +247,14 @@ def parse_pair(text: str, *, gravity: float = 9.81, alpha: float = 0.0, uplift_a
     """
     from .parse import SystemScales, parse_motion
     if ":" not in text:
-        raise MotionError("malformed motion", key="--motion", expected="KIND:params, KIND one of record, files, "
+        raise MotionError("malformed motion", key="motion", expected="KIND:params, KIND one of record, files, "
                           "file, free, " + ", ".join(PULSE_KINDS), found=f"'{text}'")
     kind, body = (s.strip() for s in text.split(":", 1))
     scales = SystemScales(alpha, uplift_acceleration, p, p, gravity)
     if kind == "free":
         _, named = _split(text, body, ("theta0", "thetadot0", "phi0", "phidot0"))
         if "theta0" not in named and "thetadot0" not in named:
-            raise MotionError("free vibration needs an initial tilt", key="--motion",
+            raise MotionError("free vibration needs an initial tilt", key="motion",
                               expected="free:theta0=0.1rad[,phidot0=1e-3rad/s]", found=f"'{text}'")
         base = parse_motion("free:" + ",".join(f"{k}={v}" for k, v in named.items() if k in ("theta0", "thetadot0")),
                             scales)
@@ -264,10 +264,10 @@ def parse_pair(text: str, *, gravity: float = 9.81, alpha: float = 0.0, uplift_a
             try:
                 phidot0 = parse_quantity(named["phidot0"], "frequency")
             except QuantityParseError as exc:
-                raise MotionError(f"phidot0 expects {exc}", key="--motion", found=f"'{text}'") from None
+                raise MotionError(f"phidot0 expects {exc}", key="motion", found=f"'{text}'") from None
             finite(text, "phidot0", named["phidot0"], phidot0)
         if base.theta0 <= 0.0 and base.thetadot0 <= 0.0:
-            raise MotionError("the cylinder's tilt is θ ≥ 0", key="--motion", expected="theta0 > 0 or thetadot0 > 0",
+            raise MotionError("the cylinder's tilt is θ ≥ 0", key="motion", expected="theta0 > 0 or thetadot0 > 0",
                               found=f"'{text}'")
         pair = MotionPair("free vibration", EXC_NONE, np.zeros(0), planar=phidot0 == 0.0)
         return PairSpec(pair, base.theta0, base.thetadot0, phi0, phidot0, text)
@@ -279,11 +279,11 @@ def parse_pair(text: str, *, gravity: float = 9.81, alpha: float = 0.0, uplift_a
     if kind in ("record", "files", "file"):
         positional, named = _split(text, body, ("scale", "resultant_pga", "azimuth", "units", "dt"))
         if kind == "files" and len(positional) != 2:
-            raise MotionError("files: needs two record files", key="--motion", expected="files:X.AT2,Y.AT2",
+            raise MotionError("files: needs two record files", key="motion", expected="files:X.AT2,Y.AT2",
                               found=f"'{text}'")
         record_file_only(text, kind, named)
         if kind != "files" and len(positional) != 1:
-            raise MotionError("one record id or file", key="--motion", expected="record:p695-ff/11 or file:X.AT2",
+            raise MotionError("one record id or file", key="motion", expected="record:p695-ff/11 or file:X.AT2",
                               found=f"'{text}'")
         if kind == "record" and _PAIR_ID.match(positional[0]):
             pair = load_pair(positional[0], gravity=gravity)
@@ -297,7 +297,7 @@ def parse_pair(text: str, *, gravity: float = 9.81, alpha: float = 0.0, uplift_a
                 x = parse_motion(",".join([f"{kind}:{positional[0]}"] + extra), scales, records_dir=records_dir).motion
                 pair = pair_of_records(positional[0], x, None, {"id": positional[0]})
         return PairSpec(_apply_scaling(pair, named, text, gravity, uplift_acceleration), text=text)
-    raise MotionError("unknown motion kind for a cylinder", key="--motion",
+    raise MotionError("unknown motion kind for a cylinder", key="motion",
                       expected="record, files, file, free or a pulse (" + ", ".join(PULSE_KINDS) + ")",
                       found=f"'{kind}' in '{text}'")
 

@@ -331,7 +331,7 @@ def list_records(suite: str | None = None, *, gravity: float = 9.81, records_dir
     """
     if suite is None:
         return [record_summary(rid, row=builtin_info(rid), gravity=gravity) for rid in builtin_ids()]
-    loaded = load_suite(suite, gravity=gravity, records_dir=records_dir, key="--suite")
+    loaded = load_suite(suite, gravity=gravity, records_dir=records_dir, key="suite")
     out = []
     for entry in loaded.entries:
         if entry.motion is not None:

@@ -176,7 +176,7 @@ def synthesize(seed: GroundMotion, n: int, out_dir, *, seed_value: int = 1, scal
     ``progress(stage, done, total)`` is called at each stage (fit, simulation, spectra, writing).
     """
     if isinstance(seed_value, bool) or not isinstance(seed_value, int) or seed_value < 0:
-        raise MotionError("invalid random seed", key="--seed-value", expected="an integer ≥ 0",
+        raise MotionError("invalid random seed", key="seed_value", expected="an integer ≥ 0",
                           found=repr(seed_value))
     def tick(stage: str, done: int, total: int) -> None:
         if progress is not None:

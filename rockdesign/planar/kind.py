@@ -18,6 +18,7 @@ from .report.figures import pushover_figure
 from ..report.document import ReportParts
 from .report.report import render_html
 from . import grid as planar_grid, simulation as planar_simulation
+from .spectra import run as pulse_spectra
 from ..kinds.base import StructureKind
 
 
@@ -60,7 +61,7 @@ class Planar(StructureKind):
         elif suffix in (".png", ".svg", ".pdf"):
             save(pushover_figure(project.system), path)
         else:
-            raise RockdesignError("unknown pushover file type", key="--pushover",
+            raise RockdesignError("unknown pushover file type", key="path",
                                   expected=".csv, .png, .svg or .pdf", found=f"'{path.name}'")
 
     def simulation_request(self, project, motion, *, model, t_end, rtol, records_dir):
@@ -79,3 +80,13 @@ class Planar(StructureKind):
 
     def report(self, result):
         return ReportParts(html=lambda: render_html(result))
+
+    def spectrum(self, project, request):
+        """The rocking spectrum over a pulse family (thesis Sec 3.3.2; :func:`~rockdesign.planar.spectra.run.pulse_spectrum`)."""
+        options = request.accepted(pulse_spectra.OPTIONS, "the spectrum of a planar system (pulses)",
+                                   "pulse and the pulse spectrum's options (record is for a [cylinder] project)")
+        reference = options.get("relative")
+        if reference is not None and reference.system.kind not in self.systems:
+            raise RockdesignError("a relative spectrum compares two planar systems", key="relative",
+                                  expected="a [column] or [podium] project", found=f"a {reference.system.kind}")
+        return pulse_spectra.pulse_spectrum(project, **options, progress=request.progress, say=request.say)

@@ -224,7 +224,7 @@ def test_a_failed_spectrum_leaves_no_empty_folder(tmp_path, monkeypatch):
         raise RockdesignError("the cluster went away", key="--dask")
     monkeypatch.setattr(spectrum, "compute_spectrum", fail)
     monkeypatch.setattr(rockdesign, "compute_spectrum", fail)      # (the command reaches it through rockdesign)
-    monkeypatch.setattr("rockdesign.cli.inputs.compile_kernels", lambda *a, **k: 0.0)
+    monkeypatch.setattr("rockdesign.execution.compilation.prepare", lambda *a, **k: 0.0)
     out = tmp_path / "deep" / "s"
     r = invoke("spectrum", PIER, "--pulse", "sine", "--x", "omega_p/p:1:2:2", "--y", "ap/up:1:2:2", "-o", out)
     assert_one_line_error(r, "the cluster went away")

@@ -232,7 +232,7 @@ def test_a_failed_synth_leaves_no_folder(tmp_path, monkeypatch):
     def fail(*args, **kwargs):
         raise MotionError("the stochastic model does not fit this record", key="--seed")
     monkeypatch.setattr(synth, "fit_model", fail)
-    monkeypatch.setattr("rockdesign.cli.inputs.compile_kernels", lambda *a, **k: 0.0)
+    monkeypatch.setattr("rockdesign.execution.compilation.prepare", lambda *a, **k: 0.0)
     out = tmp_path / "deep" / "ens"
     one_line_error(invoke("records", "synth", "--seed", "p695-ff/11a", "-n", "2", "-o", out), "does not fit")
     assert not (tmp_path / "deep").exists()

@@ -117,5 +117,5 @@ def test_stop_at_capacity_keeps_the_static_verdict():
     np.testing.assert_array_equal(fast.impacts_before_overturn[~safe],
                                   full.out[:, :, OUT_IMPACTS_BEFORE_EXCEEDED][~safe])
     assert fast.steps.sum() < full.steps.sum()
-    with pytest.raises(Exception, match="--stop-at-capacity"):
+    with pytest.raises(Exception, match="stop_at_capacity"):
         SpectrumRequest(**base, overturn="dynamic", stop_at_capacity=True).validate()

@@ -129,7 +129,7 @@ def check_request(system: RockingSystem, motion: GroundMotion, *, model: str = "
     :class:`~rockdesign.errors.ModelError` naming the key, what was expected and what was found.
     """
     if model not in MODELS:
-        raise ModelError("unknown model", key="--model", expected=" | ".join(MODELS), found=f"'{model}'")
+        raise ModelError("unknown model", key="model", expected=" | ".join(MODELS), found=f"'{model}'")
     if overturn not in ("static", "dynamic"):
         raise ModelError("unknown overturning criterion", key="overturn", expected="static | dynamic",
                          found=f"'{overturn}'")
@@ -137,11 +137,11 @@ def check_request(system: RockingSystem, motion: GroundMotion, *, model: str = "
     if t_end is None:
         t_end = motion.duration + FREE_VIBRATION
     if not (math.isfinite(t_end) and t_end > 0.0):
-        raise ModelError("invalid end time", key="--t-end", expected="a finite time > 0 s", found=repr(t_end))
+        raise ModelError("invalid end time", key="t_end", expected="a finite time > 0 s", found=repr(t_end))
     if record_history:
         check_memory(motion, t_end, output_dt)
     if model == "linear-exact" and system.has_elastic_superstructure and structure == "podium-2dof":
-        raise ModelError("the closed-form model solves SDOF systems only", key="--model",
+        raise ModelError("the closed-form model solves SDOF systems only", key="model",
                          expected="exact or linear for the 2DOF podium (or the rigid-superstructure model)",
                          found="'linear-exact'")
     return structure, t_end
@@ -157,7 +157,7 @@ def check_memory(motion: GroundMotion, t_end: float, output_dt: float | None = N
     avail = min(MEMORY_CAP, MEMORY_FRACTION * _physical_memory())
     if not need <= avail:
         raise ModelError("the time history would need too much memory",
-                         expected=f"at most {avail / 1e9:.3g} GB: a shorter end time (--t-end) or a longer pulse "
+                         expected=f"at most {avail / 1e9:.3g} GB: a shorter end time (t_end) or a longer pulse "
                                   "period (the output interval is T_p/200)",
                          found=f"{n:.3g} output times (t_end = {t_end:g} s every {dt:.3g} s) ≈ {need / 1e9:.3g} GB")
     return need

@@ -8,6 +8,8 @@
 * :mod:`.lines`, :mod:`.polyakov` — overturning map by impacts, limit-state lines (Table 3.5),
   minimum overturning line, relative spectra (Eq 3.64), equivalent size (Eq 3.65), Polyakov's line.
 * :mod:`.output`, :mod:`.figures` — spectrum.npz, summary.json, PNG/SVG figures (CONTRACT §4).
+* :mod:`.run` — :func:`~.run.pulse_spectrum`, the whole of ``rockdesign spectrum`` for a planar project (reached
+  through ``rd.spectrum`` and the planar kind).
 """
 from .axes import DEFAULT_X, DEFAULT_Y, Axis, SpectrumScales, parse_axis, spectrum_scales
 from ...execution.executor import ChunkRun, ChunkStore, DaskExecutor, LocalExecutor, fingerprint, make_executor, run_chunks

@@ -85,7 +85,7 @@ def parse_axis(text: str, which: str) -> Axis:
         AxisError: unknown axis name, malformed numbers, n < 1, lo > hi, non-positive frequencies or
             periods, negative amplitudes.
     """
-    key = "--x" if which == "x" else "--y"
+    key = which
     names = X_AXES if which == "x" else Y_AXES
     example = "omega_p/p:0.5:12:801" if which == "x" else "ap/up:0:12:401"
     expected = f"AXIS:lo:hi:n with AXIS one of {', '.join(names)} (e.g. {example})"

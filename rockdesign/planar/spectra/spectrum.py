@@ -69,28 +69,28 @@ def check_grid(x: Axis, y: Axis, n_spectra: int = 1, *, distributed: bool = Fals
     grid = f"{x.n:,} × {y.n:,}" + (f" × {n_spectra} spectra" if n_spectra > 1 else "") + f" = {points:,} analyses"
     estimate = f"{grid}: about {_bytes(memory)} of memory and at least {_duration(seconds)} on {cores} core(s)"
     if available is not None and memory > available:
-        raise SpectrumError("the spectrum grid does not fit in memory", key="--x/--y",
+        raise SpectrumError("the spectrum grid does not fit in memory", key="x/y",
                             expected=f"a grid that needs less than the {_bytes(available)} available "
                             "(fewer points per axis)", found=estimate)
     if not distributed and seconds > MAX_HOURS * 3600:
-        raise SpectrumError("the spectrum grid would take too long on this machine", key="--x/--y",
-                            expected=f"a grid of at most about {MAX_HOURS:g} h (fewer points, or --dask on "
+        raise SpectrumError("the spectrum grid would take too long on this machine", key="x/y",
+                            expected=f"a grid of at most about {MAX_HOURS:g} h (fewer points, or a dask cluster as the executor on "
                             "a cluster)", found=estimate)
     return memory, seconds
 
 
 def check_ordinates(ordinates, y: Axis, relative: bool) -> None:
-    """Refuse ``--equivalent-at`` ordinates that would be ignored or meaningless: without ``--relative``
+    """Refuse ``equivalent_at`` ordinates that would be ignored or meaningless: without a reference (``relative``)
     (Eq 3.65 compares two systems), non-finite, or outside the y axis [lo, hi]."""
     if not ordinates:
         return
     shown = ", ".join(f"{v:g}" for v in ordinates)
     if not relative:
-        raise SpectrumError("--equivalent-at is used by a relative spectrum only (Eq 3.65 compares two systems)",
-                            key="--equivalent-at", expected="--relative OTHER.toml with it", found=shown)
+        raise SpectrumError("used by a relative spectrum only (Eq 3.65 compares two systems)",
+                            key="equivalent_at", expected="a reference project (relative) with it", found=shown)
     for value in ordinates:
         if not (math.isfinite(value) and y.lo <= value <= y.hi):
-            raise SpectrumError("ordinate outside the y axis", key="--equivalent-at",
+            raise SpectrumError("ordinate outside the y axis", key="equivalent_at",
                                 expected=f"a value of {y.name} within {y.lo:g}…{y.hi:g}", found=f"{value:g}")
 
 
@@ -167,25 +167,25 @@ class SpectrumRequest:
     def validate(self) -> None:
         """Raise :class:`SpectrumError` for settings the engine cannot run."""
         if self.pulse not in PULSE_KINDS:
-            raise SpectrumError("unknown pulse", key="--pulse", expected=" | ".join(PULSE_KINDS),
+            raise SpectrumError("unknown pulse", key="pulse", expected=" | ".join(PULSE_KINDS),
                                 found=repr(self.pulse))
         if self.equations not in ("exact", "linear"):
-            raise SpectrumError("unknown equations", key="--model", expected="exact | linear (or auto)",
+            raise SpectrumError("unknown equations", key="model", expected="exact | linear (or auto)",
                                 found=repr(self.equations))
         if self.overturn not in ("static", "dynamic"):
-            raise SpectrumError("unknown overturning criterion", key="--overturn", expected="static | dynamic",
+            raise SpectrumError("unknown overturning criterion", key="overturn", expected="static | dynamic",
                                 found=repr(self.overturn))
         if not (math.isfinite(self.t_free) and self.t_free >= 0.0):
-            raise SpectrumError("invalid free-vibration time", key="--t-free", expected="a time ≥ 0 s",
+            raise SpectrumError("invalid free-vibration time", key="t_free", expected="a time ≥ 0 s",
                                 found=repr(self.t_free))
         if not (0.0 < self.rtol < 1e-2 and 0.0 < self.atol < 1e-2):
-            raise SpectrumError("invalid tolerance", key="--rtol", expected="0 < rtol, atol < 1e-2",
+            raise SpectrumError("invalid tolerance", key="rtol", expected="0 < rtol, atol < 1e-2",
                                 found=f"rtol={self.rtol!r}, atol={self.atol!r}")
         if self.stop_at_capacity and self.overturn != "static":
-            raise SpectrumError("stopping at θc cannot tell dynamic overturning", key="--stop-at-capacity",
-                                expected="--overturn static", found=f"--overturn {self.overturn}")
+            raise SpectrumError("stopping at θc cannot tell dynamic overturning", key="stop_at_capacity",
+                                expected="overturn = static", found=f"overturn = {self.overturn}")
         if not (math.isfinite(self.tm_ratio) and self.tm_ratio >= 0.0):
-            raise SpectrumError("invalid wavelet centre", key="--tm-ratio", expected="t_m/T_p ≥ 0 (1.5: thesis)",
+            raise SpectrumError("invalid wavelet centre", key="tm_ratio", expected="t_m/T_p ≥ 0 (1.5: thesis)",
                                 found=repr(self.tm_ratio))
 
     def as_json(self) -> dict:
@@ -371,7 +371,7 @@ def compute_spectrum(system: RockingSystem, request: SpectrumRequest, *, executo
         warm = time.perf_counter() - t0
         chunk_rows = max(1, math.ceil(ny / max(TARGET_CHUNKS, 4 * executor.slots)))
     if int(chunk_rows) < 1:
-        raise SpectrumError("invalid chunk size", key="--chunk-rows", expected="an integer ≥ 1",
+        raise SpectrumError("invalid chunk size", key="chunk_rows", expected="an integer ≥ 1",
                             found=str(chunk_rows))
     chunk_rows = int(chunk_rows)
     bounds = [(r, min(r + chunk_rows, ny)) for r in range(0, ny, chunk_rows)]
