@@ -3,7 +3,7 @@
     .venv/bin/python scripts/make_examples.py
 
 - ``examples/free_vibration.csv``: a free-rocking test of the thesis specimen F02 without its feet
-  (2H = 500 mm, 2B = 50 mm, λ = 0.543), made by the model itself (rockdesign.experiments.synthetic):
+  (2H = 500 mm, 2B = 50 mm, λ = 0.543), made by the model itself (rockdesign.planar.experiments.synthetic):
   released from 0.7 α, c_r = 0.93 on the right and 0.9765 on the left, 500 Hz, seeded Gaussian noise
   of 0.5 % α and a sensor offset of 0.004 rad.  ``calibrate`` recovers these values.
 - ``examples/validation_analyses.csv``: the model's θ_max/α of F02 under the FEMA P695 far-field suite
@@ -39,7 +39,7 @@ g = "9.807 m/s^2"
 
 
 def free_vibration() -> None:
-    from rockdesign.experiments.synthetic import free_rocking_history
+    from rockdesign.planar.experiments.synthetic import free_rocking_history
     from rockdesign.planar.system import block
     alpha = math.atan(0.1)
     system = block(0.25, 0.025, 0.329, 0.543, g=9.807)
@@ -64,7 +64,7 @@ def free_vibration() -> None:
 
 def validation() -> None:
     import rockdesign as rd
-    from rockdesign.experiments.ensemble import run_ensemble, write_analyses_csv
+    from rockdesign.planar.experiments.ensemble import run_ensemble, write_analyses_csv
     project = rd.load_project(EXAMPLES / "shake_table_F02.toml")
     analyses = EXAMPLES / "validation_analyses.csv"
     write_analyses_csv(run_ensemble(project, SUITE, scale=SCALE), analyses)

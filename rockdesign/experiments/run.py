@@ -8,7 +8,8 @@
     run.write_csv("analyses.csv")
     v = rd.validation("tests.csv", "analyses.csv", seed=1, out_dir="validation/")   # Ch. 7: Eq 7.1, Tables 7.2–7.3
 
-The experiments calibrate and validate the planar rocking body (a ``[column]`` or ``[podium]`` project).  Errors
+The experiments calibrate and run a kind's specimen through its kind (``StructureKind.experiments``; the planar
+kind's: a ``[column]`` or ``[podium]`` project); the validation compares any two result files.  Errors
 name the parameter (``min_amplitude``, ``scale``, ``restitution``, ``suite``, ``seed``…) or the file and its key.
 """
 from __future__ import annotations
@@ -19,26 +20,27 @@ from pathlib import Path
 
 from ..errors import ProjectError
 from ..execution import compilation
-from ..planar.system import RockingSystem
+from ..kinds import kind_of
+from ..kinds.base import unavailable
 from ..plots import save
-from .calibrate import Calibration, calibrate, simulated_history
-from .ensemble import EnsembleRun, run_ensemble
 from .figures import calibration_figure, validation_figure
 from .free_vibration import ExperimentError, TiltHistory, read_tilt_csv
 from .validate import MixedSample, Validation, read_results_csv, validate
 from .validate_report import write_validation
 
-__all__ = ["calibration", "validation", "ensemble", "CalibrationRun", "ValidationRun", "EnsembleRun"]
+__all__ = ["calibration", "validation", "ensemble", "CalibrationRun", "ValidationRun"]
 
 
-def _specimen(project, function: str) -> RockingSystem:
-    """The planar rocking system of ``project`` (the experiments calibrate planar specimens)."""
-    system = getattr(project, "system", None)
-    if not isinstance(system, RockingSystem):
-        raise ProjectError(f"{function} needs a planar project", key="project",
-                           expected="a [column] or [podium] project (rd.load_project)",
-                           found=f"a {getattr(system, 'kind', type(project).__name__)}")
-    return system
+def _experiments(project, function: str):
+    """The experiments of ``project``'s kind (``StructureKind.experiments``: ``calibrate``,
+    ``simulated_history``, ``run_ensemble``; the planar kind's calibrate and validate rocking specimens)."""
+    if not hasattr(project, "system"):
+        raise ProjectError(f"{function} needs a project", key="project",
+                           expected="a Project (rd.load_project)", found=type(project).__name__)
+    kind = kind_of(project)
+    if kind.experiments is None:
+        raise unavailable(f"{function} (thesis Ch. 6–7)", kind.name, "project")
+    return kind.experiments
 
 
 # --- calibrate ------------------------------------------------------------------------------------------
@@ -49,13 +51,13 @@ class CalibrationRun:
     Attributes:
         project: the specimen's project.
         history: the measured tilt history (``t`` [s], ``theta`` [rad], ``dropped_rows``: rows with missing values).
-        calibration: the :class:`~rockdesign.experiments.calibrate.Calibration`: ``p`` [1/s] (Eq 2.8 inverted),
+        calibration: the kind's calibration (planar: :class:`~rockdesign.planar.experiments.calibrate.Calibration`): ``p`` [1/s] (Eq 2.8 inverted),
             ``lam`` λ, ``c_r`` (Eq 6.19; ``c_r_left``, ``c_r_right``), ``c_r_theory``, ``half_cycles``, ``warnings``.
     """
 
     project: object
     history: TiltHistory
-    calibration: Calibration
+    calibration: object
 
     def __getattr__(self, name):
         if name in ("project", "history", "calibration"):
@@ -70,7 +72,8 @@ class CalibrationRun:
         """(t [s], θ [rad]) of the engine with the calibrated λ and c_r, released from the first measured peak
         (compiled on a first run, announced with ``say``)."""
         compilation.prepare("calibrate", say)
-        return simulated_history(self.project.system, self.calibration, self.history)
+        return _experiments(self.project, "calibration").simulated_history(self.project.system, self.calibration,
+                                                                           self.history)
 
     def write_figure(self, path, *, say=None) -> Path:
         """Measured θ/α over the simulated history (thesis Figs 6.12, 6.24; .png, .svg or .pdf)."""
@@ -92,11 +95,11 @@ def calibration(project, free_vibration: str | Path | TiltHistory, *, half_cycle
         half_cycles: use at most this many half-cycles from the first impact (≥ 2; thesis ~15–20).
         min_amplitude: ignore half-cycles with θ0 below this fraction of α (0 ≤ value < 1).
     """
-    system = _specimen(project, "calibration")
+    experiments = _experiments(project, "calibration")
     if isinstance(half_cycles, bool) or not isinstance(half_cycles, int) or half_cycles < 2:
         raise ExperimentError("out of range", key="half_cycles", expected="an integer ≥ 2", found=repr(half_cycles))
     history = free_vibration if isinstance(free_vibration, TiltHistory) else read_tilt_csv(free_vibration)
-    cal = calibrate(system, history, max_half_cycles=half_cycles, min_amplitude=min_amplitude)
+    cal = experiments.calibrate(project.system, history, max_half_cycles=half_cycles, min_amplitude=min_amplitude)
     return CalibrationRun(project, history, cal)
 
 
@@ -161,7 +164,7 @@ def validation(tests, analyses, *, measured=None, seed: int = 1, out_dir: str | 
 
 # --- ensemble -------------------------------------------------------------------------------------------
 def ensemble(project, suite: str | Path, *, scale: float = 1.0, restitution: float | None = None, records_dir=None,
-             progress: Callable[[str, int, int], None] | None = None, say=None) -> EnsembleRun:
+             progress: Callable[[str, int, int], None] | None = None, say=None):
     """Run ``project`` over a ground-motion ensemble (a suite name or manifest, e.g. the ensemble.toml of
     :func:`rockdesign.records.records_synth`): one analysis per motion × ``scale`` with the project's model.
 
@@ -174,13 +177,13 @@ def ensemble(project, suite: str | Path, *, scale: float = 1.0, restitution: flo
         say: announces a first-run compilation.
 
     Returns:
-        An :class:`~rockdesign.experiments.ensemble.EnsembleRun`: ``rows()`` (θ_max/α, overturned, impacts, u_B_max
+        The kind's ensemble run (planar: :class:`~rockdesign.planar.experiments.ensemble.EnsembleRun`): ``rows()`` (θ_max/α, overturned, impacts, u_B_max
         [m] per motion), ``as_json()`` (``ensemble --json``), ``write_csv(path)`` (the analyses.csv ``validation``
         reads).
     """
-    _specimen(project, "ensemble")
+    experiments = _experiments(project, "ensemble")
     stage = "ensemble analyses"
-    return run_ensemble(project, str(suite), scale=scale, restitution=restitution,
+    return experiments.run_ensemble(project, str(suite), scale=scale, restitution=restitution,
                         records_dir=str(records_dir) if records_dir else None,
                         before_analyses=lambda: compilation.prepare("ensemble", say),
                         progress=(lambda done, total: progress(stage, done, total)) if progress else None)

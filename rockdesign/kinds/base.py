@@ -103,6 +103,9 @@ class StructureKind(abc.ABC):
     """The recommended design without a superstructure force to rank by: (what is least, why)."""
     design_columns: tuple[tuple[str, str, str], ...] = ()
     """Extra columns of the design report's variants table: (cell key, heading, unit)."""
+    experiments = None
+    """The module of the kind's experiments (thesis Ch. 6–7: ``calibrate``, ``simulated_history``,
+    ``run_ensemble``), or None when the kind has none (``rd.calibration`` and ``rd.ensemble`` refuse it)."""
     grid = None
     """The module of the kind's design-grid hooks (``records_key``, ``grid_records``, ``grid_check``,
     ``grid_cell``), or None when the kind has no design grid."""

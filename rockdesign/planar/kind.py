@@ -17,7 +17,7 @@ from .project import parse_planar_project
 from .report.figures import pushover_figure
 from ..report.document import ReportParts
 from .report.report import render_html
-from . import grid as planar_grid, simulation as planar_simulation
+from . import experiments as planar_experiments, grid as planar_grid, simulation as planar_simulation
 from .spectra import run as pulse_spectra
 from ..kinds.base import StructureKind
 
@@ -31,6 +31,7 @@ class Planar(StructureKind):
     check_kernels = "check"
     check_compiles_in_background = True   # it reads and scales its records while the engine compiles
     grid = planar_grid
+    experiments = planar_experiments
     design_rule = planar_grid.RULE
     design_skipped = planar_grid.SKIPPED
 

@@ -150,7 +150,6 @@ def test_no_import_cycle_between_packages():
 SHARED_EXCEPTIONS: dict[str, tuple[str, ...]] = {
     "rockdesign.kinds": KIND_PACKAGES,                       # the registry names the built-in kinds
     "rockdesign.bench": KIND_PACKAGES,                       # measures the kinds' engines
-    "rockdesign.experiments": ("rockdesign.planar",),        # calibrates and validates planar specimens
 }
 """Modules outside the kinds' packages allowed to import from a kind's package, and what."""
 KIND_USES: dict[str, tuple[str, ...]] = {

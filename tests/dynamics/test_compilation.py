@@ -36,7 +36,7 @@ def test_the_real_calls_use_the_warm_up_machine_code():
     said it was over: each command's real work adds no signature to its kernels."""
     from rockdesign.library import simulate
     from rockdesign.cylinder.spectrum import cylinder_spectrum
-    from rockdesign.experiments.ensemble import run_ensemble
+    from rockdesign.planar.experiments.ensemble import run_ensemble
     from rockdesign.motions.pairs import load_pair
     from rockdesign.paths import REPO_ROOT
     from rockdesign.library import load_project

@@ -11,7 +11,7 @@ from typer.testing import CliRunner
 
 from conftest import ALPHA, SPECIMEN_TOML, write_tilt_csv
 from rockdesign.cli import app
-from rockdesign.experiments.synthetic import free_rocking_history
+from rockdesign.planar.experiments.synthetic import free_rocking_history
 from rockdesign.experiments.validate import read_results_csv, validate
 from rockdesign.planar.system import block
 

@@ -12,10 +12,10 @@ from conftest import ALPHA, C_R_LEFT, C_R_RIGHT, SPECIMEN_TOML, write_tilt_csv
 from rockdesign.cli import app
 from rockdesign.planar.design.frequencies import frequency_parameter, rocking_period
 from rockdesign.planar.design.quantities import system_frequency_parameter
-from rockdesign.experiments.calibrate import (calibrate, frequency_parameter_from_period, mass_distribution_from_p,
+from rockdesign.planar.experiments.calibrate import (calibrate, frequency_parameter_from_period, mass_distribution_from_p,
                                               peak_potential_energy)
 from rockdesign.experiments.free_vibration import ExperimentError, TiltHistory, read_tilt_csv
-from rockdesign.experiments.synthetic import free_rocking_history
+from rockdesign.planar.experiments.synthetic import free_rocking_history
 
 NOISE = 0.005 * ALPHA           # 0.5 % of α
 OFFSET = 0.004                  # rad
@@ -96,7 +96,7 @@ def test_theoretical_restitution_ignores_a_measured_value(specimen):
 
 def test_one_half_cycle_is_an_error(specimen):
     t, theta = _measurement(specimen, 0, noise=0.0, offset=0.0)
-    from rockdesign.experiments.synthetic import free_rocking_history as fr
+    from rockdesign.planar.experiments.synthetic import free_rocking_history as fr
     t1, th1 = fr(specimen, 0.7 * ALPHA, c_r_left=C_R_LEFT, c_r_right=C_R_RIGHT, duration=1.3, rate=500.0)
     with pytest.raises(ExperimentError, match="too few rocking half-cycles"):
         calibrate(specimen, TiltHistory(t1, th1, "short"))

@@ -8,7 +8,7 @@ from typer.testing import CliRunner
 
 from rockdesign.cli import app
 from rockdesign.planar.dynamics.simulate import simulate
-from rockdesign.experiments.ensemble import run_ensemble, write_analyses_csv
+from rockdesign.planar.experiments.ensemble import run_ensemble, write_analyses_csv
 from rockdesign.experiments.validate import read_results_csv
 from rockdesign.motions.library import load_record
 from rockdesign.motions.suites import save_suite

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from rockdesign.experiments.calibrate import calibrate
+from rockdesign.planar.experiments.calibrate import calibrate
 from rockdesign.experiments.free_vibration import read_tilt_csv
 from rockdesign.experiments.validate import read_results_csv, validate
 from rockdesign.paths import REPO_ROOT

@@ -13,11 +13,11 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..planar.checks.runner import RunSummary, run_jobs
-from ..planar.design.quantities import coefficient_of_restitution
-from ..planar.dynamics.model import ModelChoice, default_structure, resolve_structure
-from ..errors import ProjectError
-from ..motions.suites import load_suite
+from ..checks.runner import RunSummary, run_jobs
+from ..design.quantities import coefficient_of_restitution
+from ..dynamics.model import ModelChoice, default_structure, resolve_structure
+from ...errors import ProjectError
+from ...motions.suites import load_suite
 
 COLUMNS = ["id", "scale", "pga", "theta_max_over_alpha", "overturned", "overturn_mode", "impacts", "u_B_max"]
 

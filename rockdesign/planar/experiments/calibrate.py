@@ -24,10 +24,10 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from scipy.optimize import brentq
 
-from ..planar.design.geometry import rocking_geometry
-from ..planar.design.quantities import coefficient_of_restitution, system_frequency_parameter
-from ..planar.system import RockingSystem
-from .free_vibration import ExperimentError, HalfCycle, Impact, TiltHistory, find_half_cycles
+from ..design.geometry import rocking_geometry
+from ..design.quantities import coefficient_of_restitution, system_frequency_parameter
+from ..system import RockingSystem
+from ...experiments.free_vibration import ExperimentError, HalfCycle, Impact, TiltHistory, find_half_cycles
 
 
 @dataclass
@@ -168,7 +168,7 @@ def calibrate(system: RockingSystem, history: TiltHistory, *, max_half_cycles: i
 def simulated_history(system: RockingSystem, cal: Calibration, history: TiltHistory, model: str = "auto"):
     """(t [s], θ [rad]) of the engine with the calibrated λ and c_r, released at rest from the first
     measured half-cycle's peak, on the measurement's time axis (thesis Figs 6.12, 6.24)."""
-    from ..planar.dynamics.simulate import simulate
+    from ..dynamics.simulate import simulate
     calibrated = with_mass_distribution(system, cal.lam).with_restitution(min(1.0, cal.c_r))
     first = cal.half_cycles[0]
     t_end = float(history.t[-1] - first.peak_time)

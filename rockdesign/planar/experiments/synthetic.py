@@ -13,10 +13,10 @@ import math
 import numpy as np
 from scipy.interpolate import CubicSpline
 
-from ..planar.design.geometry import rocking_geometry
-from ..planar.design.quantities import system_frequency_parameter
-from ..planar.dynamics.simulate import simulate
-from ..planar.system import RockingSystem
+from ..design.geometry import rocking_geometry
+from ..design.quantities import system_frequency_parameter
+from ..dynamics.simulate import simulate
+from ..system import RockingSystem
 
 
 def free_rocking_history(system: RockingSystem, theta0: float, *, c_r_left: float, c_r_right: float,
