@@ -59,6 +59,17 @@ def _rule_target(rule):
     return rule.spectrum
 
 
+def suite_target(resolved):
+    """The target spectrum (5 % damping) a resolved suite was scaled against, or None: the MCE_R target of
+    ASCE 7-22 §16.2.3 scaling, else the design spectrum of a ``spectrum`` rule that scaled the whole suite.
+    ``psa(periods)`` [m/s²] of periods [s]; ``describe(g)`` names it."""
+    result = getattr(resolved, "asce7_22", None)
+    if result is not None:
+        return result.target
+    rules = list(getattr(resolved, "rules", []) or [])
+    return _rule_target(rules[0][1]) if len(rules) == 1 else None
+
+
 def _describe_target(target, gravity: float) -> str:
     try:
         return target.describe(gravity)
@@ -173,6 +184,24 @@ def scaling_block(resolved, *, period_range: PeriodRange | None = None, target=N
     block["conformant"] = bool(meets and shared)
     block["note"] = " ".join(notes)
     return block
+
+
+def pair_suite_block(method: str, how: str, factors: dict[str, float]) -> dict:
+    """The ``excitation.scaling`` block (CONTRACT §7.1) of a suite of record pairs scaled by another rule than
+    ASCE 7-22 §16.2.3 with no target spectrum (e.g. each pair to a peak resultant ground acceleration, thesis
+    Table 5.4): ``standard`` null, ``conformant`` null (nothing to judge against), ``factors`` one per pair
+    (ground motion), ``note`` how the suite was scaled and that it is not §16.2 scaling.
+
+    Args:
+        method: the rule's name (``resultant_pga``, ``factor``).
+        how: how the pairs were scaled, in words ("each pair scaled to …").
+        factors: ground motion (pair) → its factor [-].
+    """
+    return {"standard": None, "method": method, "period_range": None, "period_range_basis": None, "target": None,
+            "suite_average_max_direction": None, "min_ratio": None, "conformant": None,
+            "factors": {str(k): float(v) for k, v in factors.items()},
+            "note": (f"Records {how}; {NOT_16_2}. No target spectrum is known: conformity with ASCE 7-22 "
+                     "§16.2.3 is not judged.")}
 
 
 def _asce7_22_block(resolved, result, gravity: float) -> dict:

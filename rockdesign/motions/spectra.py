@@ -144,26 +144,32 @@ def peak_displacement(accel, dt, omega, zeta, include_tail):
 
 @njit(cache=True)
 def peak_absolute_acceleration(accel, dt, omega, zeta, include_tail):
-    """max |ü + ü_g| = max |ω²u + 2ζωu̇| [m/s²] of the oscillator (at rest at t = 0) over the samples and, if
-    ``include_tail``, the free decay after the record — its absolute acceleration, not the pseudo-acceleration
+    """max |ü + ü_g| = max |ω²u + 2ζωu̇| [m/s²] of the oscillator (at rest at t = 0) over the samples —
+    sub-stepped to Δt/m ≤ T/10 where T < 10 Δt (:data:`STEPS_PER_PERIOD`, as the elastic spectra) — and, if
+    ``include_tail``, the free decay after the record: its absolute acceleration, not the pseudo-acceleration
     ω²|u| (the fixed-base reference of SPEC §13; exact Nigam–Jennings recurrence of :func:`nigam_jennings_step`).
 
     In free vibration a = ω²u + 2ζωu̇ obeys the oscillator's own equation, so the tail's peak is
     :func:`free_vibration_peak` of (a, ȧ) with ȧ = ω²u̇ + 2ζωü, ü = −ω²u − 2ζωu̇ (ground at rest).
     """
-    k = nigam_jennings_coefficients(omega, zeta, dt)
+    m = max(1, int(math.ceil(STEPS_PER_PERIOD * dt * omega / (2.0 * math.pi) - 1e-9)))
+    k = nigam_jennings_coefficients(omega, zeta, dt / m)
     w2 = omega * omega
     c = 2.0 * zeta * omega
     u = 0.0
     v = 0.0
     peak = 0.0
     for i in range(accel.shape[0] - 1):
-        u_next = k[0] * u + k[1] * v + k[4] * accel[i] + k[5] * accel[i + 1]
-        v = k[2] * u + k[3] * v + k[6] * accel[i] + k[7] * accel[i + 1]
-        u = u_next
-        a = abs(w2 * u + c * v)
-        if a > peak:
-            peak = a
+        slope = (accel[i + 1] - accel[i]) / m
+        for r in range(m):
+            a0 = accel[i] + slope * r
+            a1 = accel[i + 1] if r == m - 1 else accel[i] + slope * (r + 1)
+            u_next = k[0] * u + k[1] * v + k[4] * a0 + k[5] * a1
+            v = k[2] * u + k[3] * v + k[6] * a0 + k[7] * a1
+            u = u_next
+            a = abs(w2 * u + c * v)
+            if a > peak:
+                peak = a
     if include_tail:
         a0 = w2 * u + c * v
         tail = free_vibration_peak(a0, w2 * v + c * (-w2 * u - c * v), omega, zeta)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 import statistics
 
-from .checks.check import run_check, suite_records
+from .checks.check import characteristic_periods, run_check, suite_records
 from .checks.runner import analysis_failed
 from ..acceptance.scans import SCAN_BLOCK, SCAN_RATIO, scan_grid
 from .design.quantities import design_quantities
@@ -22,7 +22,8 @@ SKIPPED = ("margin scans and demand skipped where the design-level suite already
 
 def records_key(project) -> str:
     """Which variants can share the scaled records: same excitation, same g — and for ``uplift`` scaling
-    the same uplift acceleration."""
+    the same uplift acceleration, for ``asce7-22`` scaling without ``periods`` the same characteristic
+    periods (the §16.2.1 period range follows the structure)."""
     exc = project.excitation_raw or {}
     scale = exc.get("scale") if isinstance(exc.get("scale"), dict) else {}
     key = [json.dumps(exc, sort_keys=True, default=str), repr(project.system.g),
@@ -30,6 +31,9 @@ def records_key(project) -> str:
     if scale.get("method") == "uplift":
         q = design_quantities(project.system, project.analysis.rigid_superstructure_ratio)
         key.append(repr(q["uplift_acceleration"].value))
+    if scale.get("method") == "asce7-22" and "periods" not in scale:
+        q = design_quantities(project.system, project.analysis.rigid_superstructure_ratio)
+        key.append(repr(sorted(characteristic_periods(project.system, q).items())))
     return "\n".join(key)
 
 

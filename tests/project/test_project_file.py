@@ -91,7 +91,8 @@ def test_podium_with_superstructure(tmp_path):
     assert proj.sha256 and len(proj.sha256) == 64
 
 
-@pytest.mark.parametrize("example", ["podium_flat", "podium_curved", "bridge_pier", "shake_table_F02"])
+@pytest.mark.parametrize("example", ["podium_flat", "podium_curved", "podium_asce7_22", "bridge_pier",
+                                     "shake_table_F02"])
 def test_examples_load_and_print_quantities(example):
     result = runner.invoke(app, ["quantities", f"examples/{example}.toml", "--json"])
     assert result.exit_code == 0, result.output

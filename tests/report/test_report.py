@@ -192,9 +192,46 @@ def test_podium_design_quantities_formula_substituted_result(podium_out):
 def test_podium_records_section(podium_out):
     text = podium_out.flat_text
     assert "PEER NGA" in text and "FEMA P695" in text
-    assert podium_out.data["excitation"]["scaling"].split("(")[0].strip() in text
+    assert podium_out.data["excitation"]["intensity_analysed"].split("(")[0].strip() in text
     for r in podium_out.data["records"][:5]:
         assert str(r["rsn"]) in podium_out.tokens
+
+
+def test_page_one_states_the_ground_motion_scaling_in_one_line(podium_out):
+    """Page 1 says how the suite was scaled and that PGA scaling is not ASCE 7-22 §16.2 (one line of the
+    verdict box, from results.json ``excitation.scaling``)."""
+    from rockdesign.motions.scaling_report import scaling_sentence
+    block = podium_out.data["excitation"]["scaling"]
+    assert block["standard"] is None and block["method"] == "pga" and block["conformant"] is None
+    assert "not ASCE 7-22 §16.2 scaling" in block["note"]
+    sentence = scaling_sentence(block, podium_out.data["settings"]["g"])
+    assert sentence.startswith("Records scaled to PGA 0.2 g") and "not ASCE 7-22 §16.2 scaling" in sentence
+    from rockdesign.report.render import symbols
+    assert symbols(sentence) in podium_out.html.split("Basis of design")[0]
+    pypdf = pytest.importorskip("pypdf")
+    page_one = " ".join(pypdf.PdfReader(str(podium_out.out / "report.pdf")).pages[0].extract_text().split())
+    assert "Records scaled to PGA 0.2 g" in page_one and "not ASCE 7-22 §16.2 scaling" in page_one
+
+
+def test_demand_section_against_the_fixed_base_at_the_damping_given(podium_out):
+    """The fixed base is the building at ζ_s = 2 % (not ζ_s/S_r); records with a force ratio above 1 are
+    named in results.json and in the report, with the damping-correction sentence (Eq 4.27)."""
+    sd = podium_out.data["summary"]["superstructure"]
+    assert sd["fixed_base_damping"] == pytest.approx(0.02)
+    assert sd["model_damping_before_uplift"] == pytest.approx(0.02 / podium_out.data["quantities"]["S_r"]["value"])
+    above = sd["force_ratio_above_one"]
+    rows = {r["id"]: r for r in podium_out.data["records"]}
+    listed = [rid for rid, r in rows.items() if r["superstructure"] and not r["overturned"]
+              and r["superstructure"]["force_ratio"] > 1.0]
+    assert above["records"] == listed and above["n_records"] == len(listed)
+    assert above["ground_motions"] == list(dict.fromkeys(rows[i]["ground_motion"] for i in listed))
+    html = podium_out.html
+    assert "What the rocking storey buys.</b>" in html and "(ζ<sub>s</sub> = 2 %)" in html
+    assert "damping correction, Eq 4.27" in html
+    buys = html.split("What the rocking storey buys.</b>")[1].split("</p>")[0]
+    for gm in above["ground_motions"]:
+        assert gm in buys
+    assert "design_spectrum_acceleration" not in sd        # PGA scaling: no target spectrum is known
 
 
 def test_podium_solver_and_versions(podium_out):

@@ -25,7 +25,9 @@ from ...execution.compilation import compilation_pending, finish_compilation
 from ..dynamics.simulate import simulate
 from ...kernel_cache import sources_digest
 from ...errors import ProjectError
+from ...motions.asce7_22 import rocking_structure_periods, scaling_period_range
 from ...motions.config import default_excitation, resolve_motions
+from ...motions.scaling_report import scaling_block, suite_target
 from ...motions.measures import plausibility_warnings
 from ...motions.spectra import motion_spectrum, period_grid, sd_max
 from ..project import Project
@@ -168,6 +170,7 @@ class CheckResult:
     governing_check: str | None = None     # criterion key of the governing check (criteria.decide)
     demand_history: tuple | None = None    # (record id, 2DOF Response) of the largest superstructure demand
     acceptance: dict | None = None         # checks/acceptance.py: the rule, its numbers and the per-ground-motion table
+    scaling: dict | None = None            # excitation.scaling (CONTRACT §7.1, motions/scaling_report.py)
 
     def as_json(self) -> dict:
         p = self.project
@@ -187,7 +190,7 @@ class CheckResult:
                       "max_difference_theta_over_theta_c": self.selection.max_difference,
                       "verdict_changes": self.selection.verdict_changes,
                       "equivalent_block": self.settings.get("equivalent_block")},
-            "excitation": {"suites": self.suites, "scaling": self.scale_description,
+            "excitation": {"suites": self.suites, "scaling": self.scaling,
                            "default_used": self.default_excitation_used,
                            "missing": [{"id": i, "reason": r, "suite": su} for i, r, su in self.missing],
                            **self.intensity,
@@ -234,10 +237,24 @@ def check_records(project: Project, records_dir: str | None = None):
     return _records(project, q, records_dir)[1]
 
 
+def characteristic_periods(system, q) -> dict[str, float]:
+    """The periods [s] of a planar rocking structure that bound the ASCE 7-22 §16.2.1 period range
+    (:func:`rockdesign.motions.asce7_22.rocking_structure_periods`; docs/records.md): the elastic
+    superstructure's fixed-base T_s and uplifted T_s/S_r (Eq 4.25), and the rocking period at the design
+    rotation θ = α/2, T_R = (4/p̂) acosh(1/(1 − θ/α)) = (4/p̂) acosh 2 (Eq 2.8) with the system's frequency
+    parameter p̂ (Eq 4.32 for a podium; p, Eq 3.13, for a column)."""
+    p_hat = q["p_hat"].value if "p_hat" in q else q["p"].value
+    s = system.superstructure
+    elastic = s is not None and not s.rigid and "S_r" in q
+    t_s = 2.0 * math.pi / s.omega_s if elastic else None
+    return rocking_structure_periods(fixed_base=t_s, uplifted=t_s / q["S_r"].value if elastic else None,
+                                     rocking=4.0 / p_hat * math.acosh(2.0))
+
+
 def _records(project: Project, q, records_dir):
     spec = _excitation(project)
     resolved = resolve_motions(spec, gravity=project.system.g, uplift_acceleration=q["uplift_acceleration"].value,
-                               records_dir=records_dir)
+                               records_dir=records_dir, characteristic_periods=characteristic_periods(project.system, q))
     if not resolved.records:
         raise ProjectError("no record of the excitation could be found", file=project.path, key="excitation",
                            expected="at least one available record",
@@ -332,9 +349,13 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
         ens = run_ensembles(system, chosen, motions, runs, size=a.ensemble_size, seed=a.seed,
                             progress=stage(f"perturbation ensembles ({a.ensemble_size} runs per record)",
                                            a.ensemble_size * n), **run_kw)
+    target = suite_target(resolved)
     demand, caps, demand_summary, demand_runs = superstructure_demand(
-        system, chosen, motions, runs, run_kw, q["uplift_acceleration"].value,
-        stage=stage) if not decided_fail else ([None] * n, [None] * n, None, None)
+        system, chosen, motions, runs, run_kw, q["uplift_acceleration"].value, stage=stage,
+        names=[(r.id, ground_motion_id(r.id, r.meta)) for r in resolved.records],
+        target=target) if not decided_fail else ([None] * n, [None] * n, None, None)
+    scaling = scaling_block(resolved, period_range=scaling_period_range(characteristic_periods(system, q)),
+                            gravity=system.g)
     outcomes = []
     for i, (rec, (sd, t_sd), run) in enumerate(zip(resolved.records, sds, runs)):
         ratio = rule.utilisation(sd)
@@ -396,7 +417,7 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     return CheckResult(project, q, rule, selection, outcomes, resolved.missing, resolved.scale_description,
                        resolved.default_used or spec.default_used, resolved.suites, stats, checks, verdict, histories,
                        sensitivity, settings, decision.reason, decision.robust, intensity, fragility, margin_fema,
-                       ens_json, decision.governing, demand_history, acceptance)
+                       ens_json, decision.governing, demand_history, acceptance, scaling)
 
 
 def suite_records(project: Project, records_dir: str | None = None):

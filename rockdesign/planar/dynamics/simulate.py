@@ -14,7 +14,7 @@ from .layout import (D_EVENTS, D_EVENTS_STORED, D_NFEV, D_REFINE, D_REJECTED, D_
                      O_T_END, STATUS_NAMES, S_DRIFT_MAX, S_IMPACTS, S_THETA_MAX, S_T_END, S_T_THETA_MAX, S_T_UPLIFT,
                      S_UB_MAX, S_UPLIFT_TIME, S_FS_MAX, S_T_FS_MAX, S_CAP_ACC_MAX, S_CAP_DV_MAX)
 from .model import REST_VELOCITY, ModelChoice, resolve_structure, system_parameters
-from .eom import P_OMEGA, P_THETA_C, P_TWO_DOF, P_ZETA
+from .eom import P_OMEGA, P_THETA_C, P_TWO_DOF
 from .overturning import classify
 from .response import Event, Response, SolverStats
 from ..design.quantities import RIGID_SUPERSTRUCTURE_RATIO
@@ -236,9 +236,9 @@ def _demand(system, motion, sp, summary, y) -> dict:
         fixed = None
         if motion.is_record or (motion.kind != EXC_NONE and motion.params.size >= 2):
             accel, dt = motion_samples(motion)
-            # the damping the model gives the superstructure before uplift (Eq 4.3; ζ_s/S_r with the damping
-            # correction): a record that never uplifts the storey has a force ratio of exactly 1
-            fixed = fixed_base_acceleration(accel, dt, 2.0 * math.pi / sp[P_OMEGA], sp[P_ZETA])
+            # the building as the user gave it: ζ_s, not the model's pre-uplift ζ_s/S_r under the damping
+            # correction (Eq 4.27, a device of the 2DOF model; SPEC §13)
+            fixed = fixed_base_acceleration(accel, dt, 2.0 * math.pi / sp[P_OMEGA], system.superstructure.damping)
         return {"a_T_abs": a_t, "superstructure_acceleration_max": float(summary[S_FS_MAX]),
                 "t_superstructure_acceleration_max": float(summary[S_T_FS_MAX]), "fixed_base_acceleration_max": fixed}
     if system.kind == "podium":
