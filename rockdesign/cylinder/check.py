@@ -260,9 +260,8 @@ class CylinderCheckResult:
                 "quantities": quantities,
                 "model": {"chosen": "cylinder-" + ("damped" if cyl.damped else "undamped"),
                           "reason": "[cylinder] project: the 3D rocking and wobbling model of thesis Ch. 5"},
-                "excitation": {"suites": list(e.suites), "scaling": scaling_block(e, self.records, cyl.g),
-                               "default_used": e.default_used,
-                               "missing": [], "record_warnings": []},
+                "excitation": {"suites": list(e.suites), "scaling": e.scaling_block(self.records, cyl.g),
+                               "default_used": e.default_used, "missing": [], "record_warnings": []},
                 "records": [o.as_json() for o in self.records], "summary": self.summary,
                 "sensitivity": dict(SENSITIVITY),
                 "checks": self.checks, "verdict": self.verdict, "verdict_reason": self.verdict_reason,
@@ -270,15 +269,6 @@ class CylinderCheckResult:
                 "failed_records": [{"id": o.id, "status": o.run.engine_status} for o in self.failed_records],
                 "fragility": None, "collapse_margin": None, "ensemble": self.ensemble,
                 "acceptance": self.acceptance}
-
-
-def scaling_block(e, records, g: float) -> dict:
-    """``excitation.scaling`` of results.json (CONTRACT §7.1): how the pairs were scaled, one factor per pair,
-    not ASCE 7-22 §16.2 scaling (:func:`rockdesign.motions.scaling_report.pair_suite_block`)."""
-    from ..motions.scaling_report import pair_suite_block
-    how = (f"each pair scaled to a peak resultant ground acceleration of {e.target / g:.3g} g (thesis Table 5.4)"
-           if e.method == "resultant_pga" else f"every pair multiplied by {e.target:g}")
-    return pair_suite_block(e.method, how, {o.ground_motion: o.scale for o in records})
 
 
 SENSITIVITY = {"variation": None, "runs": {}, "verdict_flips": 0,

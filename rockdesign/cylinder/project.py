@@ -77,6 +77,15 @@ class CylinderExcitation:
         """``summary.scaling`` of results.json."""
         return {"method": self.method, "target" if self.method == "resultant_pga" else "value": self.target}
 
+    def scaling_block(self, records, g: float) -> dict:
+        """``excitation.scaling`` of results.json (CONTRACT §7.1) for the check's ``records`` (each with
+        ``ground_motion`` and ``scale``): one factor per pair, not ASCE 7-22 §16.2 scaling, no target to judge
+        it against (:func:`rockdesign.motions.scaling_report.pair_suite_block`); ``g`` [m/s²] for the words."""
+        from ..motions.scaling_report import pair_suite_block
+        how = (f"each pair scaled to a peak resultant ground acceleration of {self.target / g:.3g} g (thesis "
+               "Table 5.4)" if self.method == "resultant_pga" else f"every pair multiplied by {self.target:g}")
+        return pair_suite_block(self.method, how, {o.ground_motion: o.scale for o in records})
+
 
 def parse_cylinder_excitation(raw: dict | None, *, file: str, g: float, tan_alpha: float) -> CylinderExcitation:
     """The typed ``[excitation]`` of a cylinder project (every command validates it at load).

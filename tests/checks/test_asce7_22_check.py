@@ -19,7 +19,7 @@ runner = CliRunner()
 def test_example_check_reports_a_conformant_suite():
     """The example's check carries the §16.2.3 block: conformant, lowest ratio ≥ 0.90 over the range derived
     from the structure (0.2 × T_s/S_r to 2 × T_R(α/2), Eq 4.25 and Eq 2.8), one factor per ground motion; the
-    superstructure summary shows the MCE_R target at T_s = 0.38 s (S_MS = 0.40 g on the plateau)."""
+    superstructure summary shows the MCE_R target at T_s = 0.38 s (S_MS = 0.30 g on the plateau)."""
     import rockdesign as rd
     from rockdesign.planar.checks.check import run_check
     project = rd.load_project(EXAMPLE)
@@ -44,14 +44,14 @@ def test_example_check_reports_a_conformant_suite():
     sd = data["summary"]["superstructure"]
     if sd is not None and sd.get("n_records"):
         g = data["settings"]["g"]
-        assert sd["design_spectrum_acceleration"] == pytest.approx(0.40 * g, rel=1e-12)
-        assert sd["design_spectrum_shear_coefficient"] == pytest.approx(0.40, rel=1e-12)
+        assert sd["design_spectrum_acceleration"] == pytest.approx(0.30 * g, rel=1e-12)
+        assert sd["design_spectrum_shear_coefficient"] == pytest.approx(0.30, rel=1e-12)
         assert sd["fixed_base_damping"] == pytest.approx(0.02)
 
 
 def _project(tmp_path, scale: str, extra_file: tuple[str, str] | None = None):
     text = EXAMPLE.read_text(encoding="utf-8").replace(
-        'scale = { method = "asce7-22", SMS = "0.40 g", SM1 = "0.16 g", TL = "8 s" }', f"scale = {scale}")
+        'scale = { method = "asce7-22", SMS = "0.30 g", SM1 = "0.12 g", TL = "8 s" }', f"scale = {scale}")
     if extra_file:
         (tmp_path / extra_file[0]).write_text(extra_file[1], encoding="utf-8")
     path = tmp_path / "p.toml"
