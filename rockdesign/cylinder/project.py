@@ -82,8 +82,8 @@ class CylinderExcitation:
         ``ground_motion`` and ``scale``): one factor per pair, not ASCE 7-22 §16.2 scaling, no target to judge
         it against (:func:`rockdesign.motions.scaling_report.pair_suite_block`); ``g`` [m/s²] for the words."""
         from ..motions.scaling_report import pair_suite_block
-        how = (f"each pair scaled to a peak resultant ground acceleration of {self.target / g:.3g} g (thesis "
-               "Table 5.4)" if self.method == "resultant_pga" else f"every pair multiplied by {self.target:g}")
+        how = (f"scaled pair by pair to a peak resultant ground acceleration of {self.target / g:.3g} g (thesis "
+               "Table 5.4)" if self.method == "resultant_pga" else f"multiplied by {self.target:g}")
         return pair_suite_block(self.method, how, {o.ground_motion: o.scale for o in records})
 
 
