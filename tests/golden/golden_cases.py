@@ -17,7 +17,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 DATA = Path(__file__).resolve().parent / "data"
 
-CHECKS = ("podium_flat", "podium_curved", "bridge_pier", "shake_table_F02", "cylinder")
+CHECKS = ("podium_flat", "podium_curved", "podium_asce7_22", "bridge_pier", "shake_table_F02", "cylinder")
 
 SIMULATIONS = {
     "podium_flat_ricker": ("podium_flat", "ricker-anti:ap=3m/s^2,Tp=0.8s", None),
