@@ -204,7 +204,8 @@ def test_page_one_states_the_ground_motion_scaling_in_one_line(podium_out):
     block = podium_out.data["excitation"]["scaling"]
     assert block["standard"] is None and block["method"] == "pga" and block["conformant"] is None
     assert "not ASCE 7-22 §16.2 scaling" in block["note"]
-    sentence = scaling_sentence(block, podium_out.data["settings"]["g"])
+    sentence = podium_out.data["excitation"]["scaling_sentence"]
+    assert sentence == scaling_sentence(block, podium_out.data["settings"]["g"])
     assert sentence.startswith("Records scaled to PGA 0.2 g") and "not ASCE 7-22 §16.2 scaling" in sentence
     from rockdesign.report.render import symbols
     assert symbols(sentence) in podium_out.html.split("Basis of design")[0]

@@ -27,7 +27,7 @@ from ...kernel_cache import sources_digest
 from ...errors import ProjectError
 from ...motions.asce7_22 import rocking_structure_periods, scaling_period_range
 from ...motions.config import default_excitation, resolve_motions
-from ...motions.scaling_report import scaling_block, suite_target
+from ...motions.scaling_report import scaling_block, scaling_sentence, suite_target
 from ...motions.measures import plausibility_warnings
 from ...motions.spectra import motion_spectrum, period_grid, sd_max
 from ..project import Project
@@ -413,7 +413,7 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
         acc = engine_accuracy(a.rtol, a.atol)
         settings["engine_accuracy"] = {k: v for k, v in acc.items() if k != "seconds"}
     intensity = {"design_pga": spec.design_pga, "intensity_analysed": resolved.scale_description,
-                 "record_warnings": record_warnings}
+                 "scaling_sentence": scaling_sentence(scaling, system.g), "record_warnings": record_warnings}
     return CheckResult(project, q, rule, selection, outcomes, resolved.missing, resolved.scale_description,
                        resolved.default_used or spec.default_used, resolved.suites, stats, checks, verdict, histories,
                        sensitivity, settings, decision.reason, decision.robust, intensity, fragility, margin_fema,

@@ -13,7 +13,6 @@ from pathlib import Path
 from ... import __version__
 from ...report.context import (as_given, given_value, inputs_as_given, pretty_exponents, report_date,  # noqa: F401
                                software_versions)
-from ...motions.scaling_report import scaling_sentence
 from ...report.formatting import fmt
 from .methods import PLANAR_METHODS
 
@@ -279,8 +278,7 @@ def build_context(result, *, figures: dict | None = None, verification: dict | N
         "model_rows": _model_rows(data["model"]),
         "verdict_link": _verdict_link(data, checks),
         "quality_note": _quality_note(project, data),
-        "scaling_sentence": scaling_sentence(excitation["scaling"], data["settings"]["g"])
-        if excitation.get("scaling") else None,
+        "scaling_sentence": excitation.get("scaling_sentence"),
         "demand_buys": _demand_buys(data),
         "methods": PLANAR_METHODS,
         "theta_c_is_alpha": abs(data["quantities"]["theta_c"]["value"] - data["quantities"]["alpha"]["value"])
