@@ -126,7 +126,8 @@ def test_design_report_and_files(grid, tmp_path):
                for c in data["cells"])
     write_design_json(data, tmp_path / "design.json")
     rows = write_design_csv(data, tmp_path / "design.csv").read_text(encoding="utf-8").splitlines()
-    assert len(rows) == 1 + len(data["cells"]) and rows[0].startswith("podium.width [m],verdict,")
+    assert len(rows) == 1 + len(data["cells"])
+    assert rows[0].startswith("podium.width [m],analysed,verdict,robust,draws_n,draws_failed,")
     written = write_design_report(grid, data, tmp_path, pdf=False)
     html = written["html"].read_text(encoding="utf-8")
     assert "Recommended design" in html and "podium.width = 0.65 m" in html
