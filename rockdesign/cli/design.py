@@ -182,8 +182,9 @@ def _display(console, total: int, say: _Say):
     lines (elsewhere); a watchdog thread says why a long stage is long."""
     import rockdesign as rd
     from rich.markup import escape
-    from rich.progress import BarColumn
-    from ..design_space.grid import verdict_words, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+    from ..design_space.grid import verdict_words
     live = console.is_terminal or bool(getattr(console, "is_jupyter", False))
     bar = Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
                    console=console) if live else None

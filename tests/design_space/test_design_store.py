@@ -51,6 +51,8 @@ def fake(monkeypatch):
     monkeypatch.setattr(Planar, "grid_check", grid_check)
     monkeypatch.setattr(Planar, "grid_cell", grid_cell)
     monkeypatch.setattr(Planar, "grid_batches", lambda self: None)
+    monkeypatch.setattr(Planar, "grid_draws", lambda self, result, *, records, executor:
+                        {"n": 1, "failed": 0, "size": 1, "first_failure": None})
     monkeypatch.setattr(compilation, "prepare", lambda *a, **k: 0.0)
     return calls
 
