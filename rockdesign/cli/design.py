@@ -184,7 +184,7 @@ def _display(console, total: int, say: _Say):
     from rich.markup import escape
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
-    from ..design_space.grid import verdict_words
+    from ..display import verdict_words
     live = console.is_terminal or bool(getattr(console, "is_jupyter", False))
     bar = Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
                    console=console) if live else None
@@ -213,7 +213,7 @@ def _display(console, total: int, say: _Say):
 
 
 def _summary(data: dict, target: Path, console, escape) -> None:
-    from ..design_space.grid import verdict_words
+    from ..display import verdict_words
     counts = {}
     for c in data["cells"]:
         words = verdict_words(c).split(":")[0].replace(" (not robust", " (not robust)")

@@ -36,6 +36,7 @@ from dataclasses import dataclass, field
 from ..errors import ProjectError, RockdesignError
 from ..kinds import kind_of
 from .store import VariantStore, content_digest, tool_digest, variant_digest
+from ..display import verdict_words
 from .variants import Variable, Variant, variant_toml
 
 
@@ -114,22 +115,6 @@ def robustness(draws: dict | None, near: str | None = None) -> dict:
                               f"{size} planned; {draws['first_failure']})"}
     return {"robust": True, "draws": {"n": n, "failed": 0},
             "robustness": f"robust: passes in all {n} perturbation draws (amplitude ± 0.1 %, c_r ± 2 %, rtol ÷ 10)"}
-
-
-def verdict_words(cell: dict) -> str:
-    """The cell's words: "PASS (robust)", "PASS (not robust: fails in k of n draws)", "FAIL", …, or
-    "not analysed" (no verdict word)."""
-    if not cell.get("analysed", True):
-        return "not analysed"
-    if cell.get("verdict") == "PASS" and cell.get("robust") is not None:
-        if cell["robust"]:
-            return "PASS (robust)"
-        d = cell.get("draws") or {}
-        if d.get("failed"):
-            return f"PASS (not robust: fails in {d['failed']} of {d['n']} draws)"
-        return "PASS (not robust: margin at its requirement)" if d.get("n") == 0 and cell.get("acmr") else \
-            "PASS (not robust)"
-    return cell.get("verdict") or "not analysed"
 
 
 EMPTY = dict.fromkeys(("governing", "acmr", "acmr_required", "p_collapse_design", "target_p_collapse", "n_unacceptable",

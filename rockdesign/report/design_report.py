@@ -77,7 +77,7 @@ def write_design_report(result, data: dict, out_dir: Path, *, pdf: bool = True, 
         written[k] = path
     epoch = os.environ.get("SOURCE_DATE_EPOCH")
     date = (_dt.datetime.fromtimestamp(int(epoch), _dt.timezone.utc) if epoch else _dt.datetime.now(_dt.timezone.utc))
-    from ..design_space.grid import verdict_words
+    from ..display import verdict_words
     rows = [{**c, "short_reason": cell_reason(c), "words": verdict_words(c)} for c in data["cells"]]
     check = None
     if recommended_check is not None:

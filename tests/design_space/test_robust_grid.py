@@ -7,7 +7,8 @@ import itertools
 
 import pytest
 
-from rockdesign.design_space.grid import recommended, robustness, verdict_words, margin_undecided
+from rockdesign.design_space.grid import margin_undecided, recommended, robustness
+from rockdesign.display import verdict_words
 from rockdesign.design_space.refine import agreed, corners, levels, level_strides
 from rockdesign.design_space.store import shape_problem
 
