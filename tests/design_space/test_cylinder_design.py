@@ -78,6 +78,10 @@ def test_each_cell_verdict_equals_the_check_of_its_project_file(grid):
         assert full["verdict"] == cell["verdict"]
         assert full["acceptance"]["n_unacceptable"] == cell["n_unacceptable"]
         assert full["acceptance"]["binomial_bound"] == cell["p_overturn_bound"]
+        if cell["verdict"] == "PASS":   # the draws are the check's ensemble runs: the same robustness
+            assert cell["robust"] == full["verdict_robust"] and cell["draws"]["n"] >= 1, cell["robustness"]
+        else:
+            assert cell["robust"] is None
         # the same design-level analyses: the median θ_max/θ_ot of the pairs, to the last digit
         ratios = [r["theta_max_over_theta_ot"] for r in full["records"]]
         assert cell["median_theta_max_over_theta_c"] == pytest.approx(sorted(ratios)[0] / 2 + sorted(ratios)[1] / 2,
