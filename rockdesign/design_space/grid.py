@@ -8,20 +8,27 @@ Shared work:
   shared by the variants of one ``[excitation]``) and handed to the check's ``records`` hook;
 - the kernels compile (or load from the cache) once, in this one process;
 - the analyses of all variants run together: each variant's check runs in a thread of its own and its
-  batches (a chunk of a suite, a round of a margin scan) wait for the other running variants' to run as
-  one call of the numerical driver (:mod:`rockdesign.execution.batch_pool`, the kind's ``grid_batches``) — as many times more jobs per call
-  as there are variants running (:func:`at_once`), so the cores stay busy to the end of each call (on a
-  dask cluster the variants run one after the other, each on the whole cluster);
+  batches (a chunk of a suite, a round of a margin scan, a perturbation draw) wait for the other running
+  variants' to run as one call of the numerical driver (:mod:`rockdesign.execution.batch_pool`, the kind's
+  ``grid_batches``) — as many times more jobs per call as there are variants running (:func:`at_once`), so
+  the cores stay busy to the end of each call; on a dask cluster each shared call is submitted to the
+  cluster in chunks, all at once (the variants run there concurrently);
 - each variant runs the check's own stages through its kind's grid hooks (:mod:`rockdesign.kinds`:
-  ``grid_records``, ``grid_check``, ``grid_cell``; planar: :func:`rockdesign.planar.checks.check.run_check`,
-  cylinder: :func:`rockdesign.cylinder.check.run_cylinder_check`, both with ``verdict_only``):
-  model selection, the design-level suite, the margin scans and the demand — so a cell's verdict is the
-  check's verdict of that variant;
+  ``grid_records``, ``grid_check``, ``grid_cell``, ``grid_draws``; planar:
+  :func:`rockdesign.planar.checks.check.run_check`, cylinder: :func:`rockdesign.cylinder.check.run_cylinder_check`,
+  both with ``verdict_only``): model selection, the design-level suite, the margin scans and the demand — so
+  a cell's verdict is the check's verdict of that variant;
 - a variant stops once its verdict is decided: when the design-level suite already fails the acceptance
   rule (or an analysis failed) the margin scans and the demand re-runs are skipped — the margins can
-  only add failing criteria; the c_r sensitivity, ensembles, report histories, the engine-accuracy
-  appendix and a cylinder's planar runs per component (which never change the verdict's word) are
-  skipped everywhere.
+  only add failing criteria; report histories, the engine-accuracy appendix and a cylinder's planar runs
+  per component are skipped everywhere;
+- robustness (SPEC §15, CONTRACT §7.4): a variant that passes runs its check's perturbation draws
+  (``grid_draws``: c_r ± 2 % and the ensemble's suite runs, the check's seed), stopping at the first draw
+  that fails — ``robust`` true when every draw passes, false otherwise or when the ACMR is within the
+  scans' resolution of its requirement (:func:`margin_undecided`), null unless PASS;
+- coarse to fine (:mod:`.refine`): a coarse sub-grid first, then the cells where neighbours disagree; a cell
+  between agreeing neighbours is left unanalysed (``"analysed": false``, no verdict word) unless
+  ``every_cell``.
 
 Every finished variant is stored in ``<out>/variants/<digest>.json`` (:mod:`.store`: the digest of the
 variant's project text, the content of its scaled records, the tool version and the kernel sources): a run
