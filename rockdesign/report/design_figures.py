@@ -72,7 +72,7 @@ def verdict_figure(data: dict):
     rec = data.get("recommended")
     with plt.rc_context(STYLE):
         if len(vars_) == 1:
-            fig, ax = plt.subplots(figsize=(6.6, 1.9))
+            fig, ax = plt.subplots(figsize=(6.6, 2.2))
             xs = np.arange(len(vars_[0]["values"]))
             for c in data["cells"]:
                 i = c["index"][0]
@@ -114,8 +114,8 @@ def verdict_figure(data: dict):
             ax.set_xlabel(_axis_label(vars_[0]))
             ax.set_ylabel(_axis_label(vars_[1]))
         ax.set_title("verdict per variant (★ recommended; the text gives the governing reason)", fontsize=8)
-        _legend(ax, data["cells"])
         fig.tight_layout()
+        _legend(fig, data["cells"])
         return fig
 
 
@@ -157,13 +157,16 @@ def _cell_patch(x, y, cell: dict):
     return Rectangle((x + 0.03, y + 0.03), 0.94, 0.94, **kw)
 
 
-def _legend(ax, cells) -> None:
+def _legend(fig, cells) -> None:
+    """The regions drawn, as a legend in a strip below the axes."""
     from matplotlib.patches import Patch
     shown = {_region(c) for c in cells}
     handles = [Patch(label=name, **{"edgecolor": "white", **style}) for name, style in REGIONS if name in shown]
     if handles:
-        ax.legend(handles=handles, fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.22 if len(handles) else 0),
-                  ncol=min(4, len(handles)), frameon=False)
+        strip = 0.3 / fig.get_figheight()          # 0.3 inch below the axes' labels
+        fig.subplots_adjust(bottom=fig.subplotpars.bottom + strip)
+        fig.legend(handles=handles, fontsize=6, loc="lower center", bbox_to_anchor=(0.5, 0.0),
+                   ncol=min(4, len(handles)), frameon=False)
 
 
 def _rect(x, y, color):
