@@ -1,19 +1,22 @@
-"""Benchmark: ``rockdesign design`` over a 3 × 3 grid against the nine separate ``rockdesign check --no-pdf``
-runs of the same variants, in the same run (the machine is shared: only the ratio is compared).
+"""Benchmark: ``rockdesign design`` against the separate ``rockdesign check --no-pdf`` runs of its valid
+variants, in the same run (the machine is shared: only the ratio is compared).  The grid runs as a user runs
+it: coarse to fine, with the perturbation draws of every passing variant (robust cells).
 
-The project is a 20-column podium with a rigid superstructure under 11 far-field ground motions
-(p695-ff/1a … 11a at 0.4 g, the ASCE 7-22 minimum), varied in column width (0.5, 0.65, 0.8 m) and height
-(2, 2.5, 3 m).  Each variant is written out as its own project file and checked by a separate process,
-as an engineer would; the grid is one ``design --no-pdf`` process.  A 1 × 3 grid (the widths at the
-first height) against the three matching checks shows how the saving grows with the grid.  Every
-cell's verdict is compared with its check's verdict (the benchmark fails if one differs).
+Rows (``--grid``):
 
-In one process, the 3 × 3 grid with its variants checked together (their batches merged into shared
-calls of the batch driver, the default) against the same grid checked one variant after the other,
-alternating, ``--rounds`` times each: the ratio of the medians, and the cells compared (they must be
-equal).
+- ``3x3``: a 20-column podium with a rigid superstructure under 11 far-field ground motions (p695-ff/1a …
+  11a at 0.4 g, the ASCE 7-22 minimum), varied in column width (0.5, 0.65, 0.8 m) and height (2, 2.5, 3 m);
+- ``10x10``: examples/podium_curved.toml (22 ground motions, elastic superstructure) over
+  podium.width = 0.30 … 0.60 m and podium.curvature = 0.1 … 0.6, ten values each (long: some 100 separate
+  checks of 10–15 s each on 2 cores).
 
-    .venv/bin/python benchmarks/bench_design.py [--out benchmarks/results/design.json]
+Each valid variant is written out as its own project file and checked by a separate process, as an engineer
+would; the grid is one ``design --no-pdf`` process.  Every analysed cell's verdict is compared with its check's
+verdict, and a robust cell's check must say robust (the benchmark fails otherwise).  With ``--rounds N`` the
+3 × 3 grid also runs in this process N times with its variants together (shared batches) and one after the
+other, alternating: the ratio of the medians and the cells compared (they must be equal).
+
+    .venv/bin/python benchmarks/bench_design.py [--grid 3x3|10x10|all] [--out benchmarks/results/design.json]
 """
 from __future__ import annotations
 
@@ -72,13 +75,78 @@ def run(args: list[str], cwd: Path) -> tuple[float, int, str]:
     return dt, proc.returncode, proc.stderr
 
 
+GRIDS = {"3x3": (None, [WIDTH, HEIGHT], 0.2),
+         "10x10": (ROOT / "examples" / "podium_curved.toml",
+                   ["podium.width=0.30m:0.60m:10", "podium.curvature=0.1:0.6:10"], 0.2)}
+"""name → (project file or None for :data:`PROJECT`, the variables, the goal for the wall-time ratio)."""
+
+
+def grid_row(name: str, tmp: Path) -> dict:
+    """One row: the grid against the separate checks of its valid variants (seconds, ratio, verdicts)."""
+    from rockdesign.design_space.variants import parse_vary, variant_toml, variants
+    source, vary, goal = GRIDS[name]
+    folder = tmp / name
+    folder.mkdir()
+    base = folder / "project.toml"
+    text = PROJECT if source is None else source.read_text(encoding="utf-8")
+    base.write_text(text, encoding="utf-8")
+    raw = tomllib.loads(text)
+    variables = [parse_vary(v, raw) for v in vary]
+    cells = variants(raw, variables, file=str(base))
+    checks = {}
+    for v in cells:
+        if v.project is None:
+            continue
+        path = folder / ("variant_" + "_".join(map(str, v.index)) + ".toml")
+        path.write_text(variant_toml(v.raw), encoding="utf-8")
+        out = folder / ("check_" + "_".join(map(str, v.index)))
+        dt, _, _ = run(["check", str(path), "--no-pdf", "-o", str(out)], folder)
+        res = json.loads((out / "results.json").read_text())
+        checks[tuple(v.index)] = {"seconds": dt, "verdict": res["verdict"], "robust": res.get("verdict_robust")}
+        print(f"{name} check {v.index}: {dt:.1f} s {res['verdict']}")
+    args = ["design", str(base), "--no-pdf", "-o", str(folder / "grid")]
+    for v in vary:
+        args += ["--vary", v]
+    dt, _, _ = run(args, folder)
+    grid = json.loads((folder / "grid" / "design.json").read_text())
+    analysed = [c for c in grid["cells"] if c.get("analysed", True) and tuple(c["index"]) in checks]
+    mismatches = [c["index"] for c in analysed if c["verdict"] != checks[tuple(c["index"])]["verdict"]]
+    not_robust = [c["index"] for c in analysed if c.get("robust") and not checks[tuple(c["index"])]["robust"]]
+    total = sum(c["seconds"] for c in checks.values())
+    rec = grid["recommended"]
+    row = {"variables": vary, "seconds": dt, "separate_checks_seconds": total, "ratio": dt / total,
+           "goal_ratio": goal, "goal_met": dt / total <= goal, "valid_variants": len(checks),
+           "cells_analysed": len(analysed), "analyses_run": grid["analyses_run"],
+           "analyses_saved_at_least": grid["analyses_saved"],
+           "regions": {k: sum(1 for c in grid["cells"] if _region(c) == k)
+                       for k in ("robust PASS", "fragile PASS", "FAIL", "not analysed", "other")},
+           "recommended": rec and {"labels": rec["labels"], "robust": rec["robust"],
+                                   "check_robust": checks.get(tuple(rec["index"]), {}).get("robust")},
+           "verdicts_equal": not mismatches, "mismatches": mismatches, "robust_cells_not_robust_in_check": not_robust,
+           "checks": [{"index": list(k), **v} for k, v in checks.items()]}
+    print(f"{name}: {dt:.1f} s vs {total:.1f} s → ratio {dt / total:.3f} (goal ≤ {goal}); "
+          f"{len(analysed)} cells analysed, verdicts equal: {not mismatches}")
+    return row
+
+
+def _region(cell: dict) -> str:
+    if not cell.get("analysed", True):
+        return "not analysed"
+    if cell["verdict"] == "PASS":
+        return "robust PASS" if cell.get("robust") else "fragile PASS"
+    return "FAIL" if cell["verdict"] == "FAIL" else "other"
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--out", default=str(ROOT / "benchmarks" / "results" / "design.json"))
-    ap.add_argument("--rounds", type=int, default=2, help="rounds of the in-process shared/one-by-one comparison")
+    ap.add_argument("--grid", choices=[*GRIDS, "all"], default="3x3", help="which rows to run")
+    ap.add_argument("--rounds", type=int, default=0, help="rounds of the in-process shared/one-by-one comparison")
     opts = ap.parse_args()
     from rockdesign.bench.timing import machine_info
     from rockdesign.design_space.variants import parse_vary, variant_document, variant_toml
+    names = list(GRIDS) if opts.grid == "all" else [opts.grid]
+    rows = {}
     with tempfile.TemporaryDirectory(prefix="bench_design_") as tmp:
         tmp = Path(tmp)
         base = tmp / "podium.toml"
@@ -88,48 +156,23 @@ def main() -> None:
         # warm the kernel cache once (not timed: both sides load the same compiled kernels)
         run(["check", str(_variant(tmp, raw, variables, (0, 0), variant_document, variant_toml)), "--no-pdf",
              "-o", str(tmp / "warm")], tmp)
-        checks = {}
-        for index in itertools.product(range(3), range(3)):
-            path = _variant(tmp, raw, variables, index, variant_document, variant_toml)
-            dt, code, _ = run(["check", str(path), "--no-pdf", "-o", str(tmp / f"check_{index[0]}{index[1]}")], tmp)
-            verdict = json.loads((tmp / f"check_{index[0]}{index[1]}" / "results.json").read_text())["verdict"]
-            checks[index] = {"seconds": dt, "verdict": verdict}
-            print(f"check {index}: {dt:.1f} s {verdict}")
-        dt9, code9, _ = run(["design", str(base), "--vary", WIDTH, "--vary", HEIGHT, "--no-pdf", "-o",
-                             str(tmp / "grid3x3")], tmp)
-        grid = json.loads((tmp / "grid3x3" / "design.json").read_text())
-        print(f"design 3 × 3: {dt9:.1f} s")
-        dt3, code3, _ = run(["design", str(base), "--vary", WIDTH, "--no-pdf", "-o", str(tmp / "grid1x3")], tmp)
-        row = json.loads((tmp / "grid1x3" / "design.json").read_text())
-        print(f"design 1 × 3: {dt3:.1f} s")
-        together = shared_vs_one_by_one(base, tmp, opts.rounds)
-    mismatches = [c["index"] for c in grid["cells"] if c["verdict"] != checks[tuple(c["index"])]["verdict"]]
-    mismatches += [c["index"] for c in row["cells"] if c["verdict"] != checks[(c["index"][0], 0)]["verdict"]]
-    sum9 = sum(c["seconds"] for c in checks.values())
-    sum3 = sum(checks[(i, 0)]["seconds"] for i in range(3))
+        for name in names:
+            rows[name] = grid_row(name, tmp)
+        together = shared_vs_one_by_one(base, tmp, opts.rounds) if opts.rounds else None
+    out = Path(opts.out)
+    previous = json.loads(out.read_text()) if out.exists() else {}
     result = {
         "benchmark": "design", "date": datetime.now(timezone.utc).isoformat(timespec="seconds"),
         "machine": machine_info(),
-        "project": "20-column podium, rigid superstructure, 11 ground motions (p695-ff/1a…11a at 0.4 g)",
-        "variables": [WIDTH, HEIGHT],
-        "checks": [{"index": list(k), **v} for k, v in checks.items()],
-        "grid_3x3": {"seconds": dt9, "separate_checks_seconds": sum9, "ratio": dt9 / sum9,
-                     "analyses_run": grid["analyses_run"], "analyses_saved_at_least": grid["analyses_saved"],
-                     "verdicts": {"PASS": sum(c["verdict"] == "PASS" for c in grid["cells"]),
-                                  "FAIL": sum(c["verdict"] == "FAIL" for c in grid["cells"])}},
-        "grid_1x3": {"seconds": dt3, "separate_checks_seconds": sum3, "ratio": dt3 / sum3,
-                     "analyses_run": row["analyses_run"], "analyses_saved_at_least": row["analyses_saved"]},
-        "grid_3x3_shared_vs_one_by_one": together,
-        "verdicts_equal": not mismatches, "mismatches": mismatches,
-        "goal_ratio_3x3_at_most_0.6": dt9 / sum9 <= 0.6,
+        "grids": {**(previous.get("grids") or {}), **rows},
+        "grid_3x3_shared_vs_one_by_one": together or previous.get("grid_3x3_shared_vs_one_by_one"),
     }
-    Path(opts.out).parent.mkdir(parents=True, exist_ok=True)
-    Path(opts.out).write_text(json.dumps(result, indent=1) + "\n", encoding="utf-8")
-    print(f"3 × 3: {dt9:.1f} s vs {sum9:.1f} s → ratio {dt9 / sum9:.2f}; 1 × 3: {dt3:.1f} s vs {sum3:.1f} s → "
-          f"ratio {dt3 / sum3:.2f}; verdicts equal: {not mismatches}")
-    if mismatches:
-        raise SystemExit(f"verdicts differ from the checks at {mismatches}")
-    if not together["cells_equal"]:
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text(json.dumps(result, indent=1) + "\n", encoding="utf-8")
+    bad = [n for n, r in rows.items() if r["mismatches"] or r["robust_cells_not_robust_in_check"]]
+    if bad:
+        raise SystemExit(f"cells differ from their checks in {bad}")
+    if together is not None and not together["cells_equal"]:
         raise SystemExit("the grid's cells differ between shared batches and one variant after the other")
 
 
@@ -146,7 +189,7 @@ def shared_vs_one_by_one(base: Path, tmp: Path, rounds: int) -> dict:
     shared = None
     for k in range(rounds):
         for how in ("together", "one_by_one"):
-            Planar.grid_batches = shared_batches if how == "together" else (lambda self: None)
+            Planar.grid_batches = shared_batches if how == "together" else (lambda self, executor=None: None)
             t0 = time.perf_counter()
             res = design(base, [WIDTH, HEIGHT])
             times[how].append(time.perf_counter() - t0)

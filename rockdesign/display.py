@@ -236,3 +236,18 @@ def _suite_line(data: dict, s: dict, exc: dict, console: Console) -> None:
                   + (f", false negatives (class b): {s['n_false_negative']}" if "n_false_negative" in s else "")
                   + f", {prob}", highlight=False)
 
+
+def verdict_words(cell: dict) -> str:
+    """A design-grid cell's words (design.json ``cells``): "PASS (robust)", "PASS (not robust: fails in k of n draws)", "FAIL", …, or
+    "not analysed" (no verdict word)."""
+    if not cell.get("analysed", True):
+        return "not analysed"
+    if cell.get("verdict") == "PASS" and cell.get("robust") is not None:
+        if cell["robust"]:
+            return "PASS (robust)"
+        d = cell.get("draws") or {}
+        if d.get("failed"):
+            return f"PASS (not robust: fails in {d['failed']} of {d['n']} draws)"
+        return "PASS (not robust: margin at its requirement)" if d.get("n") == 0 and cell.get("acmr") else \
+            "PASS (not robust)"
+    return cell.get("verdict") or "not analysed"

@@ -20,7 +20,7 @@ import typer
 from ..console import make_console
 
 OPTIONS = {"vary": "--vary", "out_dir": "-o/--out", "records_dir": "--records-dir", "executor": "--dask",
-           "dask": "--dask", "project": "PROJECT"}
+           "dask": "--dask", "project": "PROJECT", "prefer": "--prefer"}
 """The library's parameter names → this command's options (in error messages)."""
 
 SLOW = 30.0
@@ -43,12 +43,22 @@ def register(app: typer.Typer, handle_errors) -> None:
                                            "check of the recommended design): design.json/csv only."),
                records_dir: Optional[Path] = typer.Option(None, "--records-dir", help="Folder of PEER AT2 files."),
                dask: Optional[str] = typer.Option(None, "--dask", help="Run the analyses on dask.distributed: "
-                                                  "'local:N' or a scheduler address (tcp://host:8786).")):
+                                                  "'local:N' or a scheduler address (tcp://host:8786); the "
+                                                  "variants run on the cluster together."),
+               every_cell: bool = typer.Option(False, "--every-cell", metavar=" ", help="Analyse every cell "
+                                               "(default: a coarse grid first, then the cells where the answer "
+                                               "changes; cells between agreeing neighbours are left unanalysed "
+                                               "and shown as such)."),
+               prefer: Optional[str] = typer.Option(None, "--prefer", metavar="material|shear", help="What the "
+                                                    "recommendation minimises among robust passing variants "
+                                                    "(default: the superstructure's shear coefficient where "
+                                                    "there is one, else the material).")):
         """Design chart: the check of every variant of one or two keys, the pass/fail region, contours of ACMR and of the superstructure's shear coefficient (a cylinder: of its overturning record pairs), and the recommended design (exit 0 = at least one variant passes, 1 = none does, 2 = input error, 3 = internal error, 130 = interrupted)."""  # noqa: E501  (one paragraph: the help rewraps it)
         # the heavy modules (numpy, numba, pint, scipy) are imported here, not at module level: the CLI
         # mounts this command at every start-up (tests/cli/test_startup.py)
         with option_names():
-            code = _design(project, vary, out, as_json=as_json, no_pdf=no_pdf, records_dir=records_dir, dask=dask)
+            code = _design(project, vary, out, as_json=as_json, no_pdf=no_pdf, records_dir=records_dir, dask=dask,
+                           every_cell=every_cell, prefer=prefer)
         raise typer.Exit(code)
 
 
@@ -65,14 +75,16 @@ def option_names():
         raise
 
 
-def _design(project: Path, vary, out, *, as_json: bool, no_pdf: bool, records_dir, dask) -> int:
+def _design(project: Path, vary, out, *, as_json: bool, no_pdf: bool, records_dir, dask, every_cell: bool = False,
+            prefer: str | None = None) -> int:
     import rockdesign as rd
     from rich.markup import escape
     err = make_console(stderr=True)
     proj = rd.load_project(project)
     folder = rd.design_folder(out if out is not None else Path(f"{project.stem}_design"), key="out_dir")
     executor = rd.make_executor(dask) if dask is not None else None     # an unreachable scheduler stops here
-    plan = rd.plan_design(proj, vary, records_dir=records_dir, executor=executor)
+    plan = rd.plan_design(proj, vary, records_dir=records_dir, executor=executor, every_cell=every_cell,
+                          prefer=prefer)
     say = _Say(err)
     with folder.locked():                       # a busy folder stops here, before the kernels compile
         rd.prepare_design(plan, say=err.print)
@@ -88,6 +100,8 @@ def _design(project: Path, vary, out, *, as_json: bool, no_pdf: bool, records_di
             full = result.recommended_check
             if full is not None and full.verdict != "PASS":   # the grid's cell and the full check must agree
                 say.warning(f"the full check of the recommended design gives {full.verdict}: {full.verdict_reason}")
+            elif full is not None and result.recommended.get("robust") and not getattr(full, "verdict_robust", True):
+                say.warning(f"the full check of the recommended design is not robust: {full.verdict_reason}")
             what = "design.json, design.csv" + ("" if no_pdf else " and the report (charts, HTML, PDF)")
             with rd.working(f"writing {what}"):
                 rd.write_design(result, folder, pdf=not no_pdf, html=not no_pdf)
@@ -169,6 +183,8 @@ def _display(console, total: int, say: _Say):
     import rockdesign as rd
     from rich.markup import escape
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+    from ..display import verdict_words
     live = console.is_terminal or bool(getattr(console, "is_jupyter", False))
     bar = Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
                    console=console) if live else None
@@ -181,7 +197,7 @@ def _display(console, total: int, say: _Say):
             stages.touch()
             labels = ", ".join(f"{k} = {v}" for k, v in cell["labels"].items())
             how = " (stored)" if cell.get("resumed") else ""
-            text = escape(f"[{done}/{total_}] {labels}: {cell['verdict']}{how}")
+            text = escape(f"[{done}/{total_}] {labels}: {verdict_words(cell)}{how}")
             (bar.console if bar is not None else console).print(text, highlight=False, soft_wrap=True)
             if bar is not None:
                 bar.update(variants_task, completed=done, total=total_)
@@ -197,15 +213,24 @@ def _display(console, total: int, say: _Say):
 
 
 def _summary(data: dict, target: Path, console, escape) -> None:
+    from ..display import verdict_words
     counts = {}
     for c in data["cells"]:
-        counts[c["verdict"]] = counts.get(c["verdict"], 0) + 1
+        words = verdict_words(c).split(":")[0].replace(" (not robust", " (not robust)")
+        counts[words] = counts.get(words, 0) + 1
     console.print(f"{len(data['cells'])} variants: " + ", ".join(f"{n} {v}" for v, n in sorted(counts.items())),
                   highlight=False)
     rec = data["recommended"]
     if rec:
+        if rec.get("no_robust_pass"):
+            console.print(escape(rec["no_robust_pass"]), highlight=False, soft_wrap=True)
         console.print(escape("recommended: " + ", ".join(f"{k} = {v}" for k, v in rec["labels"].items())
+                             + (" (robust PASS)" if rec.get("robust") else " (PASS, not robust)")
                              + f" — {rec['reason']}"), highlight=False, soft_wrap=True)
+        full = rec.get("check")
+        if full:
+            console.print(escape(f"full check of the recommended design: {full['verdict']}, "
+                                 + ("robust" if full.get("robust") else "not robust")), highlight=False)
     else:
         console.print("no variant passes", highlight=False)
     console.print(f"analyses run: {data['analyses_run']}; saved by shared work and early stopping: at least "

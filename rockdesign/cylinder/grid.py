@@ -15,8 +15,9 @@ RULE = ("the project's acceptance rule over the record pairs, each pair one grou
 """What decides a cylinder cell's verdict (the design report's words)."""
 
 SKIPPED = ("incremental scans skipped where the design-level runs already fail the acceptance rule; the planar "
-           "runs along each component (information), the perturbation ensembles and the report histories "
-           "skipped everywhere (they never change the verdict's word)")
+           "runs along each component (information), and the report histories skipped "
+           "everywhere; the perturbation ensembles run only for a variant that passes, and stop at the first "
+           "draw that fails")
 """What the grid skips for a cylinder variant (design.json ``settings.early_stopping``)."""
 
 
@@ -99,3 +100,6 @@ def _incremental_count(result) -> int | None:
     if any(o.margin is None for o in result.records):
         return None
     return sum(1 for r in rows if r.get("first_overturn_scale") is not None and r["first_overturn_scale"] <= 1.0)
+
+
+from .grid_draws import grid_draws  # noqa: E402,F401  (the perturbation draws of a passing variant)

@@ -8,20 +8,27 @@ Shared work:
   shared by the variants of one ``[excitation]``) and handed to the check's ``records`` hook;
 - the kernels compile (or load from the cache) once, in this one process;
 - the analyses of all variants run together: each variant's check runs in a thread of its own and its
-  batches (a chunk of a suite, a round of a margin scan) wait for the other running variants' to run as
-  one call of the numerical driver (:mod:`rockdesign.execution.batch_pool`, the kind's ``grid_batches``) — as many times more jobs per call
-  as there are variants running (:func:`at_once`), so the cores stay busy to the end of each call (on a
-  dask cluster the variants run one after the other, each on the whole cluster);
+  batches (a chunk of a suite, a round of a margin scan, a perturbation draw) wait for the other running
+  variants' to run as one call of the numerical driver (:mod:`rockdesign.execution.batch_pool`, the kind's
+  ``grid_batches``) — as many times more jobs per call as there are variants running (:func:`at_once`), so
+  the cores stay busy to the end of each call; on a dask cluster each shared call is submitted to the
+  cluster in chunks, all at once (the variants run there concurrently);
 - each variant runs the check's own stages through its kind's grid hooks (:mod:`rockdesign.kinds`:
-  ``grid_records``, ``grid_check``, ``grid_cell``; planar: :func:`rockdesign.planar.checks.check.run_check`,
-  cylinder: :func:`rockdesign.cylinder.check.run_cylinder_check`, both with ``verdict_only``):
-  model selection, the design-level suite, the margin scans and the demand — so a cell's verdict is the
-  check's verdict of that variant;
+  ``grid_records``, ``grid_check``, ``grid_cell``, ``grid_draws``; planar:
+  :func:`rockdesign.planar.checks.check.run_check`, cylinder: :func:`rockdesign.cylinder.check.run_cylinder_check`,
+  both with ``verdict_only``): model selection, the design-level suite, the margin scans and the demand — so
+  a cell's verdict is the check's verdict of that variant;
 - a variant stops once its verdict is decided: when the design-level suite already fails the acceptance
   rule (or an analysis failed) the margin scans and the demand re-runs are skipped — the margins can
-  only add failing criteria; the c_r sensitivity, ensembles, report histories, the engine-accuracy
-  appendix and a cylinder's planar runs per component (which never change the verdict's word) are
-  skipped everywhere.
+  only add failing criteria; report histories, the engine-accuracy appendix and a cylinder's planar runs
+  per component are skipped everywhere;
+- robustness (SPEC §15, CONTRACT §7.4): a variant that passes runs its check's perturbation draws
+  (``grid_draws``: c_r ± 2 % and the ensemble's suite runs, the check's seed), stopping at the first draw
+  that fails — ``robust`` true when every draw passes, false otherwise or when the ACMR is within the
+  scans' resolution of its requirement (:func:`margin_undecided`), null unless PASS;
+- coarse to fine (:mod:`.refine`): a coarse sub-grid first, then the cells where neighbours disagree; a cell
+  between agreeing neighbours is left unanalysed (``"analysed": false``, no verdict word) unless
+  ``every_cell``.
 
 Every finished variant is stored in ``<out>/variants/<digest>.json`` (:mod:`.store`: the digest of the
 variant's project text, the content of its scaled records, the tool version and the kernel sources): a run
@@ -36,6 +43,7 @@ from dataclasses import dataclass, field
 from ..errors import ProjectError, RockdesignError
 from ..kinds import kind_of
 from .store import VariantStore, content_digest, tool_digest, variant_digest
+from ..display import verdict_words
 from .variants import Variable, Variant, variant_toml
 
 
@@ -79,6 +87,43 @@ def _base_cell(variant: Variant, variables) -> dict:
             "notes": list(variant.notes)}
 
 
+def not_passing() -> dict:
+    """The robustness keys of a cell that does not pass (CONTRACT §7.4: ``robust`` is null unless PASS)."""
+    return {"analysed": True, "robust": None, "draws": {"n": 0, "failed": 0}, "robustness": None}
+
+
+def margin_undecided(cell: dict, precision: float) -> str | None:
+    """Why a passing cell's collapse margin cannot be told from its requirement, or None.  The ACMR comes from
+    scans that bisect each record's first overturning intensity to ``precision`` (``[analysis]
+    margin_precision``); an ACMR above its requirement by less than that resolution (plus the draws'
+    ± 0.1 % amplitude) is not a robust PASS — the rule the grid states instead of scanning every draw."""
+    acmr, need = cell.get("acmr"), cell.get("acmr_required")
+    if acmr is None or not need:
+        return None
+    from ..acceptance.perturbations import AMPLITUDE_VARIATION
+    if acmr < need * (1.0 + precision + AMPLITUDE_VARIATION):
+        return (f"ACMR {acmr:.4g} within the scans' resolution ({100 * precision:g} % + {100 * AMPLITUDE_VARIATION:g} %"
+                f") of the {need:.4g} required")
+    return None
+
+
+def robustness(draws: dict | None, near: str | None = None) -> dict:
+    """The robustness keys of a passing cell from its perturbation draws (``grid_draws``), or from a margin
+    too close to its requirement (``near``; no draws run)."""
+    if near is not None:
+        return {"robust": False, "draws": {"n": 0, "failed": 0}, "robustness": f"not robust: {near}"}
+    n, failed, size = draws["n"], draws["failed"], draws.get("size", draws["n"])
+    if size == 0:
+        return {"robust": False, "draws": {"n": 0, "failed": 0},
+                "robustness": "not robust: no perturbation draws ([analysis] ensemble_size = 0 and no c_r draws)"}
+    if failed:
+        return {"robust": False, "draws": {"n": n, "failed": failed},
+                "robustness": f"not robust: fails in {failed} of {n} draws (stopped at the first that fails, "
+                              f"{size} planned; {draws['first_failure']})"}
+    return {"robust": True, "draws": {"n": n, "failed": 0},
+            "robustness": f"robust: passes in all {n} perturbation draws (amplitude ± 0.1 %, c_r ± 2 %, rtol ÷ 10)"}
+
+
 EMPTY = dict.fromkeys(("governing", "acmr", "acmr_required", "p_collapse_design", "target_p_collapse", "n_unacceptable",
                        "allowed_unacceptable", "n_ground_motions", "superstructure_shear_p84",
                        "superstructure_drift_p84", "median_theta_max_over_theta_c", "uplift_acceleration",
@@ -115,17 +160,21 @@ def read_records(variant_list: list[Variant], records_dir=None, cache: dict | No
 
 
 def run_grid(variant_list: list[Variant], variables, *, records_dir=None, executor=None, store=None,
-             progress=None, stage_progress=None, warn=None, records: dict | None = None) -> GridRun:
-    """Check every variant (see module docstring); ``progress(done, total, cell)`` as each variant ends,
-    ``stage_progress(stage, done, total)`` inside one (the check's stages; not while variants run together);
-    ``store``: the folder (or :class:`~.store.VariantStore`) of the per-variant results that makes the run
-    resumable (None: nothing stored); ``warn(text)``: a stored variant that cannot be used (it is analysed
-    again); ``records``: :func:`read_records` of these variants when already read.
+             progress=None, stage_progress=None, warn=None, records: dict | None = None,
+             every_cell: bool = False) -> GridRun:
+    """Check every variant (see module docstring); ``progress(done, total, cell)`` as each variant ends (or
+    is left unanalysed), ``stage_progress(stage, done, total)`` inside one (the check's stages; not while
+    variants run together); ``store``: the folder (or :class:`~.store.VariantStore`) of the per-variant results
+    that makes the run resumable (None: nothing stored); ``warn(text)``: a stored variant that cannot be used
+    (it is analysed again); ``records``: :func:`read_records` of these variants when already read;
+    ``every_cell``: analyse every cell (default: coarse to fine, :mod:`.refine` — cells between agreeing
+    corners are left unanalysed, ``"analysed": false``).
 
     Variants whose analyses can share batches (:meth:`~rockdesign.kinds.base.StructureKind.grid_batches`)
     are checked together, each in a thread of its own with a pool member as its check's executor, their
-    batches merged into shared calls of the kind's driver (:mod:`rockdesign.execution.batch_pool`); on a dask
-    cluster (``executor``) one after the other."""
+    batches merged into shared calls of the kind's driver (:mod:`rockdesign.execution.batch_pool`) — on a dask
+    cluster (``executor``) too, each shared call submitted to the cluster at once."""
+    from .refine import agreed, levels
     run = GridRun(list(variables), [])
 
     def warned(text: str) -> None:
@@ -141,12 +190,12 @@ def run_grid(variant_list: list[Variant], variables, *, records_dir=None, execut
     tool = tool_digest() if store is not None else ""
     total = len(variant_list)
     cells: list[dict | None] = [None] * total
-    tasks = []                  # (position, variant, kind, records, digest) of the variants to check
+    tasks = {}                  # position → (position, variant, kind, records, (store, digest)) of variants to check
     for pos, variant in enumerate(variant_list):
         if variant.project is None:
             cells[pos] = {**_base_cell(variant, variables), **EMPTY, "verdict": "INVALID", "reason": variant.invalid,
                           "decided_at_design_level": False, "n_failed_analyses": 0, "analyses": 0,
-                          "analyses_saved": 0}
+                          "analyses_saved": 0, **not_passing()}
             continue
         kind = kind_of(variant.project)
         recs, recs_digest = records[records_key(variant)]
@@ -158,7 +207,7 @@ def run_grid(variant_list: list[Variant], variables, *, records_dir=None, execut
                 cells[pos] = {**_base_cell(variant, variables), **stored, "resumed": True}
                 run.resumed += 1
                 continue
-        tasks.append((pos, variant, kind, recs, (store, digest)))
+        tasks[pos] = (pos, variant, kind, recs, (store, digest))
 
     done = [0]
 
@@ -171,27 +220,56 @@ def run_grid(variant_list: list[Variant], variables, *, records_dir=None, execut
         if progress is not None:
             progress(done[0], total, cell)
 
-    for pos in range(total):        # invalid and stored variants first
-        if cells[pos] is not None:
-            report(pos)
-
     def check(task, stages, runs_on=executor) -> None:
         pos, variant, kind, recs, path = task
         cells[pos] = _check_variant(variant, variables, kind, recs, path, records_dir=records_dir,
                                     executor=runs_on, progress=stages)
 
-    batches = tasks[0][2].grid_batches() if tasks and executor is None else None
-    together = [t for t in tasks if t[2] is tasks[0][2]] if batches is not None else []
-    if len(together) > 1:
-        pool = _check_together(together, lambda task, member: check(task, None, member), report, at_once(),
-                               batches)
-        run.shared_batches = {"variants": len(together), "batches": pool.requests,
-                              "driver_calls": getattr(batches, "calls", pool.rounds),
-                              "analyses": getattr(batches, "jobs", None)}
-    for task in tasks:
-        if cells[task[0]] is None:
-            check(task, stage_progress)
-            report(task[0])
+    shape = tuple(len(v.values) for v in variables)
+    position = {tuple(v.index): k for k, v in enumerate(variant_list)}
+    full = bool(shape) and len(position) == total == math.prod(shape)
+    order = ([[position[i] for i in lvl] for lvl in levels(shape, every_cell)] if full
+             else [list(range(total))])       # a list of variants that is not a whole grid: every one
+    known: dict = {}
+    reported: set = set()
+    shared = {"variants": 0, "batches": 0, "driver_calls": 0, "analyses": 0}
+    batches = None
+    for level, positions in enumerate(order):
+        todo = []
+        for pos in positions:
+            index = tuple(variant_list[pos].index)
+            between = agreed(index, shape, level, known) if cells[pos] is None and full else None
+            if between is not None:
+                cells[pos] = {**_base_cell(variant_list[pos], variables), **EMPTY, "verdict": None,
+                              "reason": f"not analysed: the analysed variants around it are all {between}",
+                              "decided_at_design_level": False, "n_failed_analyses": 0, "analyses": 0,
+                              "analyses_saved": 0, "analysed": False, "between": between, "robust": None,
+                              "draws": {"n": 0, "failed": 0}, "robustness": None, "resumed": False}
+            elif cells[pos] is None:
+                todo.append(tasks[pos])
+        for pos in positions:
+            if cells[pos] is not None and pos not in reported:
+                reported.add(pos)
+                report(pos)
+        if todo and batches is None:
+            batches = todo[0][2].grid_batches(executor) if executor is not None else todo[0][2].grid_batches()
+        together = [t for t in todo if t[2] is todo[0][2]] if batches is not None else []
+        if len(together) > 1:
+            pool = _check_together(together, lambda task, member: check(task, None, member), report, at_once(),
+                                   batches)
+            reported.update(t[0] for t in together)
+            shared["variants"] += len(together)
+            shared["batches"] += pool.requests
+            shared["driver_calls"] = getattr(batches, "calls", shared["driver_calls"] + pool.rounds)
+            shared["analyses"] = getattr(batches, "jobs", None)
+        for task in todo:
+            if cells[task[0]] is None:
+                check(task, stage_progress)
+                reported.add(task[0])
+                report(task[0])
+        for pos in positions:
+            known[tuple(variant_list[pos].index)] = cells[pos]
+    run.shared_batches = shared if shared["variants"] else None
     run.cells = cells
     return run
 
@@ -211,9 +289,19 @@ def _check_variant(variant, variables, kind, records, path, *, records_dir, exec
         cell = {**_base_cell(variant, variables), **EMPTY, "reason": str(exc),
                 "verdict": "INVALID" if isinstance(exc, ProjectError) else "ERROR",
                 "decided_at_design_level": False, "n_failed_analyses": 0,
-                "analyses": analyses(), "analyses_saved": 0}
+                "analyses": analyses(), "analyses_saved": 0, **not_passing()}
     else:
-        cell = _cell(kind, variant, variables, result, analyses())
+        nominal = analyses()
+        cell = _cell(kind, variant, variables, result, nominal)
+        cell.update(not_passing())
+        if cell["verdict"] == "PASS":
+            precision = getattr(variant.project.analysis, "margin_precision", 0.0)
+            near = margin_undecided(cell, precision)
+            draws = None if near else kind.grid_draws(result, records=records, executor=executor)
+            cell.update(robustness(draws, near))
+            extra = analyses() - nominal
+            cell["analyses"] = analyses()
+            cell["analyses_saved"] = max(0, cell["analyses_saved"] - extra)
     store, digest = path
     if store is not None:
         store.save(digest, cell)
@@ -270,21 +358,59 @@ def _check_together(tasks, check, report, threads: int, batches):
     return pool
 
 
-def recommended(cells: list[dict], material: tuple[str, str] = ("column material", "no elastic superstructure demand")
-                ) -> dict | None:
-    """The recommended design (SPEC §15): among passing cells the lowest 84th-percentile superstructure
-    shear coefficient (equal to 3 significant digits: the least column material n·m_C), with its margin;
-    None when no cell passes.  Without an elastic superstructure the least material decides (``material``:
-    what is least and why, the kind's :attr:`~rockdesign.kinds.base.StructureKind.design_material`)."""
-    passing = [c for c in cells if c["verdict"] == "PASS"]
+PREFER = ("material", "shear")
+"""What the recommendation minimises among robust passing variants (``--prefer``)."""
+
+
+def _rank(prefer: str | None):
+    def shear(c):
+        x = c.get("superstructure_shear_p84")
+        return float(f"{x:.3g}") if x is not None else math.inf
+
+    def mass(c):
+        x = c.get("column_material")
+        return x if x is not None else math.inf
+    if prefer == "material":
+        return lambda c: (mass(c), shear(c))
+    return lambda c: (shear(c), mass(c))
+
+
+def _labels(cell: dict) -> str:
+    return ", ".join(f"{k} = {v}" for k, v in cell["labels"].items())
+
+
+def _neighbours(best: dict, cells: list[dict], rank, what: str) -> str:
+    """Why ``best`` was chosen over the cells next to it in the grid (one step along each axis)."""
+    here = tuple(best["index"])
+    parts = []
+    for c in cells:
+        idx = tuple(c["index"])
+        if sum(abs(a - b) for a, b in zip(idx, here)) != 1:
+            continue
+        changed = [k for k in best["labels"] if c["labels"][k] != best["labels"][k]]
+        name = ", ".join(f"{k} = {c['labels'][k]}" for k in changed)
+        words = verdict_words(c)
+        if c.get("analysed", True) and c.get("verdict") == "PASS" and c.get("robust"):
+            words += f", more {what}" if rank(c) > rank(best) else f", {what} not lower"
+        parts.append(f"{name}: {words}")
+    return "; ".join(parts)
+
+
+def recommended(cells: list[dict], material: tuple[str, str] = ("column material", "no elastic superstructure demand"),
+                prefer: str | None = None) -> dict | None:
+    """The recommended design (SPEC §15): a robust PASS whenever one exists — among the analysed passing cells
+    that pass all their perturbation draws, the lowest 84th-percentile superstructure shear coefficient (equal
+    to 3 significant digits: the least column material n·m_C), or with ``prefer = "material"`` (or without an
+    elastic superstructure) the least material (``material``: what is least and why, the kind's
+    :attr:`~rockdesign.kinds.base.StructureKind.design_material`); with its margin, its robustness and why it
+    was chosen over its neighbours.  Where no cell passes robustly, the best fragile PASS with
+    ``"robust": false`` and the fragile candidates named (``fragile_candidates``); None when no cell passes."""
+    passing = [c for c in cells if c.get("analysed", True) and c["verdict"] == "PASS"]
     if not passing:
         return None
-
-    def rank(c):
-        shear = c.get("superstructure_shear_p84")
-        return (float(f"{shear:.3g}") if shear is not None else math.inf, c.get("column_material") or math.inf)
-
-    best = min(passing, key=rank)
+    robust = [c for c in passing if c.get("robust")]
+    rank = _rank(prefer)
+    best = min(robust or passing, key=rank)
     margin = []
     if best.get("acmr") is not None and best.get("acmr_required"):
         margin.append(f"ACMR {best['acmr']:.3g} ≥ {best['acmr_required']:.3g} required "
@@ -298,16 +424,32 @@ def recommended(cells: list[dict], material: tuple[str, str] = ("column material
     shear = best.get("superstructure_shear_p84")
     mass = best.get("column_material")
     what = material[0] + (f" {mass / 1000:.3g} t" if mass is not None and math.isfinite(mass) else "")
-    why = ("the passing variant with the lowest superstructure shear coefficient (84th percentile "
-           f"{shear:.3g})" if shear is not None else
-           f"the passing variant with the least {what} ({material[1]})")
-    return {"values": best["values"], "labels": best["labels"], "index": best["index"],
-            "reason": f"{why}; margin: " + "; ".join(margin) if margin else why}
+    kind_of_pass = "robust passing" if robust else "passing"
+    by_shear = prefer != "material" and shear is not None
+    why = (f"the {kind_of_pass} variant with the lowest superstructure shear coefficient (84th percentile "
+           f"{shear:.3g})" if by_shear else
+           f"the {kind_of_pass} variant with the least {what}"
+           + (f" ({material[1]})" if prefer != "material" else " (--prefer material)"))
+    reason = f"{why}; margin: " + "; ".join(margin) if margin else why
+    reason += "; " + (best.get("robustness") or "robustness not evaluated")
+    near = _neighbours(best, cells, rank, "shear" if by_shear else "material")
+    if near:
+        reason += f"; chosen over its neighbours ({near})"
+    out = {"values": best["values"], "labels": best["labels"], "index": best["index"], "reason": reason,
+           "robust": bool(best.get("robust")), "prefer": "shear" if by_shear else "material"}
+    if not robust:
+        fragile = sorted(passing, key=rank)
+        out["fragile_candidates"] = [{"labels": c["labels"], "index": c["index"],
+                                      "robustness": c.get("robustness")} for c in fragile]
+        out["no_robust_pass"] = ("no variant passes robustly: every passing variant fails in some perturbation "
+                                 "draw or has its margin at its requirement; fragile candidates: "
+                                 + "; ".join(_labels(c) for c in fragile[:5]) + (" …" if len(fragile) > 5 else ""))
+    return out
 
 
 def check_exit_code(cells: list[dict]) -> int:
     """0 when at least one variant passes, 1 when none does (CONTRACT §6.3)."""
-    return 0 if any(c["verdict"] == "PASS" for c in cells) else 1
+    return 0 if any(c.get("analysed", True) and c["verdict"] == "PASS" for c in cells) else 1
 
 
-__all__ = ["GridRun", "run_grid", "read_records", "recommended", "check_exit_code"]
+__all__ = ["GridRun", "run_grid", "read_records", "recommended", "check_exit_code", "verdict_words", "PREFER"]

@@ -30,7 +30,7 @@ from ..errors import ProjectError, RockdesignError
 from ..kinds import kind_of
 from ..outdir import DesignFolder
 from ..project_tables import Project
-from .grid import GridRun, check_exit_code, read_records, recommended, run_grid
+from .grid import PREFER, GridRun, check_exit_code, read_records, recommended, run_grid
 from .variants import Variable, Variant, parse_vary, refuse_overlaps, variants
 
 
@@ -45,6 +45,8 @@ class DesignPlan:
     records: dict
     records_dir: str | None = None
     executor: object | None = None
+    every_cell: bool = False
+    prefer: str | None = None
 
     @property
     def kind(self):
@@ -71,7 +73,8 @@ class DesignResult:
         data = design_json(self.project, self.grid, self.recommended, settings=self.settings)
         full = self.recommended_check
         if full is not None and data["recommended"] is not None:
-            data["recommended"]["check"] = {"verdict": full.verdict, "reason": full.verdict_reason}
+            data["recommended"]["check"] = {"verdict": full.verdict, "reason": full.verdict_reason,
+                                            "robust": getattr(full, "verdict_robust", None)}
         data["warnings"] = list(self.warnings)
         return data
 
@@ -108,7 +111,8 @@ def _vary_list(vary) -> list[str]:
     return specs
 
 
-def plan_design(project, vary, *, records_dir=None, executor=None) -> DesignPlan:
+def plan_design(project, vary, *, records_dir=None, executor=None, every_cell: bool = False,
+                prefer: str | None = None) -> DesignPlan:
     """Validate a design grid without analysing anything (see module docstring).
 
     Args:
@@ -116,11 +120,17 @@ def plan_design(project, vary, *, records_dir=None, executor=None) -> DesignPlan
         vary: one or two ``"TABLE.KEY=FROM:TO:N"`` (FROM and TO in the key's units).
         records_dir: folder of PEER AT2 files for suites that name them (planar structures).
         executor: an executor (:mod:`rockdesign.execution.executor`, e.g. a dask cluster; planar structures).
+        every_cell: analyse every cell (default: coarse to fine, cells between agreeing neighbours left out).
+        prefer: what the recommendation minimises among robust passing variants, ``"material"`` or
+            ``"shear"`` (default: the superstructure's shear where there is one, else the material).
 
     Raises:
-        RockdesignError: naming the parameter (``vary``, ``records_dir``, ``executor``) or the project file's key.
+        RockdesignError: naming the parameter (``vary``, ``records_dir``, ``executor``, ``prefer``) or the
+            project file's key.
     """
     project = _project(project)
+    if prefer is not None and prefer not in PREFER:
+        raise RockdesignError("unknown preference", key="prefer", expected=" or ".join(PREFER), found=repr(prefer))
     specs = _vary_list(vary)
     kind = kind_of(project)
     kind.check_options(project, records_dir=records_dir, executor=executor)
@@ -133,7 +143,8 @@ def plan_design(project, vary, *, records_dir=None, executor=None) -> DesignPlan
                            found="no [excitation] table")
     cells = variants(raw, variables, file=str(project.path))
     records = read_records(cells, str(records_dir) if records_dir else None)
-    return DesignPlan(project, variables, cells, records, str(records_dir) if records_dir else None, executor)
+    return DesignPlan(project, variables, cells, records, str(records_dir) if records_dir else None, executor,
+                      bool(every_cell), prefer)
 
 
 def prepare_design(plan: DesignPlan, say=None) -> float:
@@ -154,12 +165,25 @@ def run_design(plan: DesignPlan, *, store=None, progress=None, stage_progress=No
     """
     kind = plan.kind
     grid = run_grid(plan.variants, plan.variables, records_dir=plan.records_dir, executor=plan.executor,
-                    store=store, progress=progress, stage_progress=stage_progress, warn=warn, records=plan.records)
+                    store=store, progress=progress, stage_progress=stage_progress, warn=warn, records=plan.records,
+                    every_cell=plan.every_cell)
+    analysed = sum(1 for c in grid.cells if c.get("analysed", True))
     settings = {"early_stopping": kind.design_skipped, "verdict_rule": kind.design_rule,
                 "executor": "dask" if plan.executor is not None else "local",
-                "shared_batches": grid.shared_batches}
-    return DesignResult(plan.project, grid, recommended(grid.cells, kind.design_material), settings,
+                "shared_batches": grid.shared_batches,
+                "order": "every cell" if plan.every_cell else "coarse to fine",
+                "cells_analysed": analysed, "cells_not_analysed": len(grid.cells) - analysed,
+                "robustness": ROBUSTNESS, "prefer": plan.prefer}
+    return DesignResult(plan.project, grid, recommended(grid.cells, kind.design_material, plan.prefer), settings,
                         warnings=list(grid.warnings), plan=plan)
+
+
+ROBUSTNESS = ("a variant that passes at nominal values is run again under its check's perturbation draws (c_r − 2 % "
+              "and + 2 %, then the ensemble_size runs of the whole suite with the amplitude × (1 ± 0.1 %) per record, "
+              "c_r × (1 ± 2 %) and rtol ÷ 10; a cylinder: the ensemble runs), stopping at the first draw in which the "
+              "design-level acceptance rule fails: robust when every draw passes; an ACMR above its requirement by "
+              "less than the scans' resolution (margin_precision + 0.1 %) is not robust")
+"""How a cell's robustness is decided (design.json ``settings.robustness``)."""
 
 
 FULL_CHECK = ("full check of the recommended design: the stages the grid skipped (c_r sensitivity, perturbation "
@@ -215,7 +239,8 @@ def write_design(result: DesignResult, folder, *, pdf: bool = True, html: bool =
 
 
 def design(project, vary, *, out_dir=None, records_dir=None, executor=None, pdf: bool = True, html: bool = True,
-           full_check: bool | None = None, progress=None, stage_progress=None, warn=None, say=None) -> DesignResult:
+           full_check: bool | None = None, progress=None, stage_progress=None, warn=None, say=None,
+           every_cell: bool = False, prefer: str | None = None) -> DesignResult:
     """The design chart of a project: the check of every variant of one or two keys (SPEC §15, docs/design.md).
 
     Args:
@@ -232,6 +257,9 @@ def design(project, vary, *, out_dir=None, records_dir=None, executor=None, pdf:
         stage_progress: ``stage_progress(stage, done, total)`` inside a variant checked alone.
         warn: ``warn(text)``: a stored variant that cannot be used (it is analysed again).
         say: ``say(text)``: a long step starting (the full check, the report).
+        every_cell: analyse every cell (default: coarse to fine; a cell between agreeing neighbours is left
+            unanalysed, ``"analysed": false``, and shows no verdict).
+        prefer: ``"material"`` or ``"shear"``: what the recommendation minimises among robust passing variants.
 
     Returns:
         A :class:`DesignResult` (``verdicts``, ``recommended``, ``exit_code``, ``as_json()`` = design.json).
@@ -241,7 +269,8 @@ def design(project, vary, *, out_dir=None, records_dir=None, executor=None, pdf:
     """
     project = _project(project)
     folder = design_folder(out_dir) if out_dir is not None else None
-    plan = plan_design(project, vary, records_dir=records_dir, executor=executor)
+    plan = plan_design(project, vary, records_dir=records_dir, executor=executor, every_cell=every_cell,
+                       prefer=prefer)
     if full_check is None:
         full_check = out_dir is not None and (pdf or html)
     if folder is None:

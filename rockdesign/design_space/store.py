@@ -28,7 +28,7 @@ from pathlib import Path
 
 from .. import __version__
 
-FORMAT = 2
+FORMAT = 3
 """The layout of a stored variant (a file of another layout is analysed again)."""
 
 VERDICTS = ("PASS", "FAIL", "INVALID", "ERROR")
@@ -184,6 +184,14 @@ def shape_problem(data, digest: str) -> str | None:
             return f"{k} = {v!r}"
     if not isinstance(cell.get("analyses"), int) or not isinstance(cell.get("decided_at_design_level"), bool):
         return "missing counts"
+    robust, draws = cell.get("robust", "missing"), cell.get("draws")
+    if robust not in (True, False, None) or (robust is None) != (cell["verdict"] != "PASS"):
+        return f"robust = {robust!r} for {cell['verdict']}"
+    if not isinstance(draws, dict) or any(isinstance(draws.get(k), bool) or not isinstance(draws.get(k), int)
+                                          or draws[k] < 0 for k in ("n", "failed")):
+        return f"draws = {draws!r}"
+    if cell.get("analysed") is not True:
+        return "not an analysed variant"
     return None
 
 

@@ -186,10 +186,12 @@ class StructureKind(abc.ABC):
             raise unavailable("a design grid", self.name, "project")
         return self.grid
 
-    def grid_batches(self):
+    def grid_batches(self, executor=None):
         """``execute(requests) -> results`` when the design grid may check variants of this kind together, their
         batches merged into shared calls (:mod:`rockdesign.execution.batch_pool`; the grid passes each variant's
-        check a pool member as its executor), or None (variants one after the other)."""
+        check a pool member as its executor), or None (variants one after the other).  ``executor``: a started
+        executor (e.g. a dask cluster) the shared calls run on, all variants' work submitted at once; a kind
+        that cannot returns None for it."""
         return None
 
     def grid_records_key(self, project) -> str:
@@ -210,3 +212,9 @@ class StructureKind(abc.ABC):
         """The check's numbers of a design-grid cell (design.json ``cells``, SI): verdict, reason, governing,
         acceptance numbers, ``decided_at_design_level``, ``analyses`` (run) and ``analyses_saved``."""
         return self._grid().grid_cell(result, analyses)
+
+    def grid_draws(self, result, *, records, executor) -> dict:
+        """The perturbation draws of a variant that passes at nominal values (SPEC §15: amplitude ± 0.1 %,
+        c_r ± 2 %, rtol ÷ 10, as the check's robustness criteria run them), stopping at the first draw that
+        fails: ``{"n": draws run, "failed": 0 | 1, "size": draws planned, "first_failure": words | None}``."""
+        return self._grid().grid_draws(result, records=records, executor=executor)

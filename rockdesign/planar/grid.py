@@ -6,7 +6,9 @@ import json
 import statistics
 
 from .checks.check import characteristic_periods, run_check, suite_records
-from .checks.runner import analysis_failed
+from .checks.runner import analysis_failed, run_jobs
+from ..acceptance.perturbations import TOLERANCE_FACTOR, perturbations
+from ..acceptance.rule import acceptance_rule, count_rule
 from ..acceptance.scans import SCAN_BLOCK, SCAN_RATIO, scan_grid
 from .design.quantities import design_quantities
 
@@ -15,8 +17,8 @@ RULE = ("ASCE 7-22 §16.4.1.1 count of unacceptable ground motions and the FEMA 
 """What decides a planar cell's verdict (the design report's words)."""
 
 SKIPPED = ("margin scans and demand skipped where the design-level suite already fails the acceptance rule's "
-           "count; c_r sensitivity, ensembles and report histories skipped everywhere (they never change the "
-           "verdict's word)")
+           "count; report histories skipped everywhere; the perturbation draws (c_r ± 2 % and the ensembles) run "
+           "only for a variant that passes, and stop at the first draw that fails")
 """What the grid skips for a planar variant (design.json ``settings.early_stopping``)."""
 
 
@@ -101,3 +103,48 @@ def grid_cell(result, analyses: int) -> dict:
         "model": result.selection.chosen.label,
         "analyses": analyses, "analyses_saved": saved_by_stopping(result, decided),
     }
+
+
+def grid_draws(result, *, records, executor):
+    """The perturbation draws of a passing variant, as its check runs them (SPEC §15; the check's
+    restitution sensitivity and perturbation ensembles, same seed): c_r × (1 − variation) and
+    c_r × (1 + variation) at the check's tolerances, then ``ensemble_size`` runs of the whole suite with
+    the amplitude × (1 ± 0.1 %) per record, c_r × (1 ± 2 %) and the tolerances ÷ 10.  A draw fails when the
+    design-level acceptance rule (ASCE 7-22 §16.4.1.1 count or the binomial bound) fails in it; the draws
+    stop at the first that fails.  Returns ``{"n": draws run, "failed": 0 or 1, "size": draws planned,
+    "first_failure": its words or None}``."""
+    project = result.project
+    system, a = project.system, project.analysis
+    chosen = result.selection.chosen
+    outcomes = result.records
+    motions = [o.motion for o in outcomes]
+    n = len(motions)
+    rule = acceptance_rule(a)
+    ok = [not analysis_failed(o.run.status) for o in outcomes]
+    valid = [o for o, good in zip(outcomes, ok) if good]
+    run_kw = dict(rtol=a.rtol, atol=a.atol, free_vibration=a.free_vibration, criterion=a.overturn,
+                  rest_velocity=a.rest_velocity, executor=executor)
+    draws = []
+    for f in (1.0 - a.restitution_variation, 1.0 + a.restitution_variation):
+        draws.append((f"c_r {'−' if f < 1 else '+'} {100 * abs(1 - f):g} %",
+                      dict(run_kw, scales=[1.0] * n, restitution_factor=f, energy_stop=True), True))
+    size = a.ensemble_size or 0
+    amplitude, restitution = perturbations(n, size, a.seed)
+    for m in range(size):
+        draws.append((f"perturbed suite run {m + 1} of {size} (c_r × {float(restitution[m]):.4f})",
+                      dict(run_kw, scales=list(amplitude[m]), rtol=a.rtol * TOLERANCE_FACTOR,
+                           atol=a.atol * TOLERANCE_FACTOR, energy_stop=True,
+                           stop_at_capacity=(a.overturn == "static"), restitution_factor=float(restitution[m])),
+                      False))
+    for k, (label, kw, failures_count) in enumerate(draws):
+        scales = kw.pop("scales")
+        res = run_jobs(system, chosen, motions, scales, **kw)
+        failed = [o.id for o, r, good in zip(outcomes, res, ok) if good and analysis_failed(r.status)]
+        ids = {o.id for o, r, good in zip(outcomes, res, ok)      # (as the check's robustness criteria count)
+               if good and r.overturned and not (failures_count and analysis_failed(r.status))}
+        holds, unacceptable, total, _ = count_rule(rule, valid, ids)
+        if not holds or (failures_count and failed):
+            why = f"{label}: {unacceptable} of {total} ground motions unacceptable" \
+                + (f", analyses failed: {', '.join(failed)}" if failures_count and failed else "")
+            return {"n": k + 1, "failed": 1, "size": len(draws), "first_failure": why}
+    return {"n": len(draws), "failed": 0, "size": len(draws), "first_failure": None}

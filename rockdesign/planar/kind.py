@@ -35,9 +35,10 @@ class Planar(StructureKind):
     design_rule = planar_grid.RULE
     design_skipped = planar_grid.SKIPPED
 
-    def grid_batches(self):
-        """Every analysis of the planar check runs through ``run_jobs``, which takes a pool member."""
-        return SharedBatches()
+    def grid_batches(self, executor=None):
+        """Every analysis of the planar check runs through ``run_jobs``, which takes a pool member; on an
+        ``executor`` the merged calls run there in chunks."""
+        return SharedBatches(executor)
 
     def claims(self, raw):
         return True            # the default kind: its parser names what is missing ([column] or [podium])

@@ -18,8 +18,11 @@ def cell_reason(cell: dict) -> str:
     "ACMR 1.7" (collapse margin short), "2 incr." (pairs overturning at some intensity up to the design
     level, a cylinder's incremental count), "P ≤ 0.97" (the binomial bound of a cylinder under
     ``acceptance = "binomial"``; "P incr." when the incremental bound fails), or for a PASS the governing
-    criterion's margin ("ACMR ×1.5", "0/1 unacc.", "P ≤ 0.78")."""
+    criterion's margin ("ACMR ×1.5", "0/1 unacc.", "P ≤ 0.78"); a PASS that is not robust "fails 1/3 draws"
+    (or "margin ≈ req." when its ACMR is at its requirement); "not analysed" for a cell left out."""
     v = cell["verdict"]
+    if not cell.get("analysed", True):
+        return "not analysed"
     if v == "INVALID":
         return "invalid"
     if v == "ERROR" or cell.get("n_failed_analyses"):
@@ -38,6 +41,9 @@ def cell_reason(cell: dict) -> str:
         if incremental is not None and a is not None and incremental > a:
             return f"{incremental} incr."
         return "fail"
+    if cell.get("robust") is False:
+        d = cell.get("draws") or {}
+        return f"fails {d.get('failed', 0)}/{d.get('n', 0)} draws" if d.get("failed") else "margin ≈ req."
     if acmr is not None and need:
         return f"ACMR ×{acmr / need:.2g}"
     if k is not None and a is not None:
@@ -66,12 +72,12 @@ def verdict_figure(data: dict):
     rec = data.get("recommended")
     with plt.rc_context(STYLE):
         if len(vars_) == 1:
-            fig, ax = plt.subplots(figsize=(6.6, 1.9))
+            fig, ax = plt.subplots(figsize=(6.6, 2.2))
             xs = np.arange(len(vars_[0]["values"]))
             for c in data["cells"]:
                 i = c["index"][0]
-                ax.add_patch(_rect(i - 0.5, -0.5, COLORS[c["verdict"]]))
-                ax.text(i, 0.12, c["verdict"], ha="center", va="center", fontsize=7, weight="bold")
+                ax.add_patch(_cell_patch(i - 0.5, -0.5, c))
+                ax.text(i, 0.12, _word(c), ha="center", va="center", fontsize=7, weight="bold")
                 ax.text(i, -0.18, cell_reason(c), ha="center", va="center", fontsize=6)
             if rec:
                 ax.plot(rec["index"][0], 0.38, "*", ms=11, color="k")
@@ -86,8 +92,8 @@ def verdict_figure(data: dict):
             fig, ax = plt.subplots(figsize=(6.6, 1.6 + 0.42 * ny))
             for c in data["cells"]:
                 i, j = c["index"]
-                ax.add_patch(_rect(i - 0.5, j - 0.5, COLORS[c["verdict"]]))
-                ax.text(i, j + 0.12, c["verdict"], ha="center", va="center", fontsize=6.5, weight="bold")
+                ax.add_patch(_cell_patch(i - 0.5, j - 0.5, c))
+                ax.text(i, j + 0.12, _word(c), ha="center", va="center", fontsize=6.5, weight="bold")
                 ax.text(i, j - 0.2, cell_reason(c), ha="center", va="center", fontsize=5.5)
             ratio = _grid(data, "acmr") / _grid(data, "acmr_required")
             if np.isfinite(ratio).sum() >= 4 and min(nx, ny) >= 2:
@@ -109,7 +115,58 @@ def verdict_figure(data: dict):
             ax.set_ylabel(_axis_label(vars_[1]))
         ax.set_title("verdict per variant (★ recommended; the text gives the governing reason)", fontsize=8)
         fig.tight_layout()
+        _legend(fig, data["cells"])
         return fig
+
+
+def _word(cell: dict) -> str:
+    """The word drawn in a cell: PASS, PASS?, FAIL, INVALID, ERROR, or "·" (not analysed)."""
+    if not cell.get("analysed", True):
+        return "·"
+    if cell["verdict"] == "PASS" and cell.get("robust") is False:
+        return "PASS?"
+    return cell["verdict"]
+
+
+REGIONS = (("robust PASS", {"facecolor": COLORS["PASS"], "alpha": 0.75}),
+           ("PASS, not robust (fails in a perturbation draw)",
+            {"facecolor": "white", "hatch": "////", "edgecolor": COLORS["PASS"], "alpha": 0.9}),
+           ("FAIL", {"facecolor": COLORS["FAIL"], "alpha": 0.75}),
+           ("not analysed (neighbours agree)", {"facecolor": "white", "edgecolor": "#999999", "linestyle": ":"}))
+"""How the verdict chart draws each region (its legend)."""
+
+
+def _region(cell: dict) -> str | None:
+    if not cell.get("analysed", True):
+        return REGIONS[3][0]
+    if cell["verdict"] == "PASS":
+        return REGIONS[0][0] if cell.get("robust") is not False else REGIONS[1][0]
+    if cell["verdict"] == "FAIL":
+        return REGIONS[2][0]
+    return None
+
+
+def _cell_patch(x, y, cell: dict):
+    """The patch of one cell: filled (robust PASS, FAIL, INVALID, ERROR), hatched (PASS, not robust) or a
+    dotted outline (not analysed)."""
+    from matplotlib.patches import Rectangle
+    style = dict(REGIONS).get(_region(cell))
+    if style is None:
+        return _rect(x, y, COLORS[cell["verdict"]])
+    kw = {"edgecolor": "white", "lw": 1.5, **style}
+    return Rectangle((x + 0.03, y + 0.03), 0.94, 0.94, **kw)
+
+
+def _legend(fig, cells) -> None:
+    """The regions drawn, as a legend in a strip below the axes."""
+    from matplotlib.patches import Patch
+    shown = {_region(c) for c in cells}
+    handles = [Patch(label=name, **{"edgecolor": "white", **style}) for name, style in REGIONS if name in shown]
+    if handles:
+        strip = 0.3 / fig.get_figheight()          # 0.3 inch below the axes' labels
+        fig.subplots_adjust(bottom=fig.subplotpars.bottom + strip)
+        fig.legend(handles=handles, fontsize=6, loc="lower center", bbox_to_anchor=(0.5, 0.0),
+                   ncol=min(4, len(handles)), frameon=False)
 
 
 def _rect(x, y, color):
@@ -179,12 +236,16 @@ def thesis_plane_figure(data: dict):
     with plt.rc_context(STYLE):
         fig, ax = plt.subplots(figsize=(6.0, 3.4))
         for v, col in COLORS.items():
-            sel = [c for c in pts if c["verdict"] == v]
+            sel = [c for c in pts if c["verdict"] == v and c.get("analysed", True)]
             if sel:
                 ax.scatter([c["uplift_shear_coefficient"] for c in sel], [c["theta_c"] for c in sel], s=36,
                            color=col, edgecolor="k", lw=0.4, label=v)
         if rec:
             best = next(c for c in pts if c["index"] == rec["index"])
+            fragile = [c for c in pts if c["verdict"] == "PASS" and c.get("robust") is False]
+            if fragile:
+                ax.scatter([c["uplift_shear_coefficient"] for c in fragile], [c["theta_c"] for c in fragile], s=36,
+                           facecolor="white", edgecolor=COLORS["PASS"], hatch="////", lw=0.8, label="PASS, not robust")
             ax.plot(best["uplift_shear_coefficient"], best["theta_c"], "*", ms=14, color="k", label="recommended")
         ax.set_xlabel("uplift base-shear coefficient tan α [-] (Eq 3.34)")
         ax.set_ylabel("rotation capacity θc [rad] (Eq 3.56)")

@@ -15,7 +15,9 @@ TEMPLATE = "design.html.j2"
 
 CAPTIONS = {
     "verdict": "Pass/fail region: the verdict of the check (ASCE 7-22 §16.4 count per ground motion and FEMA P695 "
-               "collapse margin at the risk category's target) for every variant, with the governing reason.",
+               "collapse margin at the risk category's target) for every variant, with the governing reason; "
+               "filled: robust PASS, hatched: PASS that fails in some perturbation draw, dotted outline: not "
+               "analysed (its analysed neighbours all agree).",
     "acmr": "Adjusted collapse margin ratio ACMR of the variants whose margin was analysed (cells the count rule "
             "already fails at the design level need no margin scan and are left blank).",
     "shear": "Superstructure shear coefficient |f_s|/g, 84th percentile over the records that did not overturn "
@@ -59,7 +61,8 @@ def write_design_report(result, data: dict, out_dir: Path, *, pdf: bool = True, 
     rule = (data.get("settings") or {}).get("verdict_rule")
     if rule:
         captions["verdict"] = f"Pass/fail region: the verdict of the check ({rule}) for every variant, with the " \
-                              "governing reason."
+                              "governing reason; filled: robust PASS, hatched: PASS that fails in some perturbation " \
+                              "draw, dotted outline: not analysed (its analysed neighbours all agree)."
     if any(c.get("theta_overturn") is not None for c in data["cells"]):
         columns = [("median θ_max/θ_ot", k, u) if k == "median_theta_max_over_theta_c" else (h, k, u)
                    for h, k, u in columns]
@@ -74,13 +77,14 @@ def write_design_report(result, data: dict, out_dir: Path, *, pdf: bool = True, 
         written[k] = path
     epoch = os.environ.get("SOURCE_DATE_EPOCH")
     date = (_dt.datetime.fromtimestamp(int(epoch), _dt.timezone.utc) if epoch else _dt.datetime.now(_dt.timezone.utc))
-    rows = [{**c, "short_reason": cell_reason(c)} for c in data["cells"]]
+    from ..display import verdict_words
+    rows = [{**c, "short_reason": cell_reason(c), "words": verdict_words(c)} for c in data["cells"]]
     check = None
     if recommended_check is not None:
         r = recommended_check
         from ..display import check_order, utilisation_text
         shown = [c for c in r.checks if c.get("governs_verdict") or c.get("role") == "robustness"]
-        check = {"verdict": r.verdict, "reason": r.verdict_reason,
+        check = {"verdict": r.verdict, "reason": r.verdict_reason, "robust": getattr(r, "verdict_robust", None),
                  "checks": [dict(c, ratio=utilisation_text(c.get("utilisation")))
                             for c in check_order(shown, getattr(r, "governing_check", None))],
                  "acceptance": r.acceptance or {},

@@ -6,7 +6,7 @@ import json
 import math
 from pathlib import Path
 
-CSV_COLUMNS = ("verdict", "acmr", "acmr_required", "p_collapse_design", "n_unacceptable", "allowed_unacceptable",
+CSV_COLUMNS = ("analysed", "verdict", "robust", "draws_n", "draws_failed", "acmr", "acmr_required", "p_collapse_design", "n_unacceptable", "allowed_unacceptable",
                "n_ground_motions", "superstructure_shear_p84", "superstructure_drift_p84",
                "median_theta_max_over_theta_c", "uplift_acceleration", "uplift_shear_coefficient", "theta_c",
                "decided_at_design_level", "analyses", "analyses_saved", "reason")
@@ -56,6 +56,8 @@ def write_design_json(data: dict, path: Path) -> Path:
 
 def write_design_csv(data: dict, path: Path) -> Path:
     """design.csv: one row per cell, the variables' SI values first; units in the header ("theta_c [rad]");
+    ``analysed``, ``verdict`` (empty for a cell not analysed), ``robust`` (empty unless PASS) and the
+    perturbation draws run and failed (``draws_n``, ``draws_failed``);
     a cylinder grid adds its record-pair columns (:data:`EXTRA_COLUMNS`) before ``reason``."""
     keys = [v["key"] for v in data["variables"]]
     units = {v["key"]: _si_unit(v["unit"]) for v in data["variables"]}
@@ -67,7 +69,9 @@ def write_design_csv(data: dict, path: Path) -> Path:
         w.writerow([f"{k} [{units[k]}]" for k in keys]
                    + [f"{c} [{CSV_UNITS[c]}]" if c in CSV_UNITS else c for c in columns])
         for cell in data["cells"]:
-            w.writerow([cell["values"][k] for k in keys] + ["" if cell.get(c) is None else cell.get(c)
+            row = dict(cell, draws_n=(cell.get("draws") or {}).get("n"),
+                       draws_failed=(cell.get("draws") or {}).get("failed"))
+            w.writerow([cell["values"][k] for k in keys] + ["" if row.get(c) is None else row.get(c)
                                                            for c in columns])
     return path
 

@@ -28,7 +28,7 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
     ("library", ("rockdesign.library", "rockdesign.records", "rockdesign.kinds", "rockdesign.design_space",
                  "rockdesign.experiments.run",
                  "rockdesign.planar.kind", "rockdesign.planar.grid", "rockdesign.planar.simulation", "rockdesign.cylinder.kind",
-                 "rockdesign.cylinder.grid", "rockdesign.cylinder.simulation")),
+                 "rockdesign.cylinder.grid", "rockdesign.cylinder.grid_draws", "rockdesign.cylinder.simulation")),
     ("bench", ("rockdesign.bench",)),
     ("cli", ("rockdesign.cli", "rockdesign.templates")),
 )

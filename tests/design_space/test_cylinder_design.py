@@ -78,6 +78,10 @@ def test_each_cell_verdict_equals_the_check_of_its_project_file(grid):
         assert full["verdict"] == cell["verdict"]
         assert full["acceptance"]["n_unacceptable"] == cell["n_unacceptable"]
         assert full["acceptance"]["binomial_bound"] == cell["p_overturn_bound"]
+        if cell["verdict"] == "PASS":   # the draws are the check's ensemble runs: the same robustness
+            assert cell["robust"] == full["verdict_robust"] and cell["draws"]["n"] >= 1, cell["robustness"]
+        else:
+            assert cell["robust"] is None
         # the same design-level analyses: the median θ_max/θ_ot of the pairs, to the last digit
         ratios = [r["theta_max_over_theta_ot"] for r in full["records"]]
         assert cell["median_theta_max_over_theta_c"] == pytest.approx(sorted(ratios)[0] / 2 + sorted(ratios)[1] / 2,
@@ -108,13 +112,14 @@ def test_cells_hold_the_cylinders_numbers(grid):
         if c["verdict"] == "FAIL" and c["decided_at_design_level"]:
             assert c["n_incremental_unacceptable"] is None and "not needed" in c["reason"]
             assert c["analyses"] == 2          # the two pairs once in 3D: no planar runs, scans or ensemble
-    # the recommended design: the passing variant with the least mass, said so in its reason
+    # the recommended design: the robust passing variant with the least mass, said so in its reason
     passing = [c for c in data["cells"] if c["verdict"] == "PASS"]
+    passing = [c for c in passing if c["robust"]] or passing
     rec = data["recommended"]
     assert rec["index"] == min(passing, key=lambda c: c["column_material"])["index"]
     assert "least material: the cylinder's mass" in rec["reason"]
     rows = (out / "design.csv").read_text(encoding="utf-8").splitlines()
-    assert rows[0].startswith("cylinder.diameter [m],cylinder.height [m],verdict,")
+    assert rows[0].startswith("cylinder.diameter [m],cylinder.height [m],analysed,verdict,robust,draws_n,")
     assert "p_overturn_bound [-]" in rows[0] and "theta_overturn [rad]" in rows[0] and len(rows) == 5
 
 

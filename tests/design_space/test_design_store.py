@@ -51,6 +51,8 @@ def fake(monkeypatch):
     monkeypatch.setattr(Planar, "grid_check", grid_check)
     monkeypatch.setattr(Planar, "grid_cell", grid_cell)
     monkeypatch.setattr(Planar, "grid_batches", lambda self: None)
+    monkeypatch.setattr(Planar, "grid_draws", lambda self, result, *, records, executor:
+                        {"n": 1, "failed": 0, "size": 1, "first_failure": None})
     monkeypatch.setattr(compilation, "prepare", lambda *a, **k: 0.0)
     return calls
 
@@ -222,3 +224,38 @@ def test_a_long_silent_stage_says_why(tmp_path, fake, monkeypatch):
     text = " ".join(res.stderr.split())
     assert "still working (design-level suite" in text and " ".join(SLOW_ANALYSIS.split()) in text
     assert "design-level suite: 2 to do" in text            # the stages of a variant checked alone are shown
+
+
+def test_no_robust_pass_is_said_on_the_console_in_design_json_and_on_page_one(tmp_path, fake, monkeypatch):
+    """Every passing variant fails a perturbation draw: the console, design.json and the report's first
+    section say that no variant passes robustly and name the fragile candidates."""
+    from rockdesign.planar.kind import Planar
+    monkeypatch.setattr(Planar, "grid_draws", lambda self, result, *, records, executor:
+                        {"n": 2, "failed": 1, "size": 10, "first_failure": "c_r + 2 %: 2 of 2 unacceptable"})
+    p = project(tmp_path / "A")
+    out = tmp_path / "out"
+    res = runner.invoke(app, ["design", str(p), "-o", str(out), "--vary", "podium.width=0.4m:0.6m:3",
+                              "--no-pdf"])
+    assert res.exit_code == 0, res.output
+    assert "no variant passes robustly" in res.output and "(PASS, not robust)" in res.output
+    assert "2 PASS (not robust)" in res.output
+    data = json.loads((out / "design.json").read_text(encoding="utf-8"))
+    rec = data["recommended"]
+    assert rec["robust"] is False and [c["labels"]["podium.width"] for c in rec["fragile_candidates"]] == \
+        ["0.5 m", "0.6 m"]                       # least material first
+    assert [c["robust"] for c in data["cells"]] == [None, False, False]
+    assert [c["draws"] for c in data["cells"]] == [{"n": 0, "failed": 0}] + [{"n": 2, "failed": 1}] * 2
+    from rockdesign.report.design_report import write_design_report     # the report from design.json
+    written = write_design_report(SimpleNamespace(project=SimpleNamespace(name="A")), data, tmp_path, pdf=False)
+    html = written["html"].read_text(encoding="utf-8")
+    first = html.split("3&#160;&#160;Design charts")[0]
+    assert "No variant passes robustly" in first and "podium.width = 0.5 m; podium.width = 0.6 m" in first
+    assert "PASS (not robust: fails in 1 of 2 draws)" in html
+
+
+def test_prefer_names_its_choices(tmp_path, fake):
+    p = project(tmp_path / "A")
+    res = runner.invoke(app, ["design", str(p), "-o", str(tmp_path / "o"), "--vary", "podium.width=0.4m:0.6m:3",
+                              "--no-pdf", "--prefer", "mass"])
+    assert res.exit_code == 2 and "--prefer" in res.output and "material or shear" in res.output
+    assert "Traceback" not in res.output

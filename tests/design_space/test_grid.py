@@ -47,6 +47,16 @@ def test_each_cell_verdict_equals_the_check_of_its_project_file(small, grid):
         assert cell["n_unacceptable"] == full.acceptance["n_unacceptable"]
         if not cell["decided_at_design_level"]:      # the margin was analysed: the same numbers
             assert cell["acmr"] == pytest.approx(full.acceptance["acmr"], rel=1e-12)
+        # robustness: the cell's draws are the check's own c_r runs and ensemble (same seed), run separately
+        if cell["verdict"] == "PASS":
+            assert cell["robust"] in (True, False) and cell["draws"]["n"] >= 1
+            if cell["draws"]["failed"]:
+                assert not full.verdict_robust, (cell["robustness"], full.verdict_reason)
+            if cell["robust"]:
+                assert full.verdict_robust and cell["draws"]["n"] == 2 + 8, full.verdict_reason
+        else:
+            assert cell["robust"] is None and cell["draws"] == {"n": 0, "failed": 0}
+        assert cell["analysed"] is True
         verdicts.append(full.verdict)
     assert sorted(verdicts) == ["FAIL", "PASS"]      # the grid spans the boundary (the test can fail)
 
@@ -126,7 +136,8 @@ def test_design_report_and_files(grid, tmp_path):
                for c in data["cells"])
     write_design_json(data, tmp_path / "design.json")
     rows = write_design_csv(data, tmp_path / "design.csv").read_text(encoding="utf-8").splitlines()
-    assert len(rows) == 1 + len(data["cells"]) and rows[0].startswith("podium.width [m],verdict,")
+    assert len(rows) == 1 + len(data["cells"])
+    assert rows[0].startswith("podium.width [m],analysed,verdict,robust,draws_n,draws_failed,")
     written = write_design_report(grid, data, tmp_path, pdf=False)
     html = written["html"].read_text(encoding="utf-8")
     assert "Recommended design" in html and "podium.width = 0.65 m" in html

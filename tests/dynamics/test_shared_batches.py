@@ -131,3 +131,20 @@ def test_cancel_wakes_a_waiting_member():
     with pytest.raises(PoolCancelled):
         _members(pool, [other, waiting])
     assert shared.calls == 0
+
+
+def test_shared_calls_on_an_executor_equal_the_calls_in_this_process():
+    """On an executor (here the chunked local one; a dask cluster in tests/design_space/test_robust_runs.py)
+    a shared call runs in chunks and gives each request the rows ``run_batch`` gives it alone."""
+    from rockdesign.execution.executor import LocalExecutor
+    sps = _systems()
+    motions = [pulse_motion("ricker-anti", a * G, 0.95) for a in (0.25, 0.3, 0.38, 0.5)]
+    opts = batch_options(1e-6, 1e-8)
+    requests = [BatchRequest(sps[k], motions[k:], [1.0] * (4 - k), [5.0] * (4 - k), opts, [5.0] * (4 - k))
+                for k in range(3)]
+    chunked = SharedBatches(LocalExecutor())
+    for req, (s, d) in zip(requests, chunked(requests)):
+        s_alone, d_alone = run_batch(req.sp, req.motions, req.scales, req.t_ends, opts, threads=False)
+        np.testing.assert_array_equal(s, s_alone)
+        np.testing.assert_array_equal(d, d_alone)
+    assert chunked.calls == 1 and chunked.jobs == 4 + 3 + 2

@@ -1,7 +1,8 @@
 """The planar kind's shared batches: a round of batch requests of many design variants run as one call of the
 batch driver (:func:`~.batch.run_batch` with ``systems``), longest predicted job first; each request gets its
 own rows back (:class:`rockdesign.execution.batch_pool.BatchPool` serves the rounds).  Requests with other
-integrator options (``opts``) run as separate calls of the same round."""
+integrator options (``opts``) run as separate calls of the same round.  On an executor (a dask cluster) the
+merged jobs of a round go to the cluster in chunks, all at once: the variants run concurrently there."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -26,11 +27,14 @@ class BatchRequest:
 
 class SharedBatches:
     """``execute(requests) -> [(summaries, diagnostics), …]`` for a :class:`~rockdesign.execution.batch_pool.BatchPool`;
-    ``calls`` and ``jobs`` count the batch-driver calls and the jobs they ran."""
+    ``calls`` and ``jobs`` count the batch-driver calls and the jobs they ran.  ``executor``: a started
+    executor of :mod:`rockdesign.execution.executor` (e.g. a dask cluster) that runs each call in chunks
+    (:func:`shared_rows`), or None (in this process)."""
 
-    def __init__(self):
+    def __init__(self, executor=None):
         self.calls = 0
         self.jobs = 0
+        self.executor = executor
 
     def __call__(self, requests: list[BatchRequest]) -> list[tuple[np.ndarray, np.ndarray]]:
         groups: dict[bytes, list[int]] = {}
@@ -54,10 +58,10 @@ class SharedBatches:
             jobs.extend((i, j, rows[key]) for j in range(len(req.motions)))
         order = sorted(range(len(jobs)), key=lambda k: (-reqs[jobs[k][0]].costs[jobs[k][1]], k))
         ordered = [jobs[k] for k in order]
-        summaries, diags = run_batch(np.vstack(table), [reqs[i].motions[j] for i, j, _ in ordered],
+        summaries, diags = self._run(np.vstack(table), [reqs[i].motions[j] for i, j, _ in ordered],
                                      [reqs[i].scales[j] for i, j, _ in ordered],
                                      [float(reqs[i].t_ends[j]) for i, j, _ in ordered], reqs[0].opts,
-                                     systems=[s for _, _, s in ordered])
+                                     [s for _, _, s in ordered])
         out = [(np.empty((len(r.motions), summaries.shape[1])), np.empty((len(r.motions), diags.shape[1]),
                                                                          dtype=diags.dtype)) for r in reqs]
         for row, (i, j, _) in enumerate(ordered):
@@ -66,3 +70,22 @@ class SharedBatches:
         self.calls += 1
         self.jobs += len(jobs)
         return out
+
+    def _run(self, table, motions, scales, t_ends, opts, systems):
+        if self.executor is None:
+            return run_batch(table, motions, scales, t_ends, opts, systems=systems)
+        from ...execution.executor import run_chunks
+        n = len(motions)
+        size = max(1, -(-n // (4 * max(1, int(getattr(self.executor, "slots", 1) or 1)))))
+        tasks = [(motions[a:a + size], scales[a:a + size], t_ends[a:a + size], systems[a:a + size])
+                 for a in range(0, n, size)]
+        run = run_chunks(shared_rows, tasks, common=(table, np.asarray(opts)), executor=self.executor)
+        return (np.concatenate([r["summaries"] for r in run.results]),
+                np.concatenate([r["diagnostics"] for r in run.results]))
+
+
+def shared_rows(table, opts, motions, scales, t_ends, systems) -> dict:
+    """The chunk function of a shared call on an executor: ``run_batch`` of the jobs ``motions[i]`` ×
+    ``scales[i]`` until ``t_ends[i]`` [s] on the system row ``table[systems[i]]``; {"summaries", "diagnostics"}."""
+    s, d = run_batch(table, motions, scales, t_ends, opts, systems=systems)
+    return {"summaries": s, "diagnostics": d}

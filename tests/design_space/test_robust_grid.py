@@ -1,0 +1,103 @@
+"""Robust design charts without analyses: the coarse-to-fine order of the grid, the robust
+recommendation and the words of a cell (the analysed cells are compared with ``rockdesign check`` in
+test_grid.py)."""
+from __future__ import annotations
+
+import itertools
+
+import pytest
+
+from rockdesign.design_space.grid import margin_undecided, recommended, robustness
+from rockdesign.display import verdict_words
+from rockdesign.design_space.refine import agreed, corners, levels, level_strides
+from rockdesign.design_space.store import shape_problem
+
+
+def test_levels_cover_every_cell_once_coarse_first():
+    for shape in [(10, 10), (5,), (7, 3), (3, 3), (16,), (2, 9)]:
+        order = levels(shape)
+        flat = [c for lvl in order for c in lvl]
+        assert sorted(flat) == sorted(itertools.product(*(range(n) for n in shape)))
+        assert len(flat) == len(set(flat))
+    assert levels((10,))[0] == [(0,), (4,), (8,), (9,)]       # stride 4, the last value always
+    assert levels((3, 3)) == [sorted(itertools.product(range(3), range(3)))]   # short axes: every value
+    assert len(levels((10, 10), every_cell=True)) == 1
+
+
+def test_corners_bracket_a_cell_with_the_coarser_lattice():
+    assert level_strides((10, 10), 0) == (4, 4)
+    assert sorted(corners((2, 5), (10, 10), (4, 4))) == [(0, 4), (0, 8), (4, 4), (4, 8)]
+    assert sorted(corners((4, 6), (10, 10), (4, 4))) == [(4, 4), (4, 8)]      # on a coarse line: 2 corners
+
+
+def _c(verdict, robust=None):
+    return {"verdict": verdict, "robust": robust, "analysed": True}
+
+
+def test_a_cell_is_left_out_only_between_agreeing_robust_or_failing_corners():
+    shape = (9,)                                     # stride 4: 0, 4, 8, then 2, 6, then the odd ones
+    known = {(0,): _c("FAIL"), (4,): _c("FAIL"), (8,): _c("PASS", True)}
+    assert agreed((2,), shape, 1, known) == "FAIL"
+    assert agreed((6,), shape, 1, known) is None     # FAIL | PASS: the boundary is refined
+    known[(4,)] = _c("PASS", False)                  # a fragile PASS is never interpolated
+    assert agreed((2,), shape, 1, known) is None
+    known = {(0,): _c("PASS", True), (4,): _c("PASS", True)}
+    assert agreed((2,), shape, 1, known) == "robust PASS"
+    known[(4,)] = _c("INVALID")
+    assert agreed((2,), shape, 1, known) is None
+
+
+def _cell(i, verdict="PASS", robust=True, shear=None, mass=1000.0, failed=0, analysed=True):
+    return {"index": [i], "values": {"x": float(i)}, "labels": {"x": f"{i} m"}, "verdict": verdict,
+            "robust": robust if verdict == "PASS" else None, "analysed": analysed,
+            "draws": {"n": 3 if failed else 10, "failed": failed}, "superstructure_shear_p84": shear,
+            "column_material": mass, "acmr": None, "acmr_required": None, "n_unacceptable": 0,
+            "n_ground_motions": 11, "allowed_unacceptable": 1,
+            "robustness": "robust: …" if robust else "not robust: fails in 1 of 3 draws"}
+
+
+def test_the_recommendation_is_a_robust_pass_whenever_one_exists():
+    cells = [_cell(0, mass=500.0, robust=False, failed=1), _cell(1, mass=800.0), _cell(2, mass=900.0),
+             _cell(3, "FAIL", mass=100.0)]
+    rec = recommended(cells, prefer="material")
+    assert rec["index"] == [1] and rec["robust"] is True and "fragile_candidates" not in rec
+    assert "chosen over its neighbours" in rec["reason"] and "0 m: PASS (not robust" in rec["reason"]
+    assert "2 m: PASS (robust), more material" in rec["reason"]
+    # no robust PASS: the best fragile one, said so, with the fragile candidates named
+    cells = [_cell(0, robust=False, failed=1, mass=700.0), _cell(1, robust=False, failed=1, mass=600.0),
+             _cell(2, "FAIL")]
+    rec = recommended(cells)
+    assert rec["robust"] is False and rec["index"] == [1]
+    assert [c["index"] for c in rec["fragile_candidates"]] == [[1], [0]]
+    assert rec["no_robust_pass"].startswith("no variant passes robustly")
+    # a cell that was not analysed is never recommended
+    assert recommended([_cell(0, analysed=False, mass=1.0), _cell(1, mass=2.0)])["index"] == [1]
+
+
+def test_prefer_shear_or_material():
+    cells = [_cell(0, shear=0.30, mass=500.0), _cell(1, shear=0.20, mass=900.0)]
+    assert recommended(cells)["index"] == [1] and recommended(cells)["prefer"] == "shear"
+    assert recommended(cells, prefer="material")["index"] == [0]
+
+
+def test_words_of_a_cell_and_the_margin_rule():
+    assert verdict_words({**_cell(0), **robustness({"n": 10, "failed": 0, "size": 10})}) == "PASS (robust)"
+    fragile = {**_cell(0), **robustness({"n": 3, "failed": 1, "size": 10, "first_failure": "c_r − 2 %: 2 of 11"})}
+    assert verdict_words(fragile) == "PASS (not robust: fails in 1 of 3 draws)"
+    assert verdict_words({"analysed": False, "verdict": None}) == "not analysed"
+    assert verdict_words(_cell(0, "FAIL")) == "FAIL"
+    # an ACMR within the scans' 1 % (+ 0.1 % amplitude) of its requirement is not a robust PASS
+    assert margin_undecided({"acmr": 1.97, "acmr_required": 1.96}, 0.01)
+    assert margin_undecided({"acmr": 1.99, "acmr_required": 1.96}, 0.01) is None
+    assert margin_undecided({"acmr": None, "acmr_required": None}, 0.01) is None
+
+
+@pytest.mark.parametrize("change, problem", [({"robust": "yes"}, "robust"), ({"robust": None}, "robust"),
+                                             ({"draws": {"n": -1, "failed": 0}}, "draws"),
+                                             ({"analysed": False}, "not an analysed")])
+def test_a_stored_cell_with_bad_robustness_is_analysed_again(change, problem):
+    cell = {"verdict": "PASS", "reason": "PASS", "analyses": 3, "decided_at_design_level": False,
+            "robust": True, "draws": {"n": 10, "failed": 0}, "analysed": True}
+    from rockdesign.design_space.store import FORMAT
+    assert shape_problem({"format": FORMAT, "digest": "d", "cell": cell}, "d") is None
+    assert problem in shape_problem({"format": FORMAT, "digest": "d", "cell": {**cell, **change}}, "d")
