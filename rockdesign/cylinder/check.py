@@ -13,12 +13,15 @@ Table 5.4's scaling):
 
 Each pair is one typed :class:`PairOutcome` (one ground motion: ``ground_motion`` is the pair id).  The
 verdict is :func:`~rockdesign.acceptance.criteria.decide` over the criteria of :func:`cylinder_criteria`
-(:mod:`rockdesign.cylinder.criteria`): every analysis completed, and the one-sided 95 % upper
-bound of the 3D P(overturn) (Clopper–Pearson) within ``[analysis] overturn_probability_limit``, at the
-design level and at every intensity below it (each pair scanned, :mod:`rockdesign.cylinder.margins`;
-``--no-margins`` skips the scan and the verdict says so).  Its
-robustness: a seeded perturbation ensemble (``[analysis] ensemble_size`` runs of the whole suite, each
-pair's amplitude × (1 ± 0.1 %), tolerances one decade tighter).
+(:mod:`rockdesign.cylinder.criteria`), under the project's acceptance rule as for every kind: every
+analysis completed; the ASCE 7-22 §16.4.1.1 count of pairs overturning at the design level and at some
+intensity up to it; and the FEMA P695 collapse margin at the risk category's target, from each pair's
+first overturning intensity of the resultant PGA (each pair scanned up to ``[analysis]
+margin_max_scale``, :mod:`rockdesign.cylinder.margins`; the fragility of
+:mod:`rockdesign.acceptance.fragility`, Ŝ_CT counted per FEMA P695 Ch. 6).  ``--no-margins`` skips the
+scan and the verdict says so.  Its robustness: a seeded perturbation ensemble (``[analysis]
+ensemble_size`` runs of the whole suite, each pair's amplitude × (1 ± 0.1 %), tolerances one decade
+tighter).
 """
 from __future__ import annotations
 
@@ -44,8 +47,10 @@ from ..acceptance.rule import (AcceptanceRule, acceptance_rule, acceptance_summa
 from ..acceptance.criteria import CheckContext, decide, evaluate_criteria
 from .criteria import cylinder_criteria
 from .margins import pair_margins
+from ..acceptance.collapse_margin import collapse_margin
+from ..acceptance.fragility import check_fragility
 from ..acceptance.perturbations import AMPLITUDE_VARIATION, TOLERANCE_FACTOR, perturbations
-from ..acceptance.scans import Margin
+from ..acceptance.scans import SCAN_RATIO, Margin
 from ..execution.counting import AnalysisCount
 from ..acceptance.statistics import overturning_probability
 
@@ -230,6 +235,8 @@ class CylinderCheckResult:
     governing_check: str | None
     ensemble: dict | None
     acceptance: dict | None = None
+    fragility: dict | None = None          # acceptance/fragility.py on the pairs' resultant PGA (docs/fragility.md)
+    collapse_margin: dict | None = None    # acceptance/collapse_margin.py
     histories: dict = dataclasses.field(default_factory=dict)
     decided_at_design_level: bool | None = None   # verdict_only (design grid): the incremental scan was not needed
 
@@ -250,7 +257,10 @@ class CylinderCheckResult:
             cylinder.update(contact_frequency=cyl.contact_frequency, contact_damping=cyl.contact_damping)
         settings = {"rtol": a.rtol, "atol": a.atol, "rest_velocity": a.rest_velocity,
                     "free_vibration": a.free_vibration, "overturn_probability_limit": a.overturn_probability_limit,
-                    "sd_max_damping": a.sdmax_damping, "sd_max_band": list(a.sdmax_band)}
+                    "sd_max_damping": a.sdmax_damping, "sd_max_band": list(a.sdmax_band),
+                    "margin_precision": a.margin_precision, "margin_max_scale": a.margin_max_scale,
+                    "margin_scan_ratio": SCAN_RATIO, "margin_rtol": max(a.rtol, a.scan_rtol),
+                    "scale_basis": "overturn_scale multiplies the design-level (scaled) record pair"}
         quantities = {k: q.as_json() for k, q in cylinder_quantities(cyl).items()}
         return {"project": {"name": p.name, "file": p.path, "system": "cylinder", "contact": cyl.contact,
                             "kind": "cylinder", "sha256": p.sha256, "kernels_sha256": sources_digest(),
@@ -267,7 +277,7 @@ class CylinderCheckResult:
                 "checks": self.checks, "verdict": self.verdict, "verdict_reason": self.verdict_reason,
                 "verdict_robust": self.verdict_robust,
                 "failed_records": [{"id": o.id, "status": o.run.engine_status} for o in self.failed_records],
-                "fragility": None, "collapse_margin": None, "ensemble": self.ensemble,
+                "fragility": self.fragility, "collapse_margin": self.collapse_margin, "ensemble": self.ensemble,
                 "acceptance": self.acceptance}
 
 
@@ -337,11 +347,11 @@ def _ensembles(cyl, pairs, factors, nominal: list[PairRun], a, progress, note=No
 
 
 def cylinder_rule(analysis) -> AcceptanceRule:
-    """The rule that decides a cylinder's verdict (CONTRACT §6.1): the project's acceptance rule
-    (``[analysis] risk_category``, ``acceptance``) over the record pairs, each pair one ground motion,
-    without a collapse margin (the 3D check has no fragility fit): under ``asce7`` the ASCE 7-22
-    §16.4.1.1 count decides, at the design level and on each pair's first overturning intensity."""
-    return acceptance_rule(analysis).with_collapse_margin(False)
+    """The rule that decides a cylinder's verdict (CONTRACT §6.1), the same as every kind's: the project's
+    acceptance rule (``[analysis] risk_category``, ``acceptance``) over the record pairs, each pair one
+    ground motion: under ``asce7`` the ASCE 7-22 §16.4.1.1 count (at the design level and on each pair's
+    first overturning intensity) and the FEMA P695 collapse margin at the category's target decide."""
+    return acceptance_rule(analysis)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -443,18 +453,31 @@ def run_cylinder_check(project, progress=None, margins: bool = True, *, records:
                                  if o.margin is not None and o.margin.overturn_scale is not None), default=None)
     summary["n_margin_below_design"] = sum(1 for o in records if o.margin is not None
                                            and o.margin.overturn_scale is not None and o.margin.overturn_scale < 1.0)
+    valid = [o for o in records if o.run.status == "completed"]
+    fragility = pair_fragility(valid, a, summary["n_overturned"]) if margins else None
+    margin_fema = collapse_margin(fragility, dict(a.quality), rule.target)
     context = CheckContext(records, a, {}, {}, margins_run=margins,
-                           extra={"ensemble": ens, "cylinder": cyl, "summary": summary}, rule=rule)
+                           extra={"ensemble": ens, "cylinder": cyl, "summary": summary,
+                                  "collapse_margin": margin_fema}, rule=rule)
     items, skipped = evaluate_criteria(context, cylinder_criteria(rule))
     decision = decide(items, skipped, rule)
-    acceptance = acceptance_summary(rule, items, decision, context.valid, None)
+    acceptance = acceptance_summary(rule, items, decision, context.valid, margin_fema)
     checks = [i.as_json() for i in items]
     checks.sort(key=lambda c: (not c["governs_verdict"], -c["utilisation"]))
     ensemble_json = None if ens is None else {
         k: ens[k] for k in ("size", "seed", "amplitude_variation", "tolerance_factor", "p_overturn", "n_not_robust")}
     return CylinderCheckResult(project, records, summary, checks, decision.verdict, decision.reason,
-                               decision.robust, decision.governing, ensemble_json, acceptance,
-                               decided_at_design_level=decided if verdict_only else None)
+                               decision.robust, decision.governing, ensemble_json, acceptance, fragility,
+                               margin_fema, decided_at_design_level=decided if verdict_only else None)
+
+
+def pair_fragility(valid: list[PairOutcome], a, n_overturned: int) -> dict | None:
+    """The overturning fragility of the completed pairs (SPEC §11, :mod:`rockdesign.acceptance.fragility`)
+    in the resultant PGA [m/s²]: each pair's capacity is its first overturning factor times its design-level
+    resultant PGA, censored at ``margin_max_scale`` where the scan found none; the design intensity is the
+    median design-level resultant PGA (the target for ``resultant_pga`` scaling)."""
+    return check_fragility(valid, a, empirical=(n_overturned, len(valid)), stripe_ratio=SCAN_RATIO,
+                           measure=("resultant_pga", [o.resultant_pga for o in valid]))
 
 
 MAX_HISTORIES = 8
