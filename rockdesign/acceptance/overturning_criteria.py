@@ -116,22 +116,24 @@ class CollapseMarginAtTarget(Criterion):
         p = collapse_probability(acmr, beta)
         lower = m["CMR_is_lower_bound"]
         ge = "≥ " if lower else ""
-        counted = m["median_counted"]
+        counted = m.get("median_counted") or {}
         im = m.get("im_label") or m["im"]
+        half = (f"the {im} at which {counted['k']} of {counted['n']} records have overturned, " if counted else "")
         fitted = ("" if m.get("ACMR_fitted") is None else
                   f"; the fitted lognormal median {m['median_fitted']:.4g} {m['unit']} gives ACMR "
                   f"{m['ACMR_fitted']:.3g}, P(collapse) {pct(m['p_collapse_design_fitted'])} (information)")
-        detail = (f"CMR {ge}{m['CMR']:.3g} (Ŝ_CT counted, FEMA P695 §6.4: the {im} at which {counted['k']} of "
-                  f"{counted['n']} records have overturned, {ge}{m['median_capacity']:.4g} {m['unit']}, over the "
-                  f"design {m['design_intensity']:.4g} {m['unit']}), SSF = 1, ACMR {ge}{acmr:.3g} vs "
-                  f"ACMR{100 * x:g}% = exp(−β_TOT Φ⁻¹({x:g})) = {need:.3g} with β_TOT = {beta:.3f}; P(collapse | "
-                  f"design) = Φ(−ln ACMR/β_TOT) {'≤ ' if lower else '= '}{pct(p)}{fitted}")
+        detail = (f"CMR {ge}{m['CMR']:.3g} (Ŝ_CT counted, FEMA P695 §6.4: {half}{ge}{m['median_capacity']:.4g} "
+                  f"{m['unit']}, over the design {m['design_intensity']:.4g} {m['unit']}), SSF = 1, ACMR "
+                  f"{ge}{acmr:.3g} vs ACMR{100 * x:g}% = exp(−β_TOT Φ⁻¹({x:g})) = {need:.3g} with β_TOT = "
+                  f"{beta:.3f}; P(collapse | design) = Φ(−ln ACMR/β_TOT) {'≤ ' if lower else '= '}{pct(p)}{fitted}")
         if lower and acmr < need:
             scan = ctx.analysis.margin_max_scale
-            return self.item(need / acmr, False, detail + f"; {counted['note']}, so the ACMR is only a lower "
-                             "bound", f"collapse margin not shown: ACMR ≥ {acmr:.3g} (lower bound: "
-                             f"{counted['n_censored']} of {counted['n']} records do not overturn up to {scan:g}× "
-                             f"design) < {need:.3g}; raise [analysis] margin_max_scale", name=name, evaluated=False)
+            why = counted.get("note", "more than half of the records do not overturn within the scan")
+            censored = (f"{counted['n_censored']} of {counted['n']} records" if counted else "records")
+            return self.item(need / acmr, False, detail + f"; {why}, so the ACMR is only a lower bound",
+                             f"collapse margin not shown: ACMR ≥ {acmr:.3g} (lower bound: {censored} do not "
+                             f"overturn up to {scan:g}× design) < {need:.3g}; raise [analysis] margin_max_scale",
+                             name=name, evaluated=False)
         passed = acmr >= need
         rel = "≥" if passed else "<"
         reason = (f"ACMR {ge}{acmr:.3g} {rel} {need:.3g} (P(collapse) {'≤ ' if lower else ''}{pct(p)} "

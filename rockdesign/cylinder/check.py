@@ -46,11 +46,10 @@ from ..acceptance.rule import (AcceptanceRule, acceptance_rule, acceptance_summa
                          require_suite_size)
 from ..acceptance.criteria import CheckContext, decide, evaluate_criteria
 from .criteria import cylinder_criteria
-from .margins import pair_margins
+from .margins import pair_fragility, pair_margins
 from ..acceptance.collapse_margin import collapse_margin
-from ..acceptance.fragility import check_fragility
-from ..acceptance.perturbations import AMPLITUDE_VARIATION, TOLERANCE_FACTOR, perturbations
 from ..acceptance.scans import SCAN_RATIO, Margin
+from .ensemble import suite_ensembles
 from ..execution.counting import AnalysisCount
 from ..acceptance.statistics import overturning_probability
 
@@ -322,30 +321,6 @@ def _summary(records: list[PairOutcome], e, ensemble: dict | None, planar_run: b
     return out
 
 
-def _ensembles(cyl, pairs, factors, nominal: list[PairRun], a, progress, note=None) -> dict | None:
-    """The perturbation ensemble (thesis Ch. 7): ``ensemble_size`` runs of the whole suite, each pair's
-    amplitude × (1 ± 0.1 %) and the tolerances one decade tighter; None for ``ensemble_size = 0``."""
-    size, n = a.ensemble_size, len(pairs)
-    if not size:
-        return None
-    amplitude, _ = perturbations(n, size, a.seed)
-    overturned = np.zeros((size, n), dtype=bool)
-    for m in range(size):
-        for i, pair in enumerate(pairs):
-            run = _run_3d(cyl, pair.scaled(factors[i] * amplitude[m, i]), a, rtol=a.rtol * TOLERANCE_FACTOR,
-                          atol=a.atol * TOLERANCE_FACTOR, note=note)
-            overturned[m, i] = run.overturned
-            if progress is not None:
-                progress(f"perturbation ensembles ({size} runs per pair)", m * n + i + 1, size * n)
-    nominal_ot = np.array([r.overturned for r in nominal], dtype=bool)
-    fractions = overturned.mean(axis=0)
-    robust = (overturned == nominal_ot[None, :]).all(axis=0)
-    return {"overturned": overturned, "restitution": np.ones(size), "robust": robust, "fractions": fractions,
-            "size": size, "seed": a.seed, "amplitude_variation": AMPLITUDE_VARIATION,
-            "tolerance_factor": TOLERANCE_FACTOR, "p_overturn": float(fractions.mean()),
-            "n_not_robust": int((~robust).sum())}
-
-
 def cylinder_rule(analysis) -> AcceptanceRule:
     """The rule that decides a cylinder's verdict (CONTRACT §6.1), the same as every kind's: the project's
     acceptance rule (``[analysis] risk_category``, ``acceptance``) over the record pairs, each pair one
@@ -442,8 +417,10 @@ def run_cylinder_check(project, progress=None, margins: bool = True, *, records:
                              lambda pair, rtol: _run_3d(cyl, pair, a, rtol=rtol, note=note), progress)
         for o, m in zip(records, found):
             o.margin = m
-    ens = None if verdict_only else _ensembles(cyl, [p for _, p in pairs], sp.factors, [o.run for o in records], a,
-                                               progress, _slow_notes(progress))
+    slow = _slow_notes(progress)
+    ens = None if verdict_only else suite_ensembles(
+        lambda pair, rtol, atol: _run_3d(cyl, pair, a, rtol=rtol, atol=atol, note=slow), [p for _, p in pairs],
+        sp.factors, [o.run for o in records], a, progress)
     if ens is not None:
         for i, o in enumerate(records):
             o.ensemble_fraction, o.outcome_robust = float(ens["fractions"][i]), bool(ens["robust"][i])
@@ -469,15 +446,6 @@ def run_cylinder_check(project, progress=None, margins: bool = True, *, records:
     return CylinderCheckResult(project, records, summary, checks, decision.verdict, decision.reason,
                                decision.robust, decision.governing, ensemble_json, acceptance, fragility,
                                margin_fema, decided_at_design_level=decided if verdict_only else None)
-
-
-def pair_fragility(valid: list[PairOutcome], a, n_overturned: int) -> dict | None:
-    """The overturning fragility of the completed pairs (SPEC §11, :mod:`rockdesign.acceptance.fragility`)
-    in the resultant PGA [m/s²]: each pair's capacity is its first overturning factor times its design-level
-    resultant PGA, censored at ``margin_max_scale`` where the scan found none; the design intensity is the
-    median design-level resultant PGA (the target for ``resultant_pga`` scaling)."""
-    return check_fragility(valid, a, empirical=(n_overturned, len(valid)), stripe_ratio=SCAN_RATIO,
-                           measure=("resultant_pga", [o.resultant_pga for o in valid]))
 
 
 MAX_HISTORIES = 8

@@ -13,6 +13,7 @@ there.
 """
 from __future__ import annotations
 
+from ..acceptance.fragility import check_fragility
 from ..acceptance.scans import SCAN_RATIO, Margin, scan_grid
 
 
@@ -79,3 +80,12 @@ def pair_margins(cyl, scaled_pairs, nominal, a, run, progress=None) -> list[Marg
         if progress is not None:
             progress("overturning margins (incremental 3D RHA)", i + 1, len(scaled_pairs))
     return margins
+
+
+def pair_fragility(valid, a, n_overturned: int) -> dict | None:
+    """The overturning fragility of the completed pairs (``valid``: outcomes with their ``margin``) (SPEC §11, :mod:`rockdesign.acceptance.fragility`)
+    in the resultant PGA [m/s²]: each pair's capacity is its first overturning factor times its design-level
+    resultant PGA, censored at ``margin_max_scale`` where the scan found none; the design intensity is the
+    median design-level resultant PGA (the target for ``resultant_pga`` scaling)."""
+    return check_fragility(valid, a, empirical=(n_overturned, len(valid)), stripe_ratio=SCAN_RATIO,
+                           measure=("resultant_pga", [o.resultant_pga for o in valid]))
