@@ -80,8 +80,10 @@ def test_margins_below_the_design_level_are_real(result):
     a = proj.analysis
     rows = [r for r in result["records"] if r["overturn_scale"] is not None and r["overturn_scale"] <= 1.0]
     assert rows, "the 0.3 g suite has pairs that overturn at or below the design level"
-    # the scan stops at the first overturning factor of its grid, at or above the bisected one
-    assert all(r["overturn_scale"] <= r["margin_scanned_up_to"] <= 1.0 for r in rows)
+    # the scan goes on past the first overturning factor (safe-again bands), up to margin_max_scale at most
+    top = result["settings"]["margin_max_scale"]
+    assert all(r["overturn_scale"] < r["margin_scanned_up_to"] <= top * (1 + 1e-12) for r in rows)
+    assert all(r["overturn_intervals"][0][0] == r["overturn_scale"] for r in rows)
     for r in rows[:3]:
         pair = load_pair(r["id"]).scaled(r["scale"] * r["overturn_scale"])
         run = simulate_cylinder(proj.system, pair, rtol=max(a.rtol, a.scan_rtol), atol=a.atol,
