@@ -33,8 +33,11 @@ from .rule import first_overturn_scale
 from .statistics import overturning_probability
 
 IMS = ("pga", "sa", "sdmax")
-IM_UNITS = {"pga": "m/s^2", "sa": "m/s^2", "sdmax": "m"}
-IM_LABELS = {"pga": "PGA", "sa": "Sa(T)", "sdmax": "SD_max"}
+IM_UNITS = {"pga": "m/s^2", "sa": "m/s^2", "sdmax": "m", "resultant_pga": "m/s^2"}
+IM_LABELS = {"pga": "PGA", "sa": "Sa(T)", "sdmax": "SD_max", "resultant_pga": "resultant PGA"}
+"""Units and labels of the intensity measures: the three of ``[analysis] fragility_im`` for records of
+one component, and the resultant PGA max √(ü_gx² + ü_gy²) of a record pair (the measure a pair is
+scaled by, thesis Table 5.4)."""
 SA_DAMPING = 0.05
 """Damping ratio of the Sa(T) intensity measure (the usual 5 %)."""
 BOOTSTRAP_SAMPLES = 1000
@@ -280,16 +283,23 @@ def record_intensities(outcomes, im: str, period: float | None) -> list[float]:
     return [float(motion_spectrum(o.motion, np.array([period]), SA_DAMPING)[2][0]) for o in outcomes]
 
 
-def check_fragility(outcomes, analysis, *, empirical: tuple[int, int], stripe_ratio: float) -> dict | None:
+def check_fragility(outcomes, analysis, *, empirical: tuple[int, int], stripe_ratio: float,
+                    measure: tuple[str, list[float]] | None = None) -> dict | None:
     """:func:`fragility_analysis` of a check's records (None without incremental analysis); the design
     intensity is the median IM of the design-level records (= the design PGA for PGA scaling).  Each
     record's capacity is its *first* overturning intensity: the incremental analysis's lowest
-    overturning factor, or the design level when the design-level analysis overturned below it."""
+    overturning factor, or the design level when the design-level analysis overturned below it.
+
+    ``measure``: (IM key of :data:`IM_UNITS`, IM_i of each design-level record) for a kind whose records
+    carry their own measure (a record pair's resultant PGA); default ``[analysis] fragility_im``."""
     if not outcomes or any(o.margin is None for o in outcomes):
         return None     # no incremental analysis, or no completed analysis to fit
-    im = analysis.fragility_im
-    period = analysis.fragility_period if im == "sa" else None
-    ims = record_intensities(outcomes, im, period)
+    if measure is None:
+        im = analysis.fragility_im
+        period = analysis.fragility_period if im == "sa" else None
+        ims = record_intensities(outcomes, im, period)
+    else:
+        (im, ims), period = measure, None
     return fragility_analysis([o.id for o in outcomes], [first_overturn_scale(o) for o in outcomes],
                               [o.margin.intervals for o in outcomes], [o.margin.scanned_up_to for o in outcomes],
                               ims, im=im, unit=IM_UNITS[im], design_intensity=float(np.median(ims)),

@@ -6,8 +6,9 @@ earthquake) is unacceptable when any of its analysed components overturns (``[an
 
 - :class:`UnacceptableResponses` — ASCE 7-22 §16.4.1.1 at the design level (= MCE_R).
 - :class:`CollapseMarginAtTarget` — FEMA P695 (2009) Ch. 7 adapted: ACMR ≥ exp(−β_TOT Φ⁻¹(x)) at the
-  risk category's target x, from the overturning fragility fitted to each record's *first* overturning
-  intensity (a non-monotonic band below the design level counts).
+  risk category's target x, with Ŝ_CT counted (Ch. 6, §6.4: the intensity at which half the records
+  overturn) on each record's *first* overturning intensity (a non-monotonic band below the design
+  level counts); the fitted lognormal median is reported beside it.
 - :class:`BinomialBound`, :class:`IncrementalMargin` — one-sided 95 % Clopper–Pearson bounds over the
   independent ground motions, at the design level and at any intensity up to it.
 - :class:`RestitutionRobustness`, :class:`EnsembleRobustness` — the design-level rule (count or bound)
@@ -89,8 +90,9 @@ class CollapseMarginAtTarget(Criterion):
 
     key = "collapse_margin"
     role = GOVERNS
-    source = ("FEMA P695 (2009) Ch. 7 adapted to overturning (SSF = 1, β_TOT from the quality ratings); "
-              "target x from ASCE 7-22 Table 1.3-2; fragility on each record's first overturning intensity")
+    source = ("FEMA P695 (2009) Ch. 7 adapted to overturning (SSF = 1, β_TOT from the quality ratings); Ŝ_CT "
+              "counted per Ch. 6 (§6.4) on each record's first overturning intensity; target x from ASCE 7-22 "
+              "Table 1.3-2")
 
     def applies(self, ctx):
         return ctx.margins_run and ctx.rule.collapse_margin_available
@@ -105,8 +107,8 @@ class CollapseMarginAtTarget(Criterion):
         name = (f"Collapse margin (FEMA P695 adaptation): ACMR ≥ ACMR{100 * x:g}% "
                 f"(P(collapse | design) ≤ {pct(x)}, risk category {rule.risk_category})")
         if m is None:
-            return self.item(math.inf, False, "no overturning fragility could be fitted (no completed incremental "
-                             "analysis, or capacities that do not vary)", "collapse margin: no fragility fitted",
+            return self.item(math.inf, False, "no first overturning intensities (no completed incremental "
+                             "analysis)", "collapse margin: no incremental analysis completed",
                              name=name, evaluated=False)
         beta = m["beta_tot"]
         need = acceptable_acmr(beta, x)
@@ -114,17 +116,24 @@ class CollapseMarginAtTarget(Criterion):
         p = collapse_probability(acmr, beta)
         lower = m["CMR_is_lower_bound"]
         ge = "≥ " if lower else ""
-        detail = (f"CMR {ge}{m['CMR']:.3g} (median overturning {m['im'].upper() if m['im'] == 'pga' else m['im']} "
-                  f"{ge}{m['median_capacity']:.4g} {m['unit']} over the design {m['design_intensity']:.4g} "
-                  f"{m['unit']}), SSF = 1, ACMR {ge}{acmr:.3g} vs ACMR{100 * x:g}% = exp(−β_TOT Φ⁻¹({x:g})) = "
-                  f"{need:.3g} with β_TOT = {beta:.3f}; P(collapse | design) = Φ(−ln ACMR/β_TOT) "
-                  f"{'≤ ' if lower else '= '}{pct(p)}")
+        counted = m.get("median_counted") or {}
+        im = m.get("im_label") or m["im"]
+        half = (f"the {im} at which {counted['k']} of {counted['n']} records have overturned, " if counted else "")
+        fitted = ("" if m.get("ACMR_fitted") is None else
+                  f"; the fitted lognormal median {m['median_fitted']:.4g} {m['unit']} gives ACMR "
+                  f"{m['ACMR_fitted']:.3g}, P(collapse) {pct(m['p_collapse_design_fitted'])} (information)")
+        detail = (f"CMR {ge}{m['CMR']:.3g} (Ŝ_CT counted, FEMA P695 §6.4: {half}{ge}{m['median_capacity']:.4g} "
+                  f"{m['unit']}, over the design {m['design_intensity']:.4g} {m['unit']}), SSF = 1, ACMR "
+                  f"{ge}{acmr:.3g} vs ACMR{100 * x:g}% = exp(−β_TOT Φ⁻¹({x:g})) = {need:.3g} with β_TOT = "
+                  f"{beta:.3f}; P(collapse | design) = Φ(−ln ACMR/β_TOT) {'≤ ' if lower else '= '}{pct(p)}{fitted}")
         if lower and acmr < need:
             scan = ctx.analysis.margin_max_scale
-            return self.item(need / acmr, False, detail + "; fewer than two records overturn within the scan, so "
-                             "the ACMR is only a lower bound", f"collapse margin not shown: ACMR ≥ {acmr:.3g} "
-                             f"(lower bound; fewer than two records overturn up to {scan:g}× design) < {need:.3g}; "
-                             "raise [analysis] margin_max_scale", name=name, evaluated=False)
+            why = counted.get("note", "more than half of the records do not overturn within the scan")
+            censored = (f"{counted['n_censored']} of {counted['n']} records" if counted else "records")
+            return self.item(need / acmr, False, detail + f"; {why}, so the ACMR is only a lower bound",
+                             f"collapse margin not shown: ACMR ≥ {acmr:.3g} (lower bound: {censored} do not "
+                             f"overturn up to {scan:g}× design) < {need:.3g}; raise [analysis] margin_max_scale",
+                             name=name, evaluated=False)
         passed = acmr >= need
         rel = "≥" if passed else "<"
         reason = (f"ACMR {ge}{acmr:.3g} {rel} {need:.3g} (P(collapse) {'≤ ' if lower else ''}{pct(p)} "

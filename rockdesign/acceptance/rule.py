@@ -23,6 +23,7 @@ import math
 from dataclasses import dataclass
 
 from ..errors import ProjectError
+from .collapse_margin import MEDIAN_DEFINITION
 from .statistics import overturning_probability
 
 RISK_CATEGORIES = ("I", "II", "III", "IV")
@@ -72,8 +73,8 @@ class AcceptanceRule:
 
     ``target`` [-]: P(collapse | MCE_R) of ASCE 7-22 Table 1.3-2; ``allowed``: unacceptable ground
     motions allowed (§16.4.1.1); ``binomial_limit`` [-]: the limit of the binomial bound;
-    ``collapse_margin_available``: the check has an incremental analysis (False for a system whose
-    check has none — its verdict is then the count rule alone, and says so).
+    ``collapse_margin_available``: the check has an incremental analysis (False for a kind whose check
+    has none — its verdict is then the count rule alone, and says so).
     """
 
     method: str = "asce7"
@@ -106,7 +107,7 @@ class AcceptanceRule:
     def as_json(self) -> dict:
         label = METHOD_LABELS[self.method]
         if self.method == "asce7" and not self.collapse_margin_available:
-            label = "ASCE 7-22 §16.4 count of unacceptable ground motions (no collapse margin for this system)"
+            label = "ASCE 7-22 §16.4 count of unacceptable ground motions (the check has no incremental analysis)"
         return {"method": self.method, "method_label": label, "risk_category": self.risk_category,
                 "target_p_collapse": self.target, "allowed_unacceptable": self.allowed,
                 "binomial_limit": self.binomial_limit, "min_ground_motions": self.minimum_ground_motions}
@@ -241,6 +242,10 @@ def acceptance_summary(rule: AcceptanceRule, items, verdict, valid, margin: dict
         "acmr_is_lower_bound": None if margin is None else margin["CMR_is_lower_bound"],
         "p_collapse_design": None if margin is None or not rule.collapse_margin_available
         else margin["p_collapse_design"],
+        "median_definition": MEDIAN_DEFINITION,
+        "acmr_fitted": None if margin is None or not rule.collapse_margin_available else margin["ACMR_fitted"],
+        "p_collapse_design_fitted": None if margin is None or not rule.collapse_margin_available
+        else margin["p_collapse_design_fitted"],
         "binomial_bound": probability_bound(len(bad), n),
         "governing_criteria": [i.key for i in governing], "not_evaluated": list(verdict.not_covered)
         + [i.key for i in governing if not i.evaluated],

@@ -13,12 +13,15 @@ Table 5.4's scaling):
 
 Each pair is one typed :class:`PairOutcome` (one ground motion: ``ground_motion`` is the pair id).  The
 verdict is :func:`~rockdesign.acceptance.criteria.decide` over the criteria of :func:`cylinder_criteria`
-(:mod:`rockdesign.cylinder.criteria`): every analysis completed, and the one-sided 95 % upper
-bound of the 3D P(overturn) (Clopper–Pearson) within ``[analysis] overturn_probability_limit``, at the
-design level and at every intensity below it (each pair scanned, :mod:`rockdesign.cylinder.margins`;
-``--no-margins`` skips the scan and the verdict says so).  Its
-robustness: a seeded perturbation ensemble (``[analysis] ensemble_size`` runs of the whole suite, each
-pair's amplitude × (1 ± 0.1 %), tolerances one decade tighter).
+(:mod:`rockdesign.cylinder.criteria`), under the project's acceptance rule as for every kind: every
+analysis completed; the ASCE 7-22 §16.4.1.1 count of pairs overturning at the design level and at some
+intensity up to it; and the FEMA P695 collapse margin at the risk category's target, from each pair's
+first overturning intensity of the resultant PGA (each pair scanned up to ``[analysis]
+margin_max_scale``, :mod:`rockdesign.cylinder.margins`; the fragility of
+:mod:`rockdesign.acceptance.fragility`, Ŝ_CT counted per FEMA P695 Ch. 6).  ``--no-margins`` skips the
+scan and the verdict says so.  Its robustness: a seeded perturbation ensemble (``[analysis]
+ensemble_size`` runs of the whole suite, each pair's amplitude × (1 ± 0.1 %), tolerances one decade
+tighter).
 """
 from __future__ import annotations
 
@@ -43,9 +46,10 @@ from ..acceptance.rule import (AcceptanceRule, acceptance_rule, acceptance_summa
                          require_suite_size)
 from ..acceptance.criteria import CheckContext, decide, evaluate_criteria
 from .criteria import cylinder_criteria
-from .margins import pair_margins
-from ..acceptance.perturbations import AMPLITUDE_VARIATION, TOLERANCE_FACTOR, perturbations
-from ..acceptance.scans import Margin
+from .margins import pair_fragility, pair_margins
+from ..acceptance.collapse_margin import collapse_margin
+from ..acceptance.scans import SCAN_RATIO, Margin
+from .ensemble import suite_ensembles
 from ..execution.counting import AnalysisCount
 from ..acceptance.statistics import overturning_probability
 
@@ -230,6 +234,8 @@ class CylinderCheckResult:
     governing_check: str | None
     ensemble: dict | None
     acceptance: dict | None = None
+    fragility: dict | None = None          # acceptance/fragility.py on the pairs' resultant PGA (docs/fragility.md)
+    collapse_margin: dict | None = None    # acceptance/collapse_margin.py
     histories: dict = dataclasses.field(default_factory=dict)
     decided_at_design_level: bool | None = None   # verdict_only (design grid): the incremental scan was not needed
 
@@ -250,7 +256,10 @@ class CylinderCheckResult:
             cylinder.update(contact_frequency=cyl.contact_frequency, contact_damping=cyl.contact_damping)
         settings = {"rtol": a.rtol, "atol": a.atol, "rest_velocity": a.rest_velocity,
                     "free_vibration": a.free_vibration, "overturn_probability_limit": a.overturn_probability_limit,
-                    "sd_max_damping": a.sdmax_damping, "sd_max_band": list(a.sdmax_band)}
+                    "sd_max_damping": a.sdmax_damping, "sd_max_band": list(a.sdmax_band),
+                    "margin_precision": a.margin_precision, "margin_max_scale": a.margin_max_scale,
+                    "margin_scan_ratio": SCAN_RATIO, "margin_rtol": max(a.rtol, a.scan_rtol),
+                    "scale_basis": "overturn_scale multiplies the design-level (scaled) record pair"}
         quantities = {k: q.as_json() for k, q in cylinder_quantities(cyl).items()}
         return {"project": {"name": p.name, "file": p.path, "system": "cylinder", "contact": cyl.contact,
                             "kind": "cylinder", "sha256": p.sha256, "kernels_sha256": sources_digest(),
@@ -267,7 +276,7 @@ class CylinderCheckResult:
                 "checks": self.checks, "verdict": self.verdict, "verdict_reason": self.verdict_reason,
                 "verdict_robust": self.verdict_robust,
                 "failed_records": [{"id": o.id, "status": o.run.engine_status} for o in self.failed_records],
-                "fragility": None, "collapse_margin": None, "ensemble": self.ensemble,
+                "fragility": self.fragility, "collapse_margin": self.collapse_margin, "ensemble": self.ensemble,
                 "acceptance": self.acceptance}
 
 
@@ -312,36 +321,12 @@ def _summary(records: list[PairOutcome], e, ensemble: dict | None, planar_run: b
     return out
 
 
-def _ensembles(cyl, pairs, factors, nominal: list[PairRun], a, progress, note=None) -> dict | None:
-    """The perturbation ensemble (thesis Ch. 7): ``ensemble_size`` runs of the whole suite, each pair's
-    amplitude × (1 ± 0.1 %) and the tolerances one decade tighter; None for ``ensemble_size = 0``."""
-    size, n = a.ensemble_size, len(pairs)
-    if not size:
-        return None
-    amplitude, _ = perturbations(n, size, a.seed)
-    overturned = np.zeros((size, n), dtype=bool)
-    for m in range(size):
-        for i, pair in enumerate(pairs):
-            run = _run_3d(cyl, pair.scaled(factors[i] * amplitude[m, i]), a, rtol=a.rtol * TOLERANCE_FACTOR,
-                          atol=a.atol * TOLERANCE_FACTOR, note=note)
-            overturned[m, i] = run.overturned
-            if progress is not None:
-                progress(f"perturbation ensembles ({size} runs per pair)", m * n + i + 1, size * n)
-    nominal_ot = np.array([r.overturned for r in nominal], dtype=bool)
-    fractions = overturned.mean(axis=0)
-    robust = (overturned == nominal_ot[None, :]).all(axis=0)
-    return {"overturned": overturned, "restitution": np.ones(size), "robust": robust, "fractions": fractions,
-            "size": size, "seed": a.seed, "amplitude_variation": AMPLITUDE_VARIATION,
-            "tolerance_factor": TOLERANCE_FACTOR, "p_overturn": float(fractions.mean()),
-            "n_not_robust": int((~robust).sum())}
-
-
 def cylinder_rule(analysis) -> AcceptanceRule:
-    """The rule that decides a cylinder's verdict (CONTRACT §6.1): the project's acceptance rule
-    (``[analysis] risk_category``, ``acceptance``) over the record pairs, each pair one ground motion,
-    without a collapse margin (the 3D check has no fragility fit): under ``asce7`` the ASCE 7-22
-    §16.4.1.1 count decides, at the design level and on each pair's first overturning intensity."""
-    return acceptance_rule(analysis).with_collapse_margin(False)
+    """The rule that decides a cylinder's verdict (CONTRACT §6.1), the same as every kind's: the project's
+    acceptance rule (``[analysis] risk_category``, ``acceptance``) over the record pairs, each pair one
+    ground motion: under ``asce7`` the ASCE 7-22 §16.4.1.1 count (at the design level and on each pair's
+    first overturning intensity) and the FEMA P695 collapse margin at the category's target decide."""
+    return acceptance_rule(analysis)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -432,8 +417,10 @@ def run_cylinder_check(project, progress=None, margins: bool = True, *, records:
                              lambda pair, rtol: _run_3d(cyl, pair, a, rtol=rtol, note=note), progress)
         for o, m in zip(records, found):
             o.margin = m
-    ens = None if verdict_only else _ensembles(cyl, [p for _, p in pairs], sp.factors, [o.run for o in records], a,
-                                               progress, _slow_notes(progress))
+    slow = _slow_notes(progress)
+    ens = None if verdict_only else suite_ensembles(
+        lambda pair, rtol, atol: _run_3d(cyl, pair, a, rtol=rtol, atol=atol, note=slow), [p for _, p in pairs],
+        sp.factors, [o.run for o in records], a, progress)
     if ens is not None:
         for i, o in enumerate(records):
             o.ensemble_fraction, o.outcome_robust = float(ens["fractions"][i]), bool(ens["robust"][i])
@@ -443,18 +430,22 @@ def run_cylinder_check(project, progress=None, margins: bool = True, *, records:
                                  if o.margin is not None and o.margin.overturn_scale is not None), default=None)
     summary["n_margin_below_design"] = sum(1 for o in records if o.margin is not None
                                            and o.margin.overturn_scale is not None and o.margin.overturn_scale < 1.0)
+    valid = [o for o in records if o.run.status == "completed"]
+    fragility = pair_fragility(valid, a, summary["n_overturned"]) if margins else None
+    margin_fema = collapse_margin(fragility, dict(a.quality), rule.target)
     context = CheckContext(records, a, {}, {}, margins_run=margins,
-                           extra={"ensemble": ens, "cylinder": cyl, "summary": summary}, rule=rule)
+                           extra={"ensemble": ens, "cylinder": cyl, "summary": summary,
+                                  "collapse_margin": margin_fema}, rule=rule)
     items, skipped = evaluate_criteria(context, cylinder_criteria(rule))
     decision = decide(items, skipped, rule)
-    acceptance = acceptance_summary(rule, items, decision, context.valid, None)
+    acceptance = acceptance_summary(rule, items, decision, context.valid, margin_fema)
     checks = [i.as_json() for i in items]
     checks.sort(key=lambda c: (not c["governs_verdict"], -c["utilisation"]))
     ensemble_json = None if ens is None else {
         k: ens[k] for k in ("size", "seed", "amplitude_variation", "tolerance_factor", "p_overturn", "n_not_robust")}
     return CylinderCheckResult(project, records, summary, checks, decision.verdict, decision.reason,
-                               decision.robust, decision.governing, ensemble_json, acceptance,
-                               decided_at_design_level=decided if verdict_only else None)
+                               decision.robust, decision.governing, ensemble_json, acceptance, fragility,
+                               margin_fema, decided_at_design_level=decided if verdict_only else None)
 
 
 MAX_HISTORIES = 8

@@ -1,12 +1,14 @@
 """The criteria of a cylinder's check (thesis Ch. 5), in the terms of :mod:`rockdesign.acceptance.criteria`.
 
-Each record pair is one ground motion.  Under the default acceptance (``asce7``) the governing
-criteria are every analysis completed, the ASCE 7-22 §16.4.1.1 count of unacceptable ground motions
-(pairs that overturn at the design level) within the risk category's allowance, and the same count
-over the pairs that overturn at *some* intensity up to the design level (their first overturning
-factor ≤ 1: a non-monotonic band below the design level counts) — the 3D check has no fragility fit,
-so the count rules decide alone.  Under ``acceptance = "binomial"`` the one-sided 95 % bound of
-P(overturn) over the pairs governs instead (the count is then information).  All read from the typed
+Each record pair is one ground motion, and the cylinder is judged as every kind is.  Under the default
+acceptance (``asce7``) the governing criteria are every analysis completed, the ASCE 7-22 §16.4.1.1
+count of unacceptable ground motions (pairs that overturn at the design level) within the risk
+category's allowance, the same count over the pairs that overturn at *some* intensity up to the design
+level (their first overturning factor ≤ 1: a non-monotonic band below the design level counts), and
+the FEMA P695 collapse margin at the category's target
+(:class:`~rockdesign.acceptance.overturning_criteria.CollapseMarginAtTarget`, on each pair's first
+overturning intensity of the resultant PGA).  Under ``acceptance = "binomial"`` the one-sided 95 %
+bound of P(overturn) over the pairs governs instead (the count and the margin are then information).  All read from the typed
 pair outcomes of
 :mod:`rockdesign.cylinder.check`; the cylinder adds its overturning criterion's words (θ reaching
 θ_ot), its perturbation ensemble (no c_r: the 3D model has no impact law) and two informative checks
@@ -21,7 +23,8 @@ from ..acceptance.rule import (count_rule, first_overturn_scale, minimum_records
                          unacceptable_ground_motions)
 from ..acceptance.criterion_base import GOVERNS, INFORMATIVE, ROBUSTNESS, Criterion
 from ..acceptance.criteria import AnalysesCompleted
-from ..acceptance.overturning_criteria import GoverningIncrementalMargin
+from ..acceptance.overturning_criteria import (CollapseMarginAtTarget, CollapseMarginInformative,
+                                               GoverningIncrementalMargin)
 
 
 def _pct(x: float) -> str:
@@ -225,14 +228,17 @@ class PolyakovPerComponent(Criterion):
 
 
 CYLINDER_CRITERIA: list[type[Criterion]] = [AnalysesCompleted, CylinderOverturning, GoverningIncrementalMargin,
-                                            CylinderEnsembleRobustness, PlanarSuffices, PolyakovPerComponent]
+                                            CylinderEnsembleRobustness, CollapseMarginInformative, PlanarSuffices,
+                                            PolyakovPerComponent]
 """The criteria of a cylinder's check under ``acceptance = "binomial"``, in evaluation order
 (:func:`~rockdesign.acceptance.criteria.evaluate_criteria`)."""
 
 CYLINDER_CRITERIA_ASCE7: list[type[Criterion]] = [AnalysesCompleted, CylinderUnacceptable, CylinderIncrementalCount,
-                                                  CylinderEnsembleRobustness, CylinderOverturningInformative,
-                                                  PlanarSuffices, PolyakovPerComponent]
-"""The criteria of a cylinder's check under the default ``acceptance = "asce7"`` (the count rules decide)."""
+                                                  CollapseMarginAtTarget, CylinderEnsembleRobustness,
+                                                  CylinderOverturningInformative, PlanarSuffices,
+                                                  PolyakovPerComponent]
+"""The criteria of a cylinder's check under the default ``acceptance = "asce7"`` (the count rules and the
+collapse margin decide)."""
 
 
 def cylinder_criteria(rule) -> list[type[Criterion]]:

@@ -6,12 +6,12 @@ import statistics
 
 from .check import (GOVERNING_PAIRS, MAX_HISTORIES, run_cylinder_check, suite_pair_records,
                                      suite_pairs_key)
-from ..acceptance.scans import SCAN_RATIO, scan_grid
+from .margins import pair_grid
 
 RULE = ("the project's acceptance rule over the record pairs, each pair one ground motion: the ASCE 7-22 "
         "§16.4.1.1 count of pairs that overturn (θ reaching θ_ot, thesis Sec 5.5.1) at the design level and at "
-        "some intensity up to it, or under acceptance = \"binomial\" the one-sided 95 % bound of P(overturn) "
-        "(Clopper–Pearson) within the limit")
+        "some intensity up to it and the FEMA P695 collapse margin at the risk category's target, or under "
+        "acceptance = \"binomial\" the one-sided 95 % bound of P(overturn) (Clopper–Pearson) within the limit")
 """What decides a cylinder cell's verdict (the design report's words)."""
 
 SKIPPED = ("incremental scans skipped where the design-level runs already fail the acceptance rule; the planar "
@@ -51,7 +51,7 @@ def saved_by_stopping(result, decided_early: bool) -> int:
         for o in result.records:
             f_up = uplift / o.resultant_pga if o.resultant_pga > 0 else float("inf")
             if f_up < 1.0:
-                saved += min(1, len(scan_grid(max(0.5 * f_up, 1e-3), 1.0, SCAN_RATIO)) - 1)
+                saved += min(1, len(pair_grid(f_up, a.margin_max_scale)) - 1)
     return saved
 
 
@@ -74,7 +74,8 @@ def grid_cell(result, analyses: int) -> dict:
         "governing": result.governing_check,
         "decided_at_design_level": decided,
         "acceptance": acc.get("method"),
-        "acmr": None, "acmr_required": None, "p_collapse_design": None, "target_p_collapse": None,
+        "acmr": acc.get("acmr"), "acmr_required": acc.get("acmr_required"),
+        "p_collapse_design": acc.get("p_collapse_design"), "target_p_collapse": acc.get("target_p_collapse"),
         "n_unacceptable": acc.get("n_unacceptable"), "allowed_unacceptable": acc.get("allowed_unacceptable"),
         "n_ground_motions": acc.get("n_ground_motions"),
         "n_incremental_unacceptable": _incremental_count(result),

@@ -49,5 +49,28 @@ CYLINDER_METHODS = (
         "window, a lower bound of the value over unlimited time; the damped model dissipates energy at "
         "every quasi-impact and comes to rest or to steady wobbling.",
     )),
+    Method("C3", "First overturning intensities, fragility and collapse margin", (
+        "Incremental analysis: each pair, as scaled for the design (factor 1), is analysed on a geometric "
+        "grid of factors (consecutive factors at most 1.2 apart) from half the factor at which its resultant "
+        "PGA reaches g tan α up to 1 and on to the project's margin_max_scale, until the first factor at "
+        "which θ reaches θ_ot; that factor is bisected to margin_precision. Responses are not monotonic in "
+        "amplitude (thesis Sec 2.2): a pair safe at the design level may overturn below it, and the first "
+        "crossing counts. A pair that does not overturn up to margin_max_scale is censored there.",
+        "Fragility: the capacity of pair i is x_i = s_i·PGA_r,i, its first overturning factor times its "
+        "design-level resultant PGA max √(ü_gx² + ü_gy²) (the intensity a pair is scaled by, Table 5.4). "
+        "Lognormal fit by the method of moments, or by censored maximum likelihood when pairs are censored; "
+        "a binomial maximum-likelihood fit to the outcomes at common intensity stripes (Baker 2015, "
+        "Earthquake Spectra 31(1)); 90 % percentile bootstrap intervals over pairs.",
+        "Collapse margin: an adaptation of FEMA P695 (2009) Ch. 7, written for conventional seismic-force-"
+        "resisting systems, with overturning standing for collapse and each pair one ground motion. "
+        "CMR = Ŝ_CT/S_MT with S_MT the median design-level resultant PGA and Ŝ_CT counted as FEMA P695 "
+        "Ch. 6 (§6.4) defines it: the intensity at which one half of the pairs have overturned (the "
+        "⌈n/2⌉-th smallest capacity); the median of the fitted lognormal is reported beside it and does not "
+        "decide. SSF = 1 (P695's spectral shape factor needs a period-based ductility that a rigid rocking "
+        "body does not have; SSF ≥ 1 in P695, so 1 is conservative); β_TOT = √(β_RTR² + β_DR² + β_TD² + "
+        "β_MDL²) rounded to 0.025 with β_RTR = 0.4 and the quality ratings A/B/C/D = 0.10/0.20/0.35/0.50 "
+        "(FEMA P695 Tables 3-1, 3-2, 5-3). The margin governs at the risk category's target P(collapse) of "
+        "ASCE 7-22 Table 1.3-2: ACMR ≥ exp(−β_TOT Φ⁻¹(x)).",
+    )),
 )
 """The appendix of the cylinder report."""

@@ -180,6 +180,13 @@ def parse_cylinder_project(raw: dict, *, file: str = "<project>", text: str = ""
             raise ProjectError("a planar analysis key does not apply to a cylinder", file=file, key=f"analysis.{key}",
                                expected="for a cylinder: rtol, atol, g, rest_velocity, free_vibration, overturn_tilt",
                                found=f"{key} = {analysis_raw[key]!r}")
+    for key in ("fragility_im", "fragility_period"):
+        if key in analysis_raw:
+            raise ProjectError("the fragility of a cylinder is in the resultant PGA", file=file,
+                               key=f"analysis.{key}",
+                               expected="no fragility_im or fragility_period for a [cylinder]: a record pair is "
+                                        "scaled by its resultant PGA (Table 5.4), the intensity of its fragility",
+                               found=f"{key} = {analysis_raw[key]!r}")
     data = raw["cylinder"]
     if isinstance(data, dict):
         for key in data:

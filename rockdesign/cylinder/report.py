@@ -7,8 +7,9 @@ WeasyPrint PDF.
 
 As in the planar report every number is printed by the ``fmt`` filter from ``result.as_json()``
 (results.json), so the report and results.json agree.  Figures: the wobbling period T_w·p against
-θ/α next to Housner's planar period (Fig 5.2), 3D against planar θ_max/α per pair, and θ(t) with the
-plan-view orbit of the governing pairs (Figs 5.9–5.15).
+θ/α next to Housner's planar period (Fig 5.2), 3D against planar θ_max/α per pair, the overturning
+fragility with the collapse margin (shared with every kind, :mod:`rockdesign.report.fragility_figures`)
+and θ(t) with the plan-view orbit of the governing pairs (Figs 5.9–5.15).
 """
 from __future__ import annotations
 
@@ -22,7 +23,8 @@ from .engine import SPIN_TILT_MIN
 from .quantities import cylinder_quantities
 from ..paths import templates_dir
 from ..plots import save
-from ..report.context import given_value, report_date, software_versions
+from ..report.context import given_value, quality_note, report_date, software_versions
+from ..report.fragility_figures import fragility_figure
 from .figures import comparison_figure, cylinder_history_figure, wobbling_figure
 from ..report.svg import svg
 from ..report.formatting import DIGITS, fmt
@@ -41,10 +43,13 @@ SCALING_TEXT = {"resultant_pga": "each pair scaled to a peak resultant ground ac
 
 
 def render_cylinder_figures(result) -> dict[str, str]:
-    """Inline SVG of the report's figures: ``wobbling``, ``comparison`` and ``history:<pair id>``."""
+    """Inline SVG of the report's figures: ``wobbling``, ``comparison``, ``fragility`` (when the pairs were
+    scanned) and ``history:<pair id>``."""
     cyl = result.project.system
     out = {"wobbling": svg(wobbling_figure(cyl), "wobbling"),
            "comparison": svg(comparison_figure(result.as_json()), "comparison")}
+    if result.fragility and result.fragility.get("capacities"):
+        out["fragility"] = svg(fragility_figure(result), "fragility")
     for k, (rid, (response, pair)) in enumerate(result.histories.items()):
         out[f"history:{rid}"] = svg(cylinder_history_figure(response, cyl.g, title=rid, pair=pair), f"history{k}")
     return out
@@ -116,6 +121,8 @@ def build_cylinder_context(result, *, figures: dict, date: str | None = None) ->
         "software": software_versions(), "digits": DIGITS,
         "given": {key: given_value(project, "cylinder", key) for key in ("height", "diameter", "mass", "density")},
         "check_rows": check_rows(data["checks"]), "methods": CYLINDER_METHODS, "spin_tilt_min": SPIN_TILT_MIN,
+        "quality_note": quality_note(project, data), "record_word": "record pair",
+        "fragility_appendix": "Appendix C3",
     }
 
 

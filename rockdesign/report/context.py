@@ -104,3 +104,15 @@ def report_date() -> str:
     epoch = os.environ.get("SOURCE_DATE_EPOCH")
     when = datetime.fromtimestamp(int(epoch), tz=timezone.utc) if epoch else datetime.now(timezone.utc)
     return when.strftime("%Y-%m-%d")
+
+
+def quality_note(project, data: dict) -> str:
+    """Where the FEMA P695 quality ratings of a check's collapse margin come from (the project's
+    ``[analysis] quality`` or the default), "" without a collapse margin."""
+    if not data.get("collapse_margin"):
+        return ""
+    given = ((project.raw or {}).get("analysis") or {}).get("quality")
+    if given:
+        return "ratings from the project's [analysis] quality"
+    return ("default ratings B ('good', β = 0.20 each; FEMA P695 Tables 3-1, 3-2 and 5-3): the project gives no "
+            "[analysis] quality")

@@ -41,7 +41,7 @@ COLUMNS = (
     ("θc", "theta_c", "rad"), ("θ_ot", "theta_overturn", "rad"), ("material", "column_material", "kg"),
 )
 """Columns of the variants table after the verdict and the count: (header, cell key, unit), each shown when
-a cell has the number (a cylinder has no ACMR, shear or θc, but a P(overturn) bound and θ_ot)."""
+a cell has the number (a cylinder has no shear or θc, but a P(overturn) bound and θ_ot)."""
 
 
 def _svg(fig) -> str:

@@ -93,8 +93,9 @@ def fragility_figure(result):
 
 
 def _acceptance_marks(ax, grid, design, cm, acc) -> None:
-    """The acceptance rule on the fragility panel: the collapse fragility of the margin (median Ŝ_CT,
-    dispersion β_TOT), its P(collapse) at the design level and the risk category's target probability."""
+    """The acceptance rule on the fragility panel: the collapse fragility of the margin (median Ŝ_CT
+    counted as FEMA P695 §6.4 defines it, dispersion β_TOT), its P(collapse) at the design level and the
+    risk category's target probability."""
     if not cm or not acc:
         return
     target = acc["target_p_collapse"]
@@ -102,8 +103,8 @@ def _acceptance_marks(ax, grid, design, cm, acc) -> None:
                label=f"target P(collapse | design) {fmt(100 * target)} % (risk category {acc['risk_category']})")
     if not cm["CMR_is_lower_bound"]:
         ax.plot(grid, norm.cdf(np.log(grid / cm["median_capacity"]) / cm["beta_tot"]), color="C3", lw=1.0,
-                label=f"collapse margin: median {fmt(cm['median_capacity'], cm['unit'])}, "
-                      f"β_TOT = {fmt(cm['beta_tot'])}")
+                label=r"collapse margin: $\hat{S}_{CT}$ counted (half the records overturn) "
+                      f"{fmt(cm['median_capacity'], cm['unit'])}, " + r"$\beta_{TOT}$" + f" = {fmt(cm['beta_tot'])}")
     ax.plot([design], [cm["p_collapse_design"]], "D", color="C3", ms=4.5,
             label=f"P(collapse | design) = {fmt(100 * cm['p_collapse_design'])} %"
                   + (" (upper bound)" if cm["CMR_is_lower_bound"] else "") + f", ACMR {fmt(cm['ACMR'])}")

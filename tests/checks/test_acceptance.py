@@ -115,10 +115,18 @@ def test_collapse_margin_from_first_overturning_intensities_against_scipy(catego
     assert frag["n_capacity_below_design"] == 2                     # the 0.9× band and the design-level run
     target = {"I": 0.10, "II": 0.10, "III": 0.05, "IV": 0.025}[category]
     cm = collapse_margin(frag, B, target)
-    acmr = math.exp(mu) / 2.0
     need = math.exp(-0.525 * stats.norm.ppf(target))
-    assert cm["ACMR"] == pytest.approx(acmr, rel=1e-4) and cm["ACMR_target"] == pytest.approx(need, rel=1e-12)
-    assert cm["p_collapse_design"] == pytest.approx(stats.norm.cdf(-math.log(acmr) / 0.525), rel=1e-3)
+    # the fitted lognormal median (information): ACMR and P(collapse) against scipy's censored fit
+    acmr_fitted = math.exp(mu) / 2.0
+    assert cm["ACMR_fitted"] == pytest.approx(acmr_fitted, rel=1e-4) and cm["ACMR_target"] == pytest.approx(need, rel=1e-12)
+    assert cm["p_collapse_design_fitted"] == pytest.approx(stats.norm.cdf(-math.log(acmr_fitted) / 0.525), rel=1e-3)
+    # the counted Ŝ_CT that decides (FEMA P695 §6.4): the 11th of the 22 capacities (the 3 censored ones at
+    # 16 m/s² lie above it), numpy's inverted-CDF quantile
+    counted = float(np.quantile(x, 0.5, method="inverted_cdf"))
+    assert counted == np.sort(x)[10] and counted < 16.0
+    acmr = counted / 2.0
+    assert cm["median_definition"] == "counted" and cm["ACMR"] == pytest.approx(acmr, rel=1e-12)
+    assert cm["p_collapse_design"] == pytest.approx(stats.norm.cdf(-math.log(acmr) / 0.525), rel=1e-12)
     ctx = CheckContext(outcomes, a, {}, {}, True, {"collapse_margin": cm})
     items, skipped = evaluate_criteria(ctx, criteria_for(ctx.rule))
     v = decide(items, skipped, ctx.rule)

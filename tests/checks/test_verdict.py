@@ -151,9 +151,9 @@ def test_a_component_pair_suite_of_22_passes_where_the_component_binomial_could_
     assert v.verdict == "PASS"
 
 
-def test_cylinder_pairs_at_criteria_level_pass_on_the_22_pair_suite():
-    """A cylinder's record pair is one ground motion and its check has no incremental analysis: the count rule
-    alone decides, and says so (typed outcomes as the cylinder check builds them)."""
+def test_a_check_without_incremental_analysis_is_decided_by_the_count():
+    """A kind whose check has no incremental analysis (a rule built with ``with_collapse_margin(False)``, each
+    outcome one ground motion): the count rule alone decides, and says so."""
     pairs = [outcome(i, gm=f"p695-ff/{i + 1}") for i in range(22)]
     for o in pairs:
         o.id = o.ground_motion

@@ -5,6 +5,7 @@ import json
 
 import numpy as np
 import pytest
+from scipy import stats
 from scipy.stats import binomtest
 from typer.testing import CliRunner
 
@@ -47,7 +48,7 @@ def test_statistics_are_clopper_pearson_over_22_pairs(result):
     # the verdict is criteria.decide's: every analysis completed and the ASCE 7-22 §16.4.1.1 count over the
     # pairs (each one ground motion), at the design level and on the first overturning intensity
     gov = {c["criterion"]: c for c in result["checks"] if c["governs_verdict"]}
-    assert set(gov) == {"analyses_completed", "unacceptable_responses", "incremental_margin"}
+    assert set(gov) == {"analyses_completed", "unacceptable_responses", "incremental_margin", "collapse_margin"}
     assert result["acceptance"]["method"] == "asce7" and result["acceptance"]["n_ground_motions"] == 22
     assert result["acceptance"]["n_unacceptable"] == k
     assert result["verdict"] == ("PASS" if all(c["passed"] for c in gov.values()) else "FAIL")
@@ -77,9 +78,12 @@ def test_margins_below_the_design_level_are_real(result):
     proj = parse_project({"project": {"name": "x"}, "cylinder": {"height": "3 m", "slenderness": 0.2,
                                                                 "mass": "2 t"}})
     a = proj.analysis
-    rows = [r for r in result["records"] if r["overturn_scale"] is not None]
+    rows = [r for r in result["records"] if r["overturn_scale"] is not None and r["overturn_scale"] <= 1.0]
     assert rows, "the 0.3 g suite has pairs that overturn at or below the design level"
-    assert all(r["overturn_scale"] <= 1.0 and r["margin_scanned_up_to"] == 1.0 for r in rows)
+    # the scan goes on past the first overturning factor (safe-again bands), up to margin_max_scale at most
+    top = result["settings"]["margin_max_scale"]
+    assert all(r["overturn_scale"] < r["margin_scanned_up_to"] <= top * (1 + 1e-12) for r in rows)
+    assert all(r["overturn_intervals"][0][0] == r["overturn_scale"] for r in rows)
     for r in rows[:3]:
         pair = load_pair(r["id"]).scaled(r["scale"] * r["overturn_scale"])
         run = simulate_cylinder(proj.system, pair, rtol=max(a.rtol, a.scan_rtol), atol=a.atol,
@@ -88,6 +92,46 @@ def test_margins_below_the_design_level_are_real(result):
     assert all(r["overturn_scale"] is not None for r in result["records"] if r["overturned"])
     inc = next(c for c in result["checks"] if c["criterion"] == "incremental_margin")
     assert inc["detail"].startswith(f"{len(rows)} of 22 record pairs overturn at some intensity")
+
+
+def test_fragility_and_collapse_margin_of_the_pairs(result):
+    """One acceptance for every kind: each pair's capacity is its first overturning factor times its
+    design-level resultant PGA (censored at margin_max_scale); the fragility against scipy on these
+    capacities, Ŝ_CT counted (FEMA P695 §6.4) against numpy's inverted-CDF quantile, and the margin at the
+    risk category's target governs."""
+    f, cm, acc = result["fragility"], result["collapse_margin"], result["acceptance"]
+    rows = result["records"]
+    first = [1.0 if r["overturned"] and (r["overturn_scale"] is None or r["overturn_scale"] > 1.0)
+             else r["overturn_scale"] for r in rows]
+    top = result["settings"]["margin_max_scale"]
+    x = np.array([(s if s is not None else top) * r["resultant_pga"] for s, r in zip(first, rows)])
+    cens = np.array([s is None for s in first])
+    assert f["im"] == "resultant_pga" and f["unit"] == "m/s^2" and f["n_censored"] == int(cens.sum())
+    assert [c["capacity"] for c in f["capacities"]] == pytest.approx(list(x), rel=1e-12)
+    assert f["design_intensity"] == pytest.approx(0.3 * 9.81, rel=1e-12)
+    if cens.any():
+        mu, sigma = stats.norm.fit(stats.CensoredData.right_censored(np.log(x), cens))
+    else:
+        mu, sigma = np.log(x).mean(), np.log(x).std(ddof=1)
+    assert f["median"] == pytest.approx(np.exp(mu), rel=1e-4) and f["beta"] == pytest.approx(sigma, rel=1e-3)
+    counted = float(np.quantile(np.where(cens, np.inf, x), 0.5, method="inverted_cdf"))
+    assert cm["median_definition"] == "counted" and cm["median_capacity"] == pytest.approx(counted, rel=1e-12)
+    acmr = counted / (0.3 * 9.81)
+    need = np.exp(-0.525 * stats.norm.ppf(0.10))
+    assert acc["acmr"] == pytest.approx(acmr, rel=1e-12) and acc["acmr_required"] == pytest.approx(need, rel=1e-12)
+    assert acc["p_collapse_design"] == pytest.approx(stats.norm.cdf(-np.log(acmr) / 0.525), rel=1e-9)
+    assert acc["acmr_fitted"] == pytest.approx(np.exp(mu) / (0.3 * 9.81), rel=1e-4)
+    assert acc["median_definition"] == "counted" and "collapse margin" in acc["method_label"]
+    item = next(c for c in result["checks"] if c["criterion"] == "collapse_margin")
+    assert item["governs_verdict"] and item["passed"] is bool(acmr >= need)
+
+
+def test_a_cylinder_refuses_a_planar_intensity_measure():
+    """The fragility of a pair is in its resultant PGA: fragility_im and fragility_period are refused."""
+    with pytest.raises(ProjectError) as err:
+        parse_project({"project": {"name": "x"}, "cylinder": {"height": "3 m", "slenderness": 0.2, "mass": "2 t"},
+                       "analysis": {"fragility_im": "sa", "fragility_period": "1 s"}}, file="c.toml")
+    assert err.value.key == "analysis.fragility_im" and "resultant PGA" in str(err.value)
 
 
 @pytest.mark.parametrize("excitation, key", [

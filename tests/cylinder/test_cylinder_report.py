@@ -107,6 +107,26 @@ def test_report_numbers_are_those_of_results_json(report):
     assert "<tr><th>Mass m</th><td>2 t</td></tr>" in page and fmt(data["cylinder"]["mass"], "kg") not in flat
 
 
+@pytest.mark.slow
+def test_report_shows_the_fragility_and_collapse_margin(report):
+    """One acceptance for every kind: the cylinder's report has the fragility table and figure and the collapse
+    margin as a podium's does, with the counted Ŝ_CT that decides and the fitted median beside it."""
+    data, page, pdf_text, _ = report
+    f, cm, acc = data["fragility"], data["collapse_margin"], data["acceptance"]
+    assert f["im"] == "resultant_pga" and f["n_records"] == 3 and cm["median_definition"] == "counted"
+    assert acc["acmr"] == cm["ACMR"] and acc["p_collapse_design"] == cm["p_collapse_design"]
+    flat = " ".join(pdf_text.split())
+    assert "Overturning fragility and collapse margin" in flat and "Appendix C3" in flat
+    for value in (cm["ACMR"], cm["ACMR_target"], cm["median_capacity"], f["design_intensity"], cm["beta_tot"]):
+        assert fmt(value) in page
+    if cm["ACMR_fitted"] is not None:
+        assert fmt(cm["ACMR_fitted"]) in page and fmt(cm["median_fitted"]) in page
+    assert "counted (FEMA P695 §6.4)" in page and "Fitted lognormal median (information)" in page
+    fig = re.search(r'<figure><img[^>]*src="data:image/svg\+xml;base64,([^"]+)"[^>]*>\s*<figcaption>Overturning fragility',
+                    page)
+    assert fig and "P(overturn)" in base64.b64decode(fig.group(1)).decode("utf-8")
+
+
 def test_library_check_and_write_report_for_a_cylinder(small_suite, tmp_path):
     """rd.check returns a CylinderCheckResult; the governing histories are the analyses behind the rows;
     rd.write_report writes the folder (HTML without PDF here) with results.json = as_json()."""

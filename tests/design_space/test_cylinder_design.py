@@ -8,7 +8,7 @@ import math
 import tomllib
 
 import pytest
-from scipy.stats import beta
+from scipy.stats import beta, norm
 from typer.testing import CliRunner
 
 from rockdesign.cli import app
@@ -82,6 +82,9 @@ def test_each_cell_verdict_equals_the_check_of_its_project_file(grid):
             assert cell["robust"] == full["verdict_robust"] and cell["draws"]["n"] >= 1, cell["robustness"]
         else:
             assert cell["robust"] is None
+        if not cell["decided_at_design_level"]:     # the same incremental scans: the same collapse margin
+            assert cell["acmr"] == pytest.approx(full["acceptance"]["acmr"], rel=1e-12)
+            assert cell["p_collapse_design"] == pytest.approx(full["acceptance"]["p_collapse_design"], rel=1e-12)
         # the same design-level analyses: the median θ_max/θ_ot of the pairs, to the last digit
         ratios = [r["theta_max_over_theta_ot"] for r in full["records"]]
         assert cell["median_theta_max_over_theta_c"] == pytest.approx(sorted(ratios)[0] / 2 + sorted(ratios)[1] / 2,
@@ -101,7 +104,10 @@ def test_cells_hold_the_cylinders_numbers(grid):
         assert c["theta_overturn"] == pytest.approx(1.5 * alpha, rel=1e-12)        # default overturn_tilt
         assert c["uplift_acceleration"] == pytest.approx(9.81 * d / h, rel=1e-12)  # g tan α
         assert c["column_material"] == pytest.approx(2600 * math.pi * (d / 2) ** 2 * h, rel=1e-12)
-        assert c["superstructure_shear_p84"] is None and c["acmr"] is None and c["theta_c"] is None
+        assert c["superstructure_shear_p84"] is None and c["theta_c"] is None
+        # the ACMR of every scanned variant (the collapse margin is information under the binomial rule)
+        assert (c["acmr"] is None) == bool(c["decided_at_design_level"])
+        assert c["acmr"] is None or c["acmr_required"] == pytest.approx(math.exp(-0.525 * norm.ppf(0.10)))
         assert c["n_ground_motions"] == 2 and c["acceptance"] == "binomial" and c["binomial_limit"] == 0.8
         k = c["n_unacceptable"]
         assert c["p_overturn"] == k / 2
@@ -156,7 +162,8 @@ def test_cylinder_charts_render_for_two_variables(grid):
     data = json.loads((out / "design.json").read_text(encoding="utf-8"))
     figs = design_figures(data)
     assert figs["verdict"] is not None and figs["overturning"] is not None and figs["rotation"] is not None
-    assert figs["shear"] is None and figs["acmr"] is None and figs["thesis_plane"] is None
+    assert figs["shear"] is None and figs["thesis_plane"] is None
+    assert (figs["acmr"] is None) == all(c["acmr"] is None for c in data["cells"])
     reasons = {cell_reason(c) for c in data["cells"]}
     assert "P ≤ 0.78" in reasons and "P ≤ 0.97" in reasons
     from types import SimpleNamespace
@@ -168,10 +175,11 @@ def test_cylinder_charts_render_for_two_variables(grid):
     written = write_design_report(SimpleNamespace(project=load_project(folder / "cyl.toml")), data,
                                   folder / "report2", pdf=False)
     html = written["html"].read_text(encoding="utf-8")
-    assert {"verdict", "overturning", "rotation"} == set(written) - {"html"}
+    scanned = any(c["acmr"] is not None for c in data["cells"])
+    assert {"verdict", "overturning", "rotation"} | ({"acmr"} if scanned else set()) == set(written) - {"html"}
     table = html[html.index("Variants</h2>"):]
     assert "median θ_max/θ_ot" in table and "P(overturn) bound (limit)" in table
-    assert "ACMR" not in table and "shear coeff." not in table
+    assert ("ACMR (required)" in table) == scanned and "shear coeff." not in table
 
 
 def test_no_passing_variant_exits_1(two_pairs, tmp_path):

@@ -11,8 +11,8 @@ import re
 from pathlib import Path
 
 from ... import __version__
-from ...report.context import (as_given, given_value, inputs_as_given, pretty_exponents, report_date,  # noqa: F401
-                               software_versions)
+from ...report.context import (as_given, given_value, inputs_as_given, pretty_exponents, quality_note,  # noqa: F401
+                               report_date, software_versions)
 from ...report.formatting import fmt
 from .methods import PLANAR_METHODS
 
@@ -167,18 +167,6 @@ def _demand_buys(data: dict) -> dict | None:
     return {"text": text, "damping": damping}
 
 
-def _quality_note(project, data: dict) -> str:
-    """Where the FEMA P695 quality ratings come from (the project's ``[analysis] quality`` or the default)."""
-    cm = data.get("collapse_margin") or {}
-    if not cm:
-        return ""
-    given = ((project.raw or {}).get("analysis") or {}).get("quality")
-    if given:
-        return "ratings from the project's [analysis] quality"
-    return ("default ratings B ('good', β = 0.20 each; FEMA P695 Tables 3-1, 3-2 and 5-3): the project gives no "
-            "[analysis] quality")
-
-
 def _order_checks(checks: list[dict], governing: str | None) -> list[dict]:
     """The governing check (decided by the library: ``CheckResult.governing_check``) first, then the checks
     that decide the verdict, qualify it and inform it, each by decreasing demand/limit
@@ -277,7 +265,7 @@ def build_context(result, *, figures: dict | None = None, verification: dict | N
         "model": data["model"],
         "model_rows": _model_rows(data["model"]),
         "verdict_link": _verdict_link(data, checks),
-        "quality_note": _quality_note(project, data),
+        "quality_note": quality_note(project, data),
         "scaling_sentence": excitation.get("scaling_sentence"),
         "demand_buys": _demand_buys(data),
         "methods": PLANAR_METHODS,

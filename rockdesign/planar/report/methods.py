@@ -110,8 +110,11 @@ PLANAR_METHODS = (
         "to the outcomes at common intensity stripes (Baker 2015, Earthquake Spectra 31(1)); 90 % "
         "percentile bootstrap intervals over records.",
         "Collapse margin: an adaptation of FEMA P695 (2009) Ch. 7, written for conventional seismic-force-"
-        "resisting systems, with overturning standing for collapse. CMR = median overturning intensity over "
-        "the design intensity; SSF = 1 (P695's spectral shape factor needs a period-based ductility that a "
+        "resisting systems, with overturning standing for collapse. CMR = Ŝ_CT/S_MT, the median overturning "
+        "intensity over the design intensity, with Ŝ_CT counted as FEMA P695 Ch. 6 (§6.4) defines it: the "
+        "intensity at which one half of the records have overturned (the ⌈n/2⌉-th smallest capacity; with "
+        "more than half of them censored it is not defined and only bounded below); the median of the "
+        "fitted lognormal is reported beside it and does not decide. SSF = 1 (P695's spectral shape factor needs a period-based ductility that a "
         "rigid rocking body does not have; SSF ≥ 1 in P695, so 1 is conservative); β_TOT = √(β_RTR² + β_DR² "
         "+ β_TD² + β_MDL²) rounded to 0.025 with β_RTR = 0.4 and the quality ratings A/B/C/D = "
         "0.10/0.20/0.35/0.50 (FEMA P695 Tables 3-1, 3-2, 5-3; rating B, 'good', unless the project gives "
