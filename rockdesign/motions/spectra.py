@@ -21,10 +21,7 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from ..kernel_cache import refresh_stale_caches
-
-refresh_stale_caches()   # numba's cache does not see edits in called modules (see kernel_cache)
-
+from ..execution.compilation import Kernels
 from .defaults import DEFAULT_BAND, DEFAULT_DAMPING, DEFAULT_N_PERIODS  # noqa: F401  (re-exported)
 
 
@@ -301,3 +298,13 @@ def motion_spectrum(motion, periods, damping: float = DEFAULT_DAMPING):
     """(SD [m], PSV [m/s], PSA [m/s²]) of a GroundMotion at the given periods [s]."""
     accel, dt = motion_samples(motion)
     return response_spectrum(accel, dt, periods, damping)
+
+
+def _warm_up() -> None:
+    """SD_max of a four-sample record: the elastic-spectrum kernels, for the argument types of the real calls."""
+    from .motion import record_motion
+    sd_max(record_motion("warm-up", np.array([0.0, 0.3, -0.3, 0.0]) * 9.81, 0.01))
+
+
+ELASTIC_SPECTRUM = Kernels("elastic-spectrum", _warm_up, 3.0)
+"""The elastic response spectrum and SD_max (``records``, Polyakov's rule in a check), compiled on a first run."""
