@@ -6,7 +6,7 @@ After an installation or an upgrade the first command therefore spends tens of s
 Every command that runs kernels calls :func:`prepare` after checking its input (so a typo is reported
 at once on a first run too) with the groups of kernels it runs (:class:`Kernels`; a kind of structure
 names its own, :meth:`rockdesign.kinds.base.StructureKind.kernels`).  A group whose marker file
-``compiled-<name>`` is missing from the cache folder is compiled by its warm-up — its kernels called
+(``compiled-<name>-…``) is missing from the cache folder is compiled by its warm-up — its kernels called
 once on a tiny problem with the argument types of the real calls, so that the real calls load them —
 in this process, after the line
 
@@ -18,13 +18,14 @@ always speaks of the kernels in its folder; with every marker present nothing is
 """
 from __future__ import annotations
 
+import hashlib
 import os
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..kernel_cache import kernel_cache_dir
+from ..kernel_cache import PACKAGE, kernel_cache_dir
 
 MESSAGE = "first run: compiling the numerical kernels of `{command}` (about {seconds} s, once per version)"
 """The line printed before a first-run compilation."""
@@ -46,8 +47,11 @@ class Kernels:
 
 
 def marker(group: Kernels) -> Path:
-    """The file that says ``group`` is compiled into the kernel cache folder in use."""
-    return kernel_cache_dir() / f"compiled-{group.name}"
+    """The file that says ``group`` is compiled into the kernel cache folder in use, for this installation:
+    numba keeps the kernels of each source folder apart (by its path), so two installations of the same
+    sources share the folder but not the machine code (``compiled-<name>-<12 hex digits of the package's path>``)."""
+    where = hashlib.sha1(str(PACKAGE).encode()).hexdigest()[:12]
+    return kernel_cache_dir() / f"compiled-{group.name}-{where}"
 
 
 def missing(kernels: Sequence[Kernels]) -> list[Kernels]:

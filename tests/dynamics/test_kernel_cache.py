@@ -74,7 +74,8 @@ def test_edited_inlined_helper_runs_and_nothing_is_written_into_the_package(tmp_
     assert first["numba_cache_dir"] == str(folder)
     numba_folder = folder / f"dynamics_{hashlib.sha1(str(dynamics).encode()).hexdigest()}"
     assert list(numba_folder.glob("eom.potential_energy-*.nbi"))   # compiled into the digest's folder
-    assert Path(first["marker"]) == folder / "compiled-probe" and Path(first["marker"]).is_file()
+    assert Path(first["marker"]).parent == folder and Path(first["marker"]).is_file()
+    assert Path(first["marker"]).name.startswith("compiled-probe-")
     again = _run(src, cache_root)
     assert again["cache_hits"] > 0 and again["value"] == first["value"]   # the cache is really used
     assert _listing(package) == listing                                   # nothing written under the package
