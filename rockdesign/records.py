@@ -31,7 +31,8 @@ from .motions.figures import record_history_figure, record_spectrum_figure
 from .motions.library import load_record
 from .motions.measures import motion_measures, plausibility_warnings
 from .motions.motion import GroundMotion
-from .motions.spectra import ELASTIC_SPECTRUM, motion_spectrum, period_grid, sd_max
+from .motions.spectra import motion_spectrum, period_grid, sd_max
+from .motions.warm_up import ELASTIC_SPECTRUM
 from .motions.suites import list_records
 from .motions.synth import SCALE_CHOICES, EnsembleMatch, synthesize
 from .outdir import refuse_wrong_type

@@ -10,7 +10,7 @@ from . import check as cylinder_check
 from .project import claims, parse_cylinder_project
 from .quantities import cylinder_quantities, wobbling_curve
 from ..errors import RockdesignError
-from ..motions.spectra import ELASTIC_SPECTRUM
+from ..motions.warm_up import ELASTIC_SPECTRUM
 from ..planar.dynamics.warm_up import ENGINE
 from .warm_up import INTEGRATOR
 from ..plots import save

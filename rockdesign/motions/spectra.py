@@ -21,7 +21,6 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from ..execution.compilation import Kernels
 from .defaults import DEFAULT_BAND, DEFAULT_DAMPING, DEFAULT_N_PERIODS  # noqa: F401  (re-exported)
 
 
@@ -299,12 +298,3 @@ def motion_spectrum(motion, periods, damping: float = DEFAULT_DAMPING):
     accel, dt = motion_samples(motion)
     return response_spectrum(accel, dt, periods, damping)
 
-
-def _warm_up() -> None:
-    """SD_max of a four-sample record: the elastic-spectrum kernels, for the argument types of the real calls."""
-    from .motion import record_motion
-    sd_max(record_motion("warm-up", np.array([0.0, 0.3, -0.3, 0.0]) * 9.81, 0.01))
-
-
-ELASTIC_SPECTRUM = Kernels("elastic-spectrum", _warm_up, 3.0)
-"""The elastic response spectrum and SD_max (``records``, Polyakov's rule in a check), compiled on a first run."""

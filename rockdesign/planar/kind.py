@@ -13,7 +13,7 @@ from .design.quantities import design_quantities
 from .dynamics.shared_batches import SharedBatches
 from .dynamics.warm_up import ENGINE, LINEAR_EXACT
 from ..errors import RockdesignError
-from ..motions.spectra import ELASTIC_SPECTRUM
+from ..motions.warm_up import ELASTIC_SPECTRUM
 from ..plots import save
 from .project import parse_planar_project
 from .report.figures import pushover_figure
