@@ -14,5 +14,5 @@ def elastic_spectrum() -> None:
     sd_max(record_motion("warm-up", np.array([0.0, 0.3, -0.3, 0.0]) * 9.81, 0.01))
 
 
-ELASTIC_SPECTRUM = Kernels("elastic-spectrum", elastic_spectrum, 3.0)
+ELASTIC_SPECTRUM = Kernels("elastic-spectrum", elastic_spectrum, 2.0)
 """The elastic response spectrum and SD_max (``records``, Polyakov's rule in a check), compiled on a first run."""
