@@ -220,7 +220,8 @@ def report_stages(project: str) -> dict:
     html = timed("html_cpu_s", html_of, svgs)
     with tempfile.TemporaryDirectory() as tmp:
         timed("pdf_cpu_s", render.html_to_pdf, html, Path(tmp) / "report.pdf")
-    from weasyprint.text.ffi import harfbuzz_subset
+    from ctypes.util import find_library    # (the library WeasyPrint subsets fonts with when it is installed)
+    harfbuzz_subset = find_library("harfbuzz-subset")
     out = {**times, "figures": len(svgs), "font_subsetting": "harfbuzz" if harfbuzz_subset is not None else "fonttools"}
     print("report stages (CPU-s): " + ", ".join(f"{k.removesuffix('_cpu_s')} {v:.2f}" for k, v in times.items())
           + f" ({len(svgs)} figures; fonts subset by {out['font_subsetting']})")

@@ -20,6 +20,12 @@ __version__ = "0.1.0"
 # by GNU OpenMP when numba first starts its threads; a value the user set is kept.
 os.environ.setdefault("OMP_WAIT_POLICY", "passive")
 
+# numba caches the kernels in a folder of the user's cache named by the digest of their sources, never in
+# the package (rockdesign.kernel_cache); set before any module with a kernel is imported.
+from .kernel_cache import use_kernel_cache  # noqa: E402
+
+use_kernel_cache()
+
 _EXPORTS = {
     # the library: every kind of structure through one front door (rockdesign.library, rockdesign.kinds)
     "load_project": "rockdesign.library", "parse_project": "rockdesign.library",

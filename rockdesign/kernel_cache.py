@@ -1,32 +1,40 @@
-"""Keep numba's on-disk cache consistent with the kernel sources.
+"""Where numba keeps rockdesign's compiled kernels: a folder of the user's cache named by the kernels' digest.
 
-numba (``cache=True``) keys a cached function on its own source file only: a kernel that inlines or
-calls code of another file, or reads a constant imported from one, keeps the old machine code after
-that file changes.  On import of the numerical packages (in any process: the CLI, a process pool, a
-dask worker), :func:`refresh_stale_caches` digests the kernel sources and the rockdesign modules
-they import, and compares the digest with the stamp kept inside each cache folder numba uses for
-rockdesign's kernels in this process: a source folder's ``__pycache__``, or, with
-``NUMBA_CACHE_DIR`` set (or a read-only installation), the folder numba names
-``<folder name>_<sha1 of the folder's absolute path>`` under that directory (or the user-wide
-cache).  Where the stamp differs, it deletes the cached kernels of rockdesign's modules in that
-folder (``*.nbi``, ``*.nbc``), so that they are compiled afresh from the current sources, and
-writes the new stamp there.  Nothing else is deleted.
+numba (``cache=True``) keys a cached kernel on its own source file only: a kernel that inlines or calls
+code of another file, or reads a constant imported from one, would keep the old machine code after that
+file changes.  So rockdesign gives numba a cache folder of its own per version of the kernel sources::
+
+    ~/.cache/rockdesign/kernels-<digest>/
+
+where ``<digest>`` begins the SHA-256 of the sources that define kernels and of every rockdesign module
+they import (:func:`sources_digest`).  An edit of any of them names another folder, so a stale kernel
+cannot be loaded, and nothing is ever written into the installed package (a wheel's folder may be
+read-only).  The folder's parent is, in this order: ``ROCKDESIGN_CACHE_DIR``; ``<NUMBA_CACHE_DIR>/rockdesign``
+when the user set ``NUMBA_CACHE_DIR``; ``$XDG_CACHE_HOME/rockdesign``; ``~/.cache/rockdesign``
+(``%LOCALAPPDATA%\\rockdesign\\Cache`` on Windows); a folder of the temporary directory when none of these
+can be written.
+
+:func:`use_kernel_cache` sets it through numba's public configuration (``NUMBA_CACHE_DIR`` in the
+environment, and ``numba.config.CACHE_DIR`` when numba is already imported).  ``import rockdesign`` calls
+it, before any module with a kernel is imported (numba picks a kernel's cache folder when the kernel is
+defined); processes started from this one (a process pool, the local dask workers) inherit the folder.
+The same digest stamps results.json (``project.kernels_sha256``) and the report's Software table.
 """
 from __future__ import annotations
 
-import ast
 import functools
 import hashlib
 import os
 import re
-import types
-import warnings
+import sys
+import tempfile
 from pathlib import Path
 
-PACKAGE = Path(os.path.abspath(__file__)).parent   # as numba spells it (abspath, symlinks kept)
-STAMP_NAME = "rockdesign-kernels.sha256"
-"""The stamp's file name, inside each cache folder it describes."""
+PACKAGE = Path(os.path.abspath(__file__)).parent
 _KERNEL = re.compile(r"^[ \t]*@(?:numba\.)?njit\b", re.MULTILINE)
+_RELATIVE_IMPORT = re.compile(r"^from[ \t]+(\.+)([\w.]*)[ \t]+import[ \t]+(\([^)]*\)|[^\n]*)", re.MULTILINE)
+DIGEST_CHARS = 16
+"""Hex characters of the digest in the folder's name (64 bits)."""
 
 
 @functools.lru_cache(maxsize=1)
@@ -37,16 +45,17 @@ def kernel_sources() -> tuple[Path, ...]:
 
 
 def _imported_modules(path: Path) -> set[Path]:
-    """The rockdesign modules a source imports at module level (relative imports, as rockdesign writes them)."""
+    """The rockdesign modules a source imports at module level (``from .x import y`` at the start of a
+    line, as rockdesign writes its imports; ``from . import eom`` too)."""
     found = set()
-    for node in ast.parse(path.read_bytes()).body:
-        if not (isinstance(node, ast.ImportFrom) and node.level):
-            continue
+    for dots, module, names in _RELATIVE_IMPORT.findall(path.read_text(encoding="utf-8")):
         folder = path.parent
-        for _ in range(node.level - 1):
+        for _ in range(len(dots) - 1):
             folder = folder.parent
-        base = folder.joinpath(*node.module.split(".")) if node.module else folder
-        for target in [base] + [base / alias.name for alias in node.names]:   # ``from . import eom`` too
+        base = folder.joinpath(*module.split(".")) if module else folder
+        names = re.sub(r"#[^\n]*", "", names).strip().strip("()")
+        aliases = [n.split(" as ")[0].strip() for n in names.split(",")]
+        for target in [base] + [base / name for name in aliases if name.isidentifier()]:
             for candidate in (target.with_suffix(".py"), target / "__init__.py"):
                 if candidate.is_file():
                     found.add(candidate)
@@ -55,7 +64,7 @@ def _imported_modules(path: Path) -> set[Path]:
 
 def digested_sources() -> list[Path]:
     """The kernel sources and every rockdesign module they import, transitively (numba freezes imported
-    globals into the machine code: a constant of ``dynamics/layout.py`` is part of the engine)."""
+    globals into the machine code: a constant of ``planar/dynamics/layout.py`` is part of the engine)."""
     seen = set(kernel_sources())
     todo = list(seen)
     while todo:
@@ -76,75 +85,56 @@ def sources_digest() -> str:
     return h.hexdigest()
 
 
-def _probe():
-    """Stands in for a kernel of a given source file when asking numba where it caches that file."""
+def folder_name() -> str:
+    """The kernel cache folder's name: ``kernels-`` and the first :data:`DIGEST_CHARS` of :func:`sources_digest`."""
+    return f"kernels-{sources_digest()[:DIGEST_CHARS]}"
 
 
-def cache_folders() -> dict[Path, Path]:
-    """Source folder holding kernels → the folder numba caches its kernels in, in this process.
-
-    numba's own cache locators answer (``NUMBA_CACHE_DIR``, the in-tree ``__pycache__``, the user-wide
-    cache, in numba's order).  A folder is listed only if it holds that source folder's kernels alone
-    (``__pycache__`` beside the sources, or numba's ``<name>_<sha1 of the path>`` subfolder)."""
-    # numba is imported here, not at module top: sources_digest() serves reports and results.json in
-    # processes that need no kernel (the PDF worker), and importing numba costs 0.3-1.0 s (-X importtime)
-    from numba.core.caching import CompileResultCacheImpl
-    out = {}
-    for source in kernel_sources():
-        folder = source.parent
-        if folder in out:
-            continue
-        probe = types.FunctionType(_probe.__code__.replace(co_filename=str(source)), {})
-        try:
-            cache = Path(CompileResultCacheImpl(probe).locator.get_cache_path())
-        except (RuntimeError, OSError):   # no writable cache location: numba compiles in memory
-            continue
-        own_name = f"{folder.name}_{hashlib.sha1(str(folder).encode()).hexdigest()}"
-        if cache == folder / "__pycache__" or cache.name == own_name:
-            out[folder] = cache
-    return out
+def _user_cache_root() -> Path:
+    if os.environ.get("ROCKDESIGN_CACHE_DIR"):
+        return Path(os.environ["ROCKDESIGN_CACHE_DIR"]).expanduser()
+    if os.environ.get("NUMBA_CACHE_DIR"):
+        return Path(os.environ["NUMBA_CACHE_DIR"]).expanduser() / "rockdesign"
+    if sys.platform == "win32" and os.environ.get("LOCALAPPDATA"):
+        return Path(os.environ["LOCALAPPDATA"]) / "rockdesign" / "Cache"
+    xdg = os.environ.get("XDG_CACHE_HOME")
+    base = Path(xdg) if xdg and os.path.isabs(xdg) else Path.home() / ".cache"
+    return base / "rockdesign"
 
 
-def kernel_cache_files(folder: Path, cache: Path) -> list[Path]:
-    """numba's cache files (``<module>.<function>-<line>.pyXY.nbi`` and ``….nbc``) of the modules of
-    ``folder`` found in ``cache``."""
-    modules = {p.stem for p in folder.glob("*.py")}
-    return sorted(f for pattern in ("*.nbi", "*.nbc") for f in cache.glob(pattern)
-                  if f.name.split(".", 1)[0] in modules)
+def _writable(folder: Path) -> bool:
+    """Whether ``folder`` can be created or written (its nearest existing ancestor is writable); nothing is written."""
+    for candidate in (folder, *folder.parents):
+        if candidate.exists():
+            return candidate.is_dir() and os.access(candidate, os.W_OK | os.X_OK)
+    return False
 
 
-def _write_stamp(cache: Path, digest: str) -> None:
-    """Write the stamp atomically (several processes may refresh at once)."""
-    temporary = cache / f".{STAMP_NAME}.{os.getpid()}.tmp"
-    temporary.write_text(digest + "\n")
-    os.replace(temporary, cache / STAMP_NAME)
+def kernel_cache_dir() -> Path:
+    """The folder numba caches rockdesign's kernels in (see the module's docstring for the search order)."""
+    numba_dir = os.environ.get("NUMBA_CACHE_DIR")
+    if numba_dir and Path(numba_dir).name == folder_name():   # set by the process that started this one
+        return Path(numba_dir)
+    folder = _user_cache_root() / folder_name()
+    if _writable(folder):
+        return folder
+    return Path(tempfile.gettempdir()) / f"rockdesign-{_user_id()}" / folder_name()
 
 
-def refresh_stale_caches() -> bool:
-    """Delete rockdesign's cached kernels in every cache folder whose stamp differs from the sources' digest.
+def _user_id() -> str:
+    try:
+        return str(os.getuid())
+    except AttributeError:                # Windows
+        return os.environ.get("USERNAME", "user")
 
-    Returns True if any folder was refreshed.  A folder that cannot be written is left alone (numba
-    does not cache there); a stale kernel that cannot be deleted keeps its folder's old stamp and
-    raises a warning naming the folder."""
-    digest = sources_digest()
-    refreshed = False
-    for folder, cache in cache_folders().items():
-        stamp = cache / STAMP_NAME
-        try:
-            if stamp.is_file() and stamp.read_text().strip() == digest:
-                continue
-            for f in kernel_cache_files(folder, cache):
-                f.unlink(missing_ok=True)
-        except PermissionError:
-            warnings.warn(f"rockdesign: cannot delete the stale numba kernels in {cache}; they may run "
-                          "the previous sources' code. Set NUMBA_CACHE_DIR to a folder of your own.",
-                          RuntimeWarning, stacklevel=2)
-            continue
-        except OSError:
-            continue
-        try:
-            _write_stamp(cache, digest)
-        except OSError:
-            continue
-        refreshed = True
-    return refreshed
+
+def use_kernel_cache() -> Path:
+    """Point numba's cache (``NUMBA_CACHE_DIR``, ``numba.config.CACHE_DIR``) at :func:`kernel_cache_dir` and
+    return it.  Call before a module with a kernel is imported; nothing is written (numba creates the folder
+    when it first stores a kernel), and numba is not imported."""
+    folder = kernel_cache_dir()
+    os.environ["NUMBA_CACHE_DIR"] = str(folder)
+    numba = sys.modules.get("numba")
+    if numba is not None and hasattr(numba, "config"):
+        numba.config.CACHE_DIR = str(folder)
+    return folder

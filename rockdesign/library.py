@@ -154,7 +154,7 @@ def run_simulation(request, *, say=None):
     kernels are compiled first on a first run, and that is announced."""
     kind = kind_of(request.project)
     if say is not None:
-        compilation.prepare(kind.simulate_kernels, say)
+        compilation.prepare("simulate", kind.kernels("simulate"), say)
     return kind.run_simulation(request)
 
 
@@ -188,18 +188,15 @@ def check_options(project: Project, *, records_dir=None, executor=None) -> None:
     kind_of(project).check_options(project, records_dir=records_dir, executor=executor)
 
 
-def prepare_check(project: Project, *, records_dir=None, say=None, report: bool = True) -> None:
+def prepare_check(project: Project, *, records_dir=None, say=None) -> None:
     """Before the analyses of ``check``, on a first run: stop on input errors that only reading the records
-    shows, then compile the kernels (announced with ``say``); ``report``: a report will be written (its
-    libraries are loaded here while the engine compiles in a second process)."""
+    shows, then compile the kernels (announced with ``say``)."""
     kind = kind_of(project)
-    if not compilation.missing_kernels(kind.check_kernels):
+    kernels = kind.kernels("check")
+    if not compilation.missing(kernels):
         return
     kind.prepare_check(project, records_dir=str(records_dir) if records_dir else None)
-    compilation.prepare(kind.check_kernels, say, background=kind.check_compiles_in_background)
-    if compilation.compilation_pending() and report:      # this process would wait: load the report's libraries
-        from .report.render import warm_up
-        warm_up()
+    compilation.prepare("check", kernels, say)
 
 
 def run_check(project: Project, *, progress: bool = False, records_dir=None, margins: bool = True,
@@ -336,7 +333,8 @@ def spectrum(project: Project, *, pulse: str | None = None, record: str | None =
     return kind.spectrum(project, SpectrumOptions(given, progress=progress or None, say=say))
 
 
-def compile_kernels(command: str, say=None) -> float:
-    """Compile the kernels a command needs on its first run (:mod:`rockdesign.execution.compilation`),
-    announcing it with ``say``; seconds spent (0 when every kernel is cached)."""
-    return compilation.prepare(command, say)
+def compile_kernels(project: Project, command: str = "check", say=None) -> float:
+    """Compile the kernels ``command`` ("simulate", "check") needs for ``project``'s kind on a first run
+    (:mod:`rockdesign.execution.compilation`), announcing it with ``say``; seconds spent (0 when they were
+    compiled before)."""
+    return compilation.prepare(command, kind_of(project).kernels(command), say)

@@ -19,14 +19,6 @@ REPO_ROOT = PACKAGE_DIR.parent
 """The folder above the package: the checkout's root in a source tree (site-packages when installed)."""
 
 
-def child_environment() -> dict[str, str]:
-    """The environment for a helper process (``python -c``) that must import this very rockdesign
-    package, not another one on its path: this process's environment with the folder above the
-    package first on ``PYTHONPATH`` (the compile helper, the PDF worker)."""
-    here = str(PACKAGE_DIR.parent)
-    return {**os.environ, "PYTHONPATH": os.pathsep.join(p for p in (here, os.environ.get("PYTHONPATH")) if p)}
-
-
 def data_dir(name: str) -> Path:
     """The folder of built-in data ``name`` (``ground_motions`` | ``templates``): the installed wheel's
     package data (``rockdesign/data/NAME``, found by :mod:`importlib.resources`), else the checkout's

@@ -32,6 +32,7 @@ from .motions.library import load_record
 from .motions.measures import motion_measures, plausibility_warnings
 from .motions.motion import GroundMotion
 from .motions.spectra import motion_spectrum, period_grid, sd_max
+from .motions.warm_up import ELASTIC_SPECTRUM
 from .motions.suites import list_records
 from .motions.synth import SCALE_CHOICES, EnsembleMatch, synthesize
 from .outdir import refuse_wrong_type
@@ -191,7 +192,7 @@ class RecordMeasures:
 def records_show(record: str, *, gravity: float = 9.81, records_dir=None, say=None) -> RecordMeasures:
     """The intensity measures and SD_max of one record (``say`` announces a first-run compilation)."""
     motion, warnings = _load(record, gravity, records_dir)
-    compilation.prepare("records", say)
+    compilation.prepare("records", (ELASTIC_SPECTRUM,), say)
     period_peak = sd_max(motion, DEFAULT_DAMPING, DEFAULT_BAND)
     return RecordMeasures(record_id(record), motion, motion_measures(motion, gravity), *period_peak, gravity,
                           warnings)
@@ -247,7 +248,7 @@ def records_spectrum(record: str, *, damping: float | str = DEFAULT_DAMPING, ban
         raise MotionError("invalid number of periods", key="n_periods", expected="an integer ≥ 2",
                           found=repr(n_periods))
     motion, warnings = _load(record, gravity, records_dir)
-    compilation.prepare("records", say)
+    compilation.prepare("records", (ELASTIC_SPECTRUM,), say)
     periods = period_grid((lo, hi), int(n_periods))
     sd, psv, psa = motion_spectrum(motion, periods, zeta)
     peak, period = sd_max(motion, zeta, (lo, hi), int(n_periods))
@@ -297,7 +298,7 @@ def records_synth(seed: str, n: int, out_dir, *, seed_value: int = 1, scale_to: 
     for p in [out, *out.parents]:
         refuse_wrong_type(p, "out_dir", folder=True)
     motion, warnings = _load(seed, gravity, records_dir)
-    compilation.prepare("records", say)           # (SD_max of the seed and of every member)
+    compilation.prepare("records", (ELASTIC_SPECTRUM,), say)           # (SD_max of the seed and of every member)
     path, match = synthesize(motion, int(n), out, seed_value=seed_value, scale_to=scale_to, progress=progress)
     return SyntheticSuite(path, int(n), match, warnings)
 

@@ -20,6 +20,7 @@ from ..errors import RockdesignError
 from ..execution import compilation
 from ..jsonable import json_ready
 from ..outdir import refuse_wrong_type
+from ..planar.dynamics.warm_up import ENGINE, LINEAR_EXACT
 from .figures import write_study_figures
 from .problems import problem_set
 from .publish import publish_docs
@@ -105,7 +106,7 @@ def benchmark(out_dir: str | Path = "bench-results", *, quick: bool = False, onl
             raise BenchError("no problem matches", key="only",
                              expected="substrings of name/system, e.g. free-vibration/housner-block, ricker-anti, "
                                       "record-30s-linearized", found=repr(only))
-    compilation.prepare("bench", say)      # (every point's first run is untimed anyway: this is for the screen)
+    compilation.prepare("bench", (ENGINE, LINEAR_EXACT), say)      # (every point's first run is untimed anyway: this is for the screen)
     t0 = time.perf_counter()
     out.mkdir(parents=True, exist_ok=True)
     histories: dict = {}

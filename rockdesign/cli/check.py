@@ -37,7 +37,7 @@ def _check(rd, project, out, as_json, no_pdf, html, no_margins, records_dir, das
     folder = rd.check_output_folder(proj, out if out is not None else Path(f"{Path(project).stem}_check"),
                                     key="-o/--out")
     with folder.locked():   # before the analyses: a file, a read-only or busy folder stops here (exit 2)
-        rd.prepare_check(proj, records_dir=records_dir, say=make_console(stderr=True).print, report=not no_pdf)
+        rd.prepare_check(proj, records_dir=records_dir, say=make_console(stderr=True).print)
         result = rd.run_check(proj, records_dir=records_dir, margins=not no_margins,
                               progress=not as_json or make_console(stderr=True).is_terminal, executor=dask)
         data = result.as_json()

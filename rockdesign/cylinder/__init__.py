@@ -3,6 +3,3 @@
 (:mod:`.quantities`), equations of motion (:mod:`.eom`), integrator (:mod:`.kernel`, :mod:`.engine`),
 commands (:mod:`.commands`, :mod:`.cli`), spectra (:mod:`.spectrum`).  See ``docs/cylinder.md``.
 """
-from ..kernel_cache import refresh_stale_caches
-
-refresh_stale_caches()   # numba's cache does not see edits in called modules (see kernel_cache)

@@ -10,6 +10,9 @@ from . import check as cylinder_check
 from .project import claims, parse_cylinder_project
 from .quantities import cylinder_quantities, wobbling_curve
 from ..errors import RockdesignError
+from ..motions.warm_up import ELASTIC_SPECTRUM
+from ..planar.dynamics.warm_up import ENGINE
+from .warm_up import INTEGRATOR
 from ..plots import save
 from .figures import wobbling_figure
 from .report import FIGURE_FILES, cylinder_report_parts
@@ -22,8 +25,6 @@ class Cylinder(StructureKind):
 
     name = "cylinder"
     systems = ("cylinder",)
-    simulate_kernels = "cylinder"
-    check_kernels = "cylinder-check"
     report_files = frozenset(FIGURE_FILES)
     csv_columns = tuple(cylinder_check.CSV_COLUMNS)
     grid = cylinder_grid
@@ -32,6 +33,11 @@ class Cylinder(StructureKind):
     design_material = ("material: the cylinder's mass", "a free-standing cylinder carries no superstructure")
     key_alternatives = {"height": ("half_height",), "half_height": ("height",), "diameter": ("slenderness",),
                         "slenderness": ("diameter",), "mass": ("density",), "density": ("mass",)}
+
+    def kernels(self, command):
+        """The cylinder's integrator (``simulate``); with the planar engine of the planar components and the
+        elastic spectrum of their SD_max (``check``)."""
+        return {"simulate": (INTEGRATOR,), "check": (INTEGRATOR, ENGINE, ELASTIC_SPECTRUM)}.get(command, ())
 
     def claims(self, raw):
         return claims(raw)

@@ -19,6 +19,7 @@ from ..motions.pairs import parse_pair
 from ..outdir import created_folder
 from .spectrum import CylinderSpectrum, CylinderSpectrumError, cylinder_spectrum, parse_cylinder_axis
 from .spectrum_output import write_cylinder_spectrum
+from .warm_up import SPECTRUM
 
 OPTIONS = ("record", "x", "y", "relative", "out_dir", "figures")
 """The parameters of :func:`record_pair_spectrum` that ``rd.spectrum`` passes on (the others are refused)."""
@@ -103,7 +104,7 @@ def record_pair_spectrum(project, *, record: str | None = None, x: str | None = 
     out_dir = Path(out_dir) if out_dir is not None else \
         Path(f"{Path(project.path).stem}-spectrum-{pair.name.replace('/', '-')}")
     created_folder(out_dir, "out_dir")         # before any work (removed again if the run fails)
-    compilation.prepare("cylinder-spectrum", say)
+    compilation.prepare("spectrum", (SPECTRUM,), say)
 
     def run(prj, stage: str) -> CylinderSpectrum:
         a = prj.analysis

@@ -2,7 +2,7 @@
 
 Split from :mod:`rockdesign.cylinder.kernel`, whose integrator calls them.  The Runge–Kutta tableau
 (Hairer's DOP853: 12 stages, error estimators of order 5 and 3, 3 extra stages for the dense output) is
-scipy's (``scipy.integrate._ivp.dop853_coefficients``); within a step a record's ü_g is linear (no step
+scipy's, read from the public class ``scipy.integrate.DOP853``; within a step a record's ü_g is linear (no step
 crosses a sample), so it is evaluated at the two ends only and interpolated at the stages.
 """
 from __future__ import annotations
@@ -11,17 +11,21 @@ import math
 
 import numpy as np
 from numba import njit
-from scipy.integrate._ivp import dop853_coefficients as _dop
+from scipy.integrate import DOP853
 
 from ..motions.excitation import EXC_SAMPLES
 from .eom import ground_xy, rhs_ground
 
-A = np.ascontiguousarray(_dop.A)
-B = np.ascontiguousarray(_dop.B)
-C = np.ascontiguousarray(_dop.C)
-E3 = np.ascontiguousarray(_dop.E3)
-E5 = np.ascontiguousarray(_dop.E5)
-D = np.ascontiguousarray(_dop.D)
+_STAGES = DOP853.n_stages                                  # 12, the 13th (FSAL) is f(t + h, y_new)
+A = np.zeros((_STAGES + 1 + len(DOP853.C_EXTRA),) * 2)     # 16 × 16 with the 3 stages of the dense output
+A[:_STAGES, :_STAGES] = DOP853.A
+A[_STAGES, :_STAGES] = DOP853.B
+A[_STAGES + 1:] = DOP853.A_EXTRA
+B = np.ascontiguousarray(DOP853.B)
+C = np.concatenate([DOP853.C, [1.0], DOP853.C_EXTRA])
+E3 = np.ascontiguousarray(DOP853.E3)
+E5 = np.ascontiguousarray(DOP853.E5)
+D = np.ascontiguousarray(DOP853.D)
 
 @njit(cache=True)
 def dop853_step(t, y, f0, h, K, y_new, ytmp, n, par, active, kind, params, sx, sy, dirx, diry):

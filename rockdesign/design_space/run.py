@@ -151,7 +151,7 @@ def prepare_design(plan: DesignPlan, say=None) -> float:
     """Compile the kernels of the project's check on a first run (announced with ``say``), before any
     analysis; seconds spent (0 when every kernel is cached)."""
     from ..execution import compilation
-    return compilation.prepare(plan.kind.check_kernels, say)
+    return compilation.prepare("design", plan.kind.kernels("check"), say)
 
 
 def run_design(plan: DesignPlan, *, store=None, progress=None, stage_progress=None, warn=None) -> DesignResult:

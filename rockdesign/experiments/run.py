@@ -71,7 +71,7 @@ class CalibrationRun:
     def simulated(self, *, say=None):
         """(t [s], θ [rad]) of the engine with the calibrated λ and c_r, released from the first measured peak
         (compiled on a first run, announced with ``say``)."""
-        compilation.prepare("calibrate", say)
+        compilation.prepare("calibrate", kind_of(self.project).kernels("simulate"), say)
         return _experiments(self.project, "calibration").simulated_history(self.project.system, self.calibration,
                                                                            self.history)
 
@@ -185,5 +185,5 @@ def ensemble(project, suite: str | Path, *, scale: float = 1.0, restitution: flo
     stage = "ensemble analyses"
     return experiments.run_ensemble(project, str(suite), scale=scale, restitution=restitution,
                         records_dir=str(records_dir) if records_dir else None,
-                        before_analyses=lambda: compilation.prepare("ensemble", say),
+                        before_analyses=lambda: compilation.prepare("ensemble", kind_of(project).kernels("simulate"), say),
                         progress=(lambda done, total: progress(stage, done, total)) if progress else None)

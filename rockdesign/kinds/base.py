@@ -81,13 +81,6 @@ class StructureKind(abc.ABC):
     """The kind's name ("planar", "cylinder")."""
     systems: tuple[str, ...] = ()
     """``project.system.kind`` values of this kind's systems ("column", "podium"; "cylinder")."""
-    simulate_kernels: str = "simulate"
-    """The first-run compilation command (:mod:`rockdesign.execution.compilation`) of ``simulate``."""
-    check_kernels: str = "check"
-    """The first-run compilation command of ``check``."""
-    check_compiles_in_background: bool = False
-    """Whether the kind's check reads its input while its engine finishes compiling on a first run (it then
-    waits for :func:`rockdesign.execution.compilation.finish_compilation` before its analyses)."""
     report_files: frozenset[str] = frozenset()
     """Files a check writes into its output folder besides the run files (``ReportParts.files``)."""
     csv_columns: tuple[str, ...] | None = None
@@ -109,6 +102,13 @@ class StructureKind(abc.ABC):
     grid = None
     """The module of the kind's design-grid hooks (``records_key``, ``grid_records``, ``grid_check``,
     ``grid_cell``), or None when the kind has no design grid."""
+
+    # --- the numerical kernels ---------------------------------------------------------------
+    def kernels(self, command: str) -> tuple:
+        """The groups of numba kernels (:class:`~rockdesign.execution.compilation.Kernels`, each with its warm-up)
+        that ``command`` ("simulate", "check") runs: compiled, and announced, before its work on a first run.
+        By default none (kernels then compile on first use)."""
+        return ()
 
     # --- the project file -------------------------------------------------------------------
     @abc.abstractmethod

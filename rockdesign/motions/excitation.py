@@ -16,10 +16,6 @@ import math
 import numpy as np
 from numba import njit
 
-from ..kernel_cache import refresh_stale_caches
-
-refresh_stale_caches()   # numba's cache does not see edits in called modules (see kernel_cache)
-
 EXC_SAMPLES = 0
 EXC_RICKER_SYM = 1
 EXC_RICKER_ANTI = 2

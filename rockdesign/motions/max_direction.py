@@ -27,10 +27,6 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from ..kernel_cache import refresh_stale_caches
-
-refresh_stale_caches()   # numba's cache does not see edits in called modules (see kernel_cache)
-
 from .spectra import STEPS_PER_PERIOD, nigam_jennings_coefficients  # noqa: E402
 
 DEFAULT_DAMPING_ASCE = 0.05

@@ -24,10 +24,6 @@ import math
 import numpy as np
 from numba import njit
 
-from ..kernel_cache import refresh_stale_caches
-
-refresh_stale_caches()   # numba's cache does not see edits in called modules (see kernel_cache)
-
 BRACKET_THRESHOLD_G = 0.05
 """Threshold of the bracketed duration, in g (Table 5.6)."""
 

@@ -21,10 +21,6 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from ..kernel_cache import refresh_stale_caches
-
-refresh_stale_caches()   # numba's cache does not see edits in called modules (see kernel_cache)
-
 from .defaults import DEFAULT_BAND, DEFAULT_DAMPING, DEFAULT_N_PERIODS  # noqa: F401  (re-exported)
 
 
@@ -307,3 +303,4 @@ def motion_spectrum(motion, periods, damping: float = DEFAULT_DAMPING):
     """(SD [m], PSV [m/s], PSA [m/s²]) of a GroundMotion at the given periods [s]."""
     accel, dt = motion_samples(motion)
     return response_spectrum(accel, dt, periods, damping)
+

@@ -11,7 +11,9 @@ from .design.geometry import rocking_geometry
 from .design.pushover import pushover_curve
 from .design.quantities import design_quantities
 from .dynamics.shared_batches import SharedBatches
+from .dynamics.warm_up import ENGINE, LINEAR_EXACT
 from ..errors import RockdesignError
+from ..motions.warm_up import ELASTIC_SPECTRUM
 from ..plots import save
 from .project import parse_planar_project
 from .report.figures import pushover_figure
@@ -27,9 +29,6 @@ class Planar(StructureKind):
 
     name = "planar"
     systems = ("column", "podium")
-    simulate_kernels = "simulate"
-    check_kernels = "check"
-    check_compiles_in_background = True   # it reads and scales its records while the engine compiles
     grid = planar_grid
     experiments = planar_experiments
     design_rule = planar_grid.RULE
@@ -39,6 +38,11 @@ class Planar(StructureKind):
         """Every analysis of the planar check runs through ``run_jobs``, which takes a pool member; on an
         ``executor`` the merged calls run there in chunks."""
         return SharedBatches(executor)
+
+    def kernels(self, command):
+        """The rocking engine (``simulate``); with the closed-form linear integrator of the report's accuracy
+        statement and the elastic spectrum of Polyakov's rule (``check``)."""
+        return {"simulate": (ENGINE,), "check": (ENGINE, LINEAR_EXACT, ELASTIC_SPECTRUM)}.get(command, ())
 
     def claims(self, raw):
         return True            # the default kind: its parser names what is missing ([column] or [podium])

@@ -72,30 +72,6 @@ def svg_image(svg_text) -> str:
     return jinja2.utils.markupsafe.Markup(f'<img class="figure" alt="figure" src="data:image/svg+xml;base64,{data}">')
 
 
-def warm_up() -> None:
-    """Load the report's libraries, fonts and style sheet (matplotlib with mathtext, WeasyPrint with the
-    report's CSS and an SVG figure) by rendering a small figure and page into memory.  The first report of a
-    process is ≈ 1 s slower without it; ``rockdesign check`` calls this while its rocking engine is still
-    compiling on the first run, when this process would otherwise wait
-    (:mod:`rockdesign.execution.compilation`)."""
-    import io
-
-    from weasyprint import HTML
-
-    from .. import mplfig as plt
-    from .svg import svg
-    fig, ax = plt.subplots(figsize=(2.0, 1.5))
-    ax.plot([0.0, 1.0], [0.0, 1.0], "o-", label=r"$F_R/(m_C\,g)$, θ")
-    ax.set_xlabel("θ [rad]")
-    ax.legend()
-    fig.set_layout_engine("tight")
-    folder = templates_dir()
-    page = (f"<html><head><style>{stylesheet(folder)}</style></head><body><h1>θ</h1><p>SD<sub>max</sub> <b>b</b> "
-            f"<i>i</i> <code>c</code></p><table><tr><th>a</th><td>1</td></tr></table>"
-            f"{svg_image(svg(fig, 'warm-up', crop=False))}</body></html>")
-    HTML(string=page, base_url=str(folder)).write_pdf(io.BytesIO())
-
-
 def html_to_pdf(html_text: str, path: Path, base_url: str | None = None) -> Path:
     """Render an HTML document (figures as SVG images, :func:`svg_image`) to the PDF ``path`` with WeasyPrint.
 

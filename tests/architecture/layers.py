@@ -17,9 +17,7 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
                 "rockdesign.cylinder.system", "rockdesign.cylinder.quantities")),
     ("motions", ("rockdesign.motions",)),
     ("project", ("rockdesign.planar.project", "rockdesign.cylinder.project")),
-    ("dynamics", ("rockdesign.planar.dynamics", "rockdesign.cylinder", "rockdesign.execution.compilation",
-                  "rockdesign.execution.compile_plan", "rockdesign.execution.compile_plan_table",
-                  "rockdesign.execution.compile_plan_writer")),
+    ("dynamics", ("rockdesign.planar.dynamics", "rockdesign.cylinder")),
     ("analyses", ("rockdesign.acceptance", "rockdesign.planar.spectra", "rockdesign.planar.checks",
                   "rockdesign.cylinder.check", "rockdesign.cylinder.criteria", "rockdesign.cylinder.margins",
                   "rockdesign.cylinder.ensemble")),
@@ -35,11 +33,10 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
 )
 """Layers, lowest first, and the modules (prefixes) in each: a module may import only from its own
 layer or a lower one.  The most specific prefix wins (``rockdesign.cylinder.project`` is in *project*
-although ``rockdesign.cylinder`` is in *dynamics*; the first-run compilation warms the pulse-spectrum kernel
-``rockdesign.planar.spectra.kernel`` through its table of warm-up functions, by name); ``rockdesign.cli`` covers
-every module of the command-line package.
-``rockdesign`` itself (the package's ``__init__``) imports nothing at import time: its lazy
-``__getattr__`` names the library modules as strings, which this check does not read."""
+although ``rockdesign.cylinder`` is in *dynamics*); ``rockdesign.cli`` covers every module of the command-line
+package.  ``rockdesign`` itself (the package's ``__init__``) imports only ``rockdesign.kernel_cache`` at import
+time (numba's cache folder is set before any kernel is defined): its lazy ``__getattr__`` names the library
+modules as strings, which this check does not read."""
 
 
 def module_files(package_dir: Path) -> dict[str, Path]:

@@ -153,10 +153,12 @@ SHARED_EXCEPTIONS: dict[str, tuple[str, ...]] = {
 }
 """Modules outside the kinds' packages allowed to import from a kind's package, and what."""
 KIND_USES: dict[str, tuple[str, ...]] = {
-    "rockdesign.cylinder": ("rockdesign.planar.dynamics.simulate", "rockdesign.planar.system"),
+    "rockdesign.cylinder": ("rockdesign.planar.dynamics.simulate", "rockdesign.planar.system",
+                            "rockdesign.planar.dynamics.warm_up"),
 }
 """What a kind may import from another kind: the cylinder's check compares with the planar rocking body of
-the same p and α along each component (thesis Ch. 5), through the planar engine's public simulate."""
+the same p and α along each component (thesis Ch. 5), through the planar engine's public simulate (whose
+kernels its first run compiles with the planar engine's warm-up)."""
 
 
 def kind_imports(package_dir: Path = PACKAGE) -> list[str]:

@@ -395,13 +395,13 @@ def test_usage_errors_stay_exit_2():
 
 
 def test_first_run_stops_on_a_missing_record_before_compiling(tmp_path, monkeypatch):
-    """On a first run (kernels not in numba's cache) `check` reads its records before it compiles for
-    ≈ 30 s: a record file that does not exist is exit 2 at once, and nothing is compiled."""
+    """On a first run (kernels not compiled yet) `check` reads its records before it compiles for
+    ≈ 40 s: a record file that does not exist is exit 2 at once, and nothing is compiled."""
     from rockdesign.execution import compilation
     text = (REPO_ROOT / "examples" / "podium_flat.toml").read_text(encoding="utf-8")
     assert 'suites = ["p695-farfield"]' in text
     project = write(tmp_path, text.replace('suites = ["p695-farfield"]', 'records = ["file:missing.AT2"]'))
-    monkeypatch.setattr(compilation, "missing_kernels", lambda command: ["rockdesign.planar.dynamics.batch._run_batch"])
+    monkeypatch.setattr(compilation, "missing", lambda kernels: list(kernels))
     monkeypatch.setattr(compilation, "prepare", lambda *a, **k: pytest.fail("compiled before reading the records"))
     result = invoke("check", project, "-o", tmp_path / "out")
     assert_one_line_error(result, "missing.AT2", "record file not found")

@@ -161,7 +161,7 @@ def test_cli_compiles_the_engine_only_for_the_plot(specimen, tmp_path, monkeypat
     first run it announces and compiles the engine's kernels first (docs/engine.md, "First run")."""
     from rockdesign.execution import compilation
     asked = []
-    monkeypatch.setattr(compilation, "prepare", lambda command, say=None, **k: asked.append(command) or 0.0)
+    monkeypatch.setattr(compilation, "prepare", lambda command, kernels, say=None: asked.append(command) or 0.0)
     project = tmp_path / "specimen.toml"
     project.write_text(SPECIMEN_TOML)
     csv_path = write_tilt_csv(tmp_path / "fv.csv", *_measurement(specimen, 1))

@@ -153,20 +153,6 @@ def test_symbols_subscripts():
     assert symbols(None) == ""
 
 
-def test_report_warm_up_writes_nothing_and_changes_no_figure(tmp_path, monkeypatch):
-    """render.warm_up (run by `check` while its engine compiles on the first run) only loads libraries:
-    no file appears and a figure drawn afterwards is the same markup as before."""
-    from rockdesign.planar.report.drawing import structure_drawing
-    from rockdesign.report.svg import svg
-    from rockdesign.report.render import warm_up
-    monkeypatch.chdir(tmp_path)
-    system = load_project(REPO_ROOT / "examples" / "podium_flat.toml").system
-    before = svg(structure_drawing(system), "a")
-    warm_up()
-    assert list(tmp_path.iterdir()) == []
-    assert svg(structure_drawing(system), "a") == before
-
-
 @pytest.mark.parametrize("example", ["podium_flat.toml", "podium_curved.toml"])
 def test_the_width_label_of_the_podium_drawing_overlaps_no_column(example):
     """The structure drawing's "2B = 0.45 m" label was centred on a slender column and overlapped it."""

@@ -21,7 +21,6 @@ import numpy as np
 from ... import __version__
 from ..design.quantities import at_critical_curvature, design_quantities
 from ..dynamics.accuracy import engine_accuracy
-from ...execution.compilation import compilation_pending, finish_compilation
 from ..dynamics.simulate import simulate
 from ...kernel_cache import sources_digest
 from ...errors import ProjectError
@@ -303,7 +302,6 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
         sds.append(sd_max(m, rule.damping, rule.band))
         if tick:
             tick(k + 1)
-    _finish_compilation(stage)
     run_kw = dict(rtol=a.rtol, atol=a.atol, free_vibration=a.free_vibration, criterion=a.overturn,
                   rest_velocity=a.rest_velocity, executor=executor)
     selection, runs = select_model(system, a, motions, run_kw, progress=stage("suite analysis (RHA)", n))
@@ -439,17 +437,6 @@ def decided_at_design_level(rule, records, runs) -> bool:
     rows = [SimpleNamespace(id=rec.id, ground_motion=ground_motion_id(rec.id, rec.meta)) for rec in records]
     holds = count_rule(rule, rows, {rec.id for rec, r in zip(records, runs) if r.overturned})[0]
     return not holds
-
-
-def _finish_compilation(stage) -> None:
-    """On the first run the rocking engine may still be compiling in a helper process while the records
-    were read and SD_max computed (:func:`rockdesign.execution.compilation.prepare`): wait for it here,
-    as a progress stage."""
-    if compilation_pending():
-        tick = stage("compiling numerical kernels (first run)", 1)
-        finish_compilation()
-        if tick:
-            tick(1)
 
 
 def _statistics(outcomes: list[RecordOutcome], a, with_margins: bool) -> dict:

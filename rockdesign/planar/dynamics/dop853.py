@@ -8,9 +8,9 @@ sample in one or two steps.  Which system uses which method is decided by the wo
 
 Written by hand (not scipy's ``DOP853`` class) because the event-driven integrator needs one step,
 one error norm and one dense output as allocation-free kernels it can call from its own loop; the
-coefficients are scipy's own (``scipy/integrate/_ivp/dop853_coefficients.py``, Hairer's ``dop853.f``),
-imported from scipy, and the step, the combined 5th/3rd-order error norm and the dense output follow
-``scipy.integrate._ivp.rk.DOP853`` line by line.
+coefficients are scipy's own (Hairer's ``dop853.f``), read from the public class ``scipy.integrate.DOP853``
+(its tableau ``A``, ``B``, ``C``, the extra stages ``A_EXTRA``, ``C_EXTRA`` and ``E3``, ``E5``, ``D``), and the
+step, the combined 5th/3rd-order error norm and the dense output follow scipy's ``DOP853`` line by line.
 
 The dense output is returned in the engine's common monomial form
 ``y(t + x h) = y + h Σ_{k=1..7} Q[:, k−1] x^k`` (x ∈ [0, 1]), so event location
@@ -23,18 +23,21 @@ import math
 
 import numpy as np
 from numba import njit
-from scipy.integrate._ivp import dop853_coefficients as _coefficients
+from scipy.integrate import DOP853
 
 from .eom import rhs
 
-N_STAGES = _coefficients.N_STAGES                    # 12 stages; K[12] = f(t + h, y_new) (FSAL)
-N_STAGES_EXTENDED = _coefficients.N_STAGES_EXTENDED  # + 3 stages for the dense output
-C853 = np.ascontiguousarray(_coefficients.C, dtype=np.float64)
-A853 = np.ascontiguousarray(_coefficients.A, dtype=np.float64)
-B853 = np.ascontiguousarray(_coefficients.B, dtype=np.float64)
-E3 = np.ascontiguousarray(_coefficients.E3, dtype=np.float64)
-E5 = np.ascontiguousarray(_coefficients.E5, dtype=np.float64)
-D853 = np.ascontiguousarray(_coefficients.D, dtype=np.float64)
+N_STAGES = DOP853.n_stages                             # 12 stages; K[12] = f(t + h, y_new) (FSAL)
+N_STAGES_EXTENDED = N_STAGES + 1 + len(DOP853.C_EXTRA)  # + 3 stages for the dense output
+A853 = np.zeros((N_STAGES_EXTENDED, N_STAGES_EXTENDED))
+A853[:N_STAGES, :N_STAGES] = DOP853.A
+A853[N_STAGES, :N_STAGES] = DOP853.B                   # the FSAL stage: f(t + h, y_new)
+A853[N_STAGES + 1:] = DOP853.A_EXTRA
+C853 = np.ascontiguousarray(np.concatenate([DOP853.C, [1.0], DOP853.C_EXTRA]), dtype=np.float64)
+B853 = np.ascontiguousarray(DOP853.B, dtype=np.float64)
+E3 = np.ascontiguousarray(DOP853.E3, dtype=np.float64)
+E5 = np.ascontiguousarray(DOP853.E5, dtype=np.float64)
+D853 = np.ascontiguousarray(DOP853.D, dtype=np.float64)
 ERROR_EXPONENT_853 = -1.0 / 8.0       # error estimator of order 7
 FSAL_ROW_853 = N_STAGES
 

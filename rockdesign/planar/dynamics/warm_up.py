@@ -1,37 +1,41 @@
-"""The planar engine's first-run warm-up: its kernels called once on a tiny problem (numba then keeps the
-machine code in its cache; :mod:`rockdesign.execution.compilation`)."""
+"""The planar engine's first-run warm-ups: its kernels called once on a tiny problem, with the argument types
+of the real calls (numba then keeps the machine code in the kernel cache; :mod:`rockdesign.execution.compilation`)."""
 from __future__ import annotations
 
+from ...execution.compilation import Kernels
 
-def warm_up(command: str, parts, engine_commands, warm_ups, cylinder_warm_up) -> None:
-    """Call the kernels of ``command`` once on a tiny problem, with the argument types of the real calls
-    (:func:`rockdesign.execution.compilation.prepare`); ``parts``: "engine" and/or "side"."""
-    import importlib
+
+def _record():
     import numpy as np
 
     from ...motions.motion import record_motion
+    return record_motion("warm-up", np.array([0.0, 0.3, -0.3, 0.0]) * 9.81, 0.01)
+
+
+def engine() -> None:
+    """The rocking engine: the serial driver (``simulate``'s one analysis, the job and the integrator it runs)
+    and the parallel batch kernel around the integrator."""
     from ..system import block
     from .batch import batch_options, run_batch
     from .model import ModelChoice, system_parameters
     from .simulate import simulate
 
-    def _dispatcher(module, name):
-        return getattr(importlib.import_module(module), name)
-    g = 9.81
-    system = block(1.5, 0.15)
-    record = record_motion("warm-up", np.array([0.0, 0.3, -0.3, 0.0]) * g, 0.01)
-    if "engine" in parts and command in warm_ups:            # e.g. the integrator inside the pulse-spectrum kernel
-        _dispatcher(*warm_ups[command])()
-    elif "engine" in parts and command in engine_commands:   # the batch drivers and the integrator they run
-        simulate(system, record, t_end=0.05)                 # the serial driver (the job and the integrator)
-        sp = system_parameters(system, ModelChoice("block", "exact"))
-        run_batch(sp, [record, record], [1.0, 0.5], [0.05, 0.05], batch_options(), threads=True)
-    if "side" in parts and command in ("check", "bench"):
-        from .accuracy import accuracy_problem
-        system_b1, pulse = accuracy_problem()
-        simulate(system_b1, pulse, model="linear-exact", t_end=0.05)
-    if "side" in parts and command in ("check", "records", "cylinder-check"):
-        from ...motions.spectra import sd_max
-        sd_max(record)
-    if "side" in parts and command.startswith("cylinder"):
-        _dispatcher(*cylinder_warm_up)(command, record)
+    system, record = block(1.5, 0.15), _record()
+    simulate(system, record, t_end=0.05)
+    sp = system_parameters(system, ModelChoice("block", "exact"))
+    run_batch(sp, [record, record], [1.0, 0.5], [0.05, 0.05], batch_options(), threads=True)
+
+
+def linear_exact() -> None:
+    """The closed-form integrator of the linearized equations (the report's accuracy statement, the benchmarks)."""
+    from .accuracy import accuracy_problem
+    from .simulate import simulate
+
+    system, pulse = accuracy_problem()
+    simulate(system, pulse, model="linear-exact", t_end=0.05)
+
+
+ENGINE = Kernels("planar-engine", engine, 35.0)
+"""The batch kernel and the integrator it runs (every planar analysis)."""
+LINEAR_EXACT = Kernels("planar-linear-exact", linear_exact, 5.0)
+"""The closed-form linear integrator."""

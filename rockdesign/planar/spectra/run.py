@@ -26,6 +26,9 @@ from .kernel import warm_up
 from .output import SpectrumProducts, analyse, write_outputs
 from .spectrum import RockingSpectrum, SpectrumError, check_grid, check_ordinates, request_from_project
 
+PULSE_SPECTRUM = compilation.Kernels("planar-pulse-spectrum", warm_up, 30.0)
+"""The integrator inside the pulse-spectrum kernel, compiled on a first run (:func:`.kernel.warm_up`)."""
+
 OPTIONS = ("pulse", "x", "y", "relative", "out_dir", "executor", "model", "structure", "overturn", "t_free", "rtol",
            "tm_ratio", "chunk_rows", "resume", "keep_chunks", "energy_stop", "stop_at_capacity", "polyakov",
            "equivalent_at", "figures")
@@ -183,7 +186,7 @@ def pulse_spectrum(project, *, pulse: str | None = None, x: str | Axis | None = 
     try:
         created_folder(out_dir, "out_dir")            # (removed again if the run fails before writing)
         if not distributed:                           # (a remote cluster's workers compile there)
-            compilation.prepare("spectrum", say)
+            compilation.prepare("spectrum", (PULSE_SPECTRUM,), say)
         chunks_root = out_dir / "chunks"
         # the reference is analysed at the project's pulses (T_p, a_p): the axes keep their meaning
         project_scales = spectrum_scales(project.system)

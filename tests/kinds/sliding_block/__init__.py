@@ -174,8 +174,6 @@ class SlidingBlock(StructureKind):
 
     name = "sliding_block"
     systems = ("sliding_block",)
-    simulate_kernels = None
-    check_kernels = None
 
     def claims(self, raw):
         return "sliding_block" in raw
