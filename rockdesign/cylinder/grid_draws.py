@@ -14,7 +14,7 @@ def grid_draws(result, *, records, executor):
     runs them (the cylinder has no c_r: its impacts follow from its geometry, thesis Sec 5.5.1).  A draw fails
     when the design-level rule fails in it; ``records``: the grid's :class:`~rockdesign.cylinder.check.SuitePairs`
     (``executor`` is unused: the pairs run in this process).  Returns ``{"n", "failed", "size",
-    "first_failure"}`` (see :meth:`rockdesign.kinds.base.StructureKind.grid_draws`)."""
+    "first_failure", "what"}`` (see :meth:`rockdesign.kinds.base.StructureKind.grid_draws`)."""
     project = result.project
     cyl, a = project.system, project.analysis
     rule = cylinder_rule(a)
@@ -23,6 +23,7 @@ def grid_draws(result, *, records, executor):
     valid = [o for o in outcomes if not o.run.failed]
     size, n = a.ensemble_size or 0, len(records.pairs)
     amplitude, _ = perturbations(n, size, a.seed)
+    what = f"the suite with amplitude ± 0.1 %, rtol ÷ {1 / TOLERANCE_FACTOR:g}"
     for m in range(size):
         ids = set()
         for i, ((_, pair), factor) in enumerate(zip(records.pairs, records.factors)):
@@ -36,5 +37,5 @@ def grid_draws(result, *, records, executor):
         if not holds:
             return {"n": m + 1, "failed": 1, "size": size,
                     "first_failure": f"perturbed suite run {m + 1} of {size}: {k} of {total} ground motions "
-                                     "unacceptable"}
-    return {"n": size, "failed": 0, "size": size, "first_failure": None}
+                                     "unacceptable", "what": what}
+    return {"n": size, "failed": 0, "size": size, "first_failure": None, "what": what}

@@ -96,12 +96,15 @@ def margin_undecided(cell: dict, precision: float) -> str | None:
     """Why a passing cell's collapse margin cannot be told from its requirement, or None.  The ACMR comes from
     scans that bisect each record's first overturning intensity to ``precision`` (``[analysis]
     margin_precision``); an ACMR above its requirement by less than that resolution (plus the draws'
-    ± 0.1 % amplitude) is not a robust PASS — the rule the grid states instead of scanning every draw."""
+    ± 0.1 % amplitude) is not a robust PASS — the rule the grid states instead of scanning every draw.  An ACMR
+    below its requirement in a passing cell is informative (the acceptance rule is another one) and is left
+    alone."""
     acmr, need = cell.get("acmr"), cell.get("acmr_required")
     if acmr is None or not need:
         return None
     from ..acceptance.perturbations import AMPLITUDE_VARIATION
-    if acmr < need * (1.0 + precision + AMPLITUDE_VARIATION):
+    if need <= acmr < need * (1.0 + precision + AMPLITUDE_VARIATION):   # (below its requirement the margin did not
+        # decide the PASS: it informs under another acceptance rule, e.g. the binomial bound)
         return (f"ACMR {acmr:.4g} within the scans' resolution ({100 * precision:g} % + {100 * AMPLITUDE_VARIATION:g} %"
                 f") of the {need:.4g} required")
     return None
@@ -121,7 +124,8 @@ def robustness(draws: dict | None, near: str | None = None) -> dict:
                 "robustness": f"not robust: fails in {failed} of {n} draws (stopped at the first that fails, "
                               f"{size} planned; {draws['first_failure']})"}
     return {"robust": True, "draws": {"n": n, "failed": 0},
-            "robustness": f"robust: passes in all {n} perturbation draws (amplitude ± 0.1 %, c_r ± 2 %, rtol ÷ 10)"}
+            "robustness": f"robust: passes in all {n} perturbation draws ("
+                          f"{draws.get('what') or 'amplitude ± 0.1 %, c_r ± 2 %, rtol ÷ 10'})"}
 
 
 EMPTY = dict.fromkeys(("governing", "acmr", "acmr_required", "p_collapse_design", "target_p_collapse", "n_unacceptable",

@@ -216,5 +216,6 @@ class StructureKind(abc.ABC):
     def grid_draws(self, result, *, records, executor) -> dict:
         """The perturbation draws of a variant that passes at nominal values (SPEC §15: amplitude ± 0.1 %,
         c_r ± 2 %, rtol ÷ 10, as the check's robustness criteria run them), stopping at the first draw that
-        fails: ``{"n": draws run, "failed": 0 | 1, "size": draws planned, "first_failure": words | None}``."""
+        fails: ``{"n": draws run, "failed": 0 | 1, "size": draws planned, "first_failure": words | None,
+        "what": what the draws vary, in words}``."""
         return self._grid().grid_draws(result, records=records, executor=executor)

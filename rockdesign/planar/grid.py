@@ -112,7 +112,7 @@ def grid_draws(result, *, records, executor):
     the amplitude × (1 ± 0.1 %) per record, c_r × (1 ± 2 %) and the tolerances ÷ 10.  A draw fails when the
     design-level acceptance rule (ASCE 7-22 §16.4.1.1 count or the binomial bound) fails in it; the draws
     stop at the first that fails.  Returns ``{"n": draws run, "failed": 0 or 1, "size": draws planned,
-    "first_failure": its words or None}``."""
+    "first_failure": its words or None, "what": what the draws vary}``."""
     project = result.project
     system, a = project.system, project.analysis
     chosen = result.selection.chosen
@@ -136,6 +136,8 @@ def grid_draws(result, *, records, executor):
                            atol=a.atol * TOLERANCE_FACTOR, energy_stop=True,
                            stop_at_capacity=(a.overturn == "static"), restitution_factor=float(restitution[m])),
                       False))
+    what = (f"c_r ± {100 * a.restitution_variation:g} %, then the suite with amplitude ± 0.1 %, c_r ± 2 %, "
+            f"rtol ÷ {1 / TOLERANCE_FACTOR:g}")
     for k, (label, kw, failures_count) in enumerate(draws):
         scales = kw.pop("scales")
         res = run_jobs(system, chosen, motions, scales, **kw)
@@ -146,5 +148,5 @@ def grid_draws(result, *, records, executor):
         if not holds or (failures_count and failed):
             why = f"{label}: {unacceptable} of {total} ground motions unacceptable" \
                 + (f", analyses failed: {', '.join(failed)}" if failures_count and failed else "")
-            return {"n": k + 1, "failed": 1, "size": len(draws), "first_failure": why}
-    return {"n": len(draws), "failed": 0, "size": len(draws), "first_failure": None}
+            return {"n": k + 1, "failed": 1, "size": len(draws), "first_failure": why, "what": what}
+    return {"n": len(draws), "failed": 0, "size": len(draws), "first_failure": None, "what": what}

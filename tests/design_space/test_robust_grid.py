@@ -89,6 +89,7 @@ def test_words_of_a_cell_and_the_margin_rule():
     # an ACMR within the scans' 1 % (+ 0.1 % amplitude) of its requirement is not a robust PASS
     assert margin_undecided({"acmr": 1.97, "acmr_required": 1.96}, 0.01)
     assert margin_undecided({"acmr": 1.99, "acmr_required": 1.96}, 0.01) is None
+    assert margin_undecided({"acmr": 1.5, "acmr_required": 1.96}, 0.01) is None    # informative (binomial rule)
     assert margin_undecided({"acmr": None, "acmr_required": None}, 0.01) is None
 
 
