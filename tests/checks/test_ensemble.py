@@ -62,6 +62,7 @@ PROJECT = stocky_podium_toml(("p695-ff/12a", "p695-ff/15b", "p695-ff/11a"), "0.3
                              'quality = { design_requirements = "B", test_data = "C", modeling = "B" }')
 
 
+@pytest.mark.slow   # a check with ensembles to a report (≈ 10 s)
 def test_results_json_sections_and_report(tmp_path):
     import pypdf
     path = tmp_path / "p.toml"

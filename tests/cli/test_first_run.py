@@ -38,8 +38,9 @@ def prepared(monkeypatch):
     ("simulate", ("cylinder-integrator",), ["simulate", CYLINDER, "--motion", "record:p695-ff/11", "--t-end", "2"]),
     ("bench", ("planar-engine", "planar-linear-exact"),
      ["bench", "--quick", "--no-stability", "--only", "free-vibration/housner-block", "-o", "{tmp}/bench"]),
-    ("spectrum", ("cylinder-spectrum",), ["spectrum", CYLINDER, "--record", "p695-ff/11", "--x", "R:0.8:1:2",
-                                          "--y", "pga/up:1:2:2", "-o", "{tmp}/cylinder-spectrum"]),
+    pytest.param("spectrum", ("cylinder-spectrum",), ["spectrum", CYLINDER, "--record", "p695-ff/11", "--x", "R:0.8:1:2",
+                                                      "--y", "pga/up:1:2:2", "-o", "{tmp}/cylinder-spectrum"],
+                 marks=pytest.mark.slow),   # compiles the 3D spectrum kernels (≈ 30 s)
 ])
 def test_each_command_announces_its_own_kernels(command, kernels, args, prepared, tmp_path):
     # (an ensemble with a record that is not available is refused before compiling: two built-in records)

@@ -36,6 +36,7 @@ def result(tmp_path_factory):
     return data
 
 
+@pytest.mark.slow   # the module fixture is a full cylinder check (≈ 20 s)
 def test_statistics_are_clopper_pearson_over_22_pairs(result):
     s = result["summary"]
     assert s["n_records"] == 22 and len(result["records"]) == 22
@@ -55,6 +56,7 @@ def test_statistics_are_clopper_pearson_over_22_pairs(result):
     assert result["verdict_reason"].startswith(result["verdict"])
 
 
+@pytest.mark.slow   # the module fixture is a full cylinder check (≈ 20 s)
 def test_one_row_reproduces_simulate(result):
     row = next(r for r in result["records"] if r["id"] == "p695-ff/12")
     proj = parse_project({"project": {"name": "x"}, "cylinder": {"height": "3 m", "slenderness": 0.2,
@@ -71,6 +73,7 @@ def test_one_row_reproduces_simulate(result):
     assert block.restitution == pytest.approx(expected("eq5.41") ** 2, abs=2e-5)
 
 
+@pytest.mark.slow   # the module fixture is a full cylinder check (≈ 20 s)
 def test_margins_below_the_design_level_are_real(result):
     """Each overturning factor ≤ 1 the scan reports overturns the cylinder when analysed alone (at the
     scan's tolerance); a pair without one does not overturn at the design level; the incremental
@@ -94,6 +97,7 @@ def test_margins_below_the_design_level_are_real(result):
     assert inc["detail"].startswith(f"{len(rows)} of 22 record pairs overturn at some intensity")
 
 
+@pytest.mark.slow   # the module fixture is a full cylinder check (≈ 20 s)
 def test_fragility_and_collapse_margin_of_the_pairs(result):
     """One acceptance for every kind: each pair's capacity is its first overturning factor times its
     design-level resultant PGA (censored at margin_max_scale); the fragility against scipy on these

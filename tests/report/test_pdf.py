@@ -9,6 +9,7 @@ from __future__ import annotations
 import re
 
 import pypdf
+import pytest
 
 from rockdesign.report import render
 
@@ -29,6 +30,7 @@ def _xobjects(page, subtype: str) -> list:
     return found
 
 
+@pytest.mark.slow   # a full check with margins to PDF (≈ 12 s)
 def test_every_figure_is_in_the_pdf_as_vector_graphics_with_its_text(curved_out):
     figures = len(FIGURE_IMAGE.findall(curved_out.html))
     reader = pypdf.PdfReader(str(curved_out.out / "report.pdf"))

@@ -84,6 +84,7 @@ def test_the_patterns_see_what_they_look_for():
     assert cite("generalized capacity (ours, docs/model.md §6)") == "generalized capacity (rockdesign's, Appendix M3)"
 
 
+@pytest.mark.slow   # two full checks to HTML (≈ 15 s)
 @pytest.mark.parametrize("which", ["podium", "cylinder"])
 def test_no_repository_paths_and_no_raw_subscripts(which, podium_html, cylinder_html):
     page = podium_html if which == "podium" else cylinder_html
@@ -97,6 +98,7 @@ def test_no_repository_paths_and_no_raw_subscripts(which, podium_html, cylinder_
     assert cited and cited <= printed, cited - printed
 
 
+@pytest.mark.slow   # two full checks to HTML (≈ 15 s)
 def test_figures_have_no_raw_subscripts(podium_html, cylinder_html):
     for page in (podium_html, cylinder_html):
         labels = figure_text(page)
