@@ -112,41 +112,15 @@ the peak is not missed between samples — the convention of the PEER NGA-West2 
 
 
 @njit(cache=True)
-def peak_displacement(accel, dt, omega, zeta, include_tail):
-    """max |u| [m] of the oscillator at the samples — sub-stepped to Δt/m ≤ T/10 where T < 10 Δt
-    (:data:`STEPS_PER_PERIOD`; the exact recurrence over each sub-step) — and, if ``include_tail``,
-    over the free decay after the record."""
-    m = max(1, int(math.ceil(STEPS_PER_PERIOD * dt * omega / (2.0 * math.pi) - 1e-9)))
-    k = nigam_jennings_coefficients(omega, zeta, dt / m)
-    u = 0.0
-    v = 0.0
-    peak = 0.0
-    for i in range(accel.shape[0] - 1):
-        slope = (accel[i + 1] - accel[i]) / m
-        for r in range(m):
-            a0 = accel[i] + slope * r
-            a1 = accel[i + 1] if r == m - 1 else accel[i] + slope * (r + 1)
-            u_next = k[0] * u + k[1] * v + k[4] * a0 + k[5] * a1
-            v = k[2] * u + k[3] * v + k[6] * a0 + k[7] * a1
-            u = u_next
-            if abs(u) > peak:
-                peak = abs(u)
-    if include_tail:
-        tail = free_vibration_peak(u, v, omega, zeta)
-        if tail > peak:
-            peak = tail
-    return peak
+def substepped_peak(accel, dt, omega, zeta, include_tail, absolute):
+    """The oscillator's peak response (at rest at t = 0) over the samples — sub-stepped to Δt/m ≤ T/10 where
+    T < 10 Δt (:data:`STEPS_PER_PERIOD`; the exact Nigam–Jennings recurrence over each sub-step) — and, if
+    ``include_tail``, over the free decay after the record: max |u| [m], or with ``absolute`` the absolute
+    acceleration max |ü + ü_g| = max |ω²u + 2ζωu̇| [m/s²].
 
-
-@njit(cache=True)
-def peak_absolute_acceleration(accel, dt, omega, zeta, include_tail):
-    """max |ü + ü_g| = max |ω²u + 2ζωu̇| [m/s²] of the oscillator (at rest at t = 0) over the samples —
-    sub-stepped to Δt/m ≤ T/10 where T < 10 Δt (:data:`STEPS_PER_PERIOD`, as the elastic spectra) — and, if
-    ``include_tail``, the free decay after the record: its absolute acceleration, not the pseudo-acceleration
-    ω²|u| (the fixed-base reference of SPEC §13; exact Nigam–Jennings recurrence of :func:`nigam_jennings_step`).
-
-    In free vibration a = ω²u + 2ζωu̇ obeys the oscillator's own equation, so the tail's peak is
-    :func:`free_vibration_peak` of (a, ȧ) with ȧ = ω²u̇ + 2ζωü, ü = −ω²u − 2ζωu̇ (ground at rest).
+    In free vibration a = ω²u + 2ζωu̇ obeys the oscillator's own equation, so the tail's peak of the absolute
+    acceleration is :func:`free_vibration_peak` of (a, ȧ) with ȧ = ω²u̇ + 2ζωü, ü = −ω²u − 2ζωu̇ (ground at
+    rest), not the pseudo-acceleration ω²|u|.
     """
     m = max(1, int(math.ceil(STEPS_PER_PERIOD * dt * omega / (2.0 * math.pi) - 1e-9)))
     k = nigam_jennings_coefficients(omega, zeta, dt / m)
@@ -163,15 +137,30 @@ def peak_absolute_acceleration(accel, dt, omega, zeta, include_tail):
             u_next = k[0] * u + k[1] * v + k[4] * a0 + k[5] * a1
             v = k[2] * u + k[3] * v + k[6] * a0 + k[7] * a1
             u = u_next
-            a = abs(w2 * u + c * v)
-            if a > peak:
-                peak = a
+            y = abs(w2 * u + c * v) if absolute else abs(u)
+            if y > peak:
+                peak = y
     if include_tail:
-        a0 = w2 * u + c * v
-        tail = free_vibration_peak(a0, w2 * v + c * (-w2 * u - c * v), omega, zeta)
+        if absolute:
+            tail = free_vibration_peak(w2 * u + c * v, w2 * v + c * (-w2 * u - c * v), omega, zeta)
+        else:
+            tail = free_vibration_peak(u, v, omega, zeta)
         if tail > peak:
             peak = tail
     return peak
+
+
+@njit(cache=True)
+def peak_displacement(accel, dt, omega, zeta, include_tail):
+    """max |u| [m] of the oscillator (:func:`substepped_peak`), the elastic spectra's SD (SPEC §5)."""
+    return substepped_peak(accel, dt, omega, zeta, include_tail, False)
+
+
+@njit(cache=True)
+def peak_absolute_acceleration(accel, dt, omega, zeta, include_tail):
+    """max |ü + ü_g| [m/s²] of the oscillator (:func:`substepped_peak`), the fixed-base reference of
+    SPEC §13."""
+    return substepped_peak(accel, dt, omega, zeta, include_tail, True)
 
 
 def fixed_base_acceleration(accel_si, dt: float, period: float, damping: float, *, include_tail: bool = True) -> float:
