@@ -17,6 +17,7 @@ from rockdesign.motions.pairs import parse_pair
 runner = CliRunner()
 
 
+@pytest.mark.slow   # compiles the 3D spectrum kernels on a first run (≈ 30 s)
 def test_grid_points_are_single_analyses():
     cyl = cylinder(3.0, 0.6, contact="spring-dashpot")
     pair = parse_pair("record:p695-ff/12").pair
