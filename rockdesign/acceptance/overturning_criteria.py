@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import math
 
+from .perturbations import draw_words
 from .rule import (first_overturn_scale, count_rule, ground_motions_in_order, minimum_records, pct, probability_bound,
                          unacceptable_ground_motions)
 from .collapse_margin import acceptable_acmr, collapse_probability
@@ -304,7 +305,7 @@ class EnsembleRobustness(Criterion):
                   f"{', '.join(str(k) for k in counts)} of {n}; records whose outcome flips: "
                   f"{int(sum(not r for r, good in zip(ens['robust'], ok) if good))}")
         reason = (f"{_rule_words(ctx.rule)} holds in all {size} perturbed suite runs" if not n_fail else
-                  f"fails in {n_fail} of {size} perturbed suite runs (amplitude ± 0.1 %, c_r ± 2 %, rtol/10)")
+                  f"fails in {n_fail} of {size} perturbed suite runs ({draw_words()})")
         return self.item(worst, n_fail == 0, detail, reason,
                          name=f"Robustness: design-level {_rule_words(ctx.rule)} in the perturbation ensembles",
                          perturbations=tuple(perturbations))

@@ -12,6 +12,16 @@ RESTITUTION_VARIATION = 0.02
 TOLERANCE_FACTOR = 0.1
 
 
+def draw_words(*, restitution: bool = True) -> str:
+    """What a perturbed suite run varies, in the verdict's words ("amplitude ± 0.1 %, c_r ± 2 %, rtol/10";
+    without ``restitution`` for a kind with no coefficient of restitution)."""
+    parts = [f"amplitude ± {100 * AMPLITUDE_VARIATION:g} %"]
+    if restitution:
+        parts.append(f"c_r ± {100 * RESTITUTION_VARIATION:g} %")
+    parts.append(f"rtol/{1 / TOLERANCE_FACTOR:g}")
+    return ", ".join(parts)
+
+
 def perturbations(n_records: int, size: int, seed: int) -> tuple[np.ndarray, np.ndarray]:
     """(amplitude factors size × n_records, c_r factors size), uniform in 1 ± the variations, seeded."""
     rng = np.random.default_rng(seed)

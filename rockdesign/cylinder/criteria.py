@@ -19,6 +19,7 @@ from __future__ import annotations
 import math
 import statistics
 
+from ..acceptance.perturbations import draw_words
 from ..acceptance.rule import (count_rule, first_overturn_scale, minimum_records, probability_bound,
                          unacceptable_ground_motions)
 from ..acceptance.criterion_base import GOVERNS, INFORMATIVE, ROBUSTNESS, Criterion
@@ -184,7 +185,7 @@ class CylinderEnsembleRobustness(Criterion):
         detail = (f"{size} perturbed runs of the whole suite: overturning pairs per run "
                   f"{', '.join(str(k) for k in counts)} of {n}; pairs whose outcome flips: {flips}")
         reason = (f"the design-level rule holds in all {size} perturbed suite runs" if not n_fail else
-                  f"fails in {n_fail} of {size} perturbed suite runs (amplitude ± 0.1 %, rtol/10)")
+                  f"fails in {n_fail} of {size} perturbed suite runs ({draw_words(restitution=False)})")
         return self.item(worst, n_fail == 0, detail, reason, perturbations=tuple(perturbations))
 
 

@@ -3,7 +3,7 @@
 after the other, stopping at the first draw in which the design-level acceptance rule fails."""
 from __future__ import annotations
 
-from ..acceptance.perturbations import TOLERANCE_FACTOR, perturbations
+from ..acceptance.perturbations import TOLERANCE_FACTOR, draw_words, perturbations
 from ..acceptance.rule import count_rule
 from .check import _run_3d, cylinder_rule
 
@@ -23,7 +23,7 @@ def grid_draws(result, *, records, executor):
     valid = [o for o in outcomes if not o.run.failed]
     size, n = a.ensemble_size or 0, len(records.pairs)
     amplitude, _ = perturbations(n, size, a.seed)
-    what = f"the suite with amplitude ± 0.1 %, rtol ÷ {1 / TOLERANCE_FACTOR:g}"
+    what = f"the suite with {draw_words(restitution=False)}"
     for m in range(size):
         ids = set()
         for i, ((_, pair), factor) in enumerate(zip(records.pairs, records.factors)):

@@ -125,7 +125,7 @@ def robustness(draws: dict | None, near: str | None = None) -> dict:
                               f"{size} planned; {draws['first_failure']})"}
     return {"robust": True, "draws": {"n": n, "failed": 0},
             "robustness": f"robust: passes in all {n} perturbation draws ("
-                          f"{draws.get('what') or 'amplitude ± 0.1 %, c_r ± 2 %, rtol ÷ 10'})"}
+                          f"{draws.get('what') or 'as the check draws them'})"}
 
 
 EMPTY = dict.fromkeys(("governing", "acmr", "acmr_required", "p_collapse_design", "target_p_collapse", "n_unacceptable",

@@ -110,5 +110,5 @@ def _write_marker(group: Kernels, seconds: float) -> None:
         temporary = path.with_name(f".{path.name}.{os.getpid()}.tmp")
         temporary.write_text(f"{seconds:.1f}\n", encoding="utf-8")
         os.replace(temporary, path)
-    except OSError:
-        pass
+    except OSError:     # an unwritable cache folder: the next run announces the compilation again, nothing else
+        return

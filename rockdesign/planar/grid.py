@@ -7,7 +7,7 @@ import statistics
 
 from .checks.check import characteristic_periods, run_check, suite_records
 from .checks.runner import analysis_failed, run_jobs
-from ..acceptance.perturbations import TOLERANCE_FACTOR, perturbations
+from ..acceptance.perturbations import TOLERANCE_FACTOR, draw_words, perturbations
 from ..acceptance.rule import acceptance_rule, count_rule
 from ..acceptance.scans import SCAN_BLOCK, SCAN_RATIO, scan_grid
 from .design.quantities import design_quantities
@@ -136,8 +136,7 @@ def grid_draws(result, *, records, executor):
                            atol=a.atol * TOLERANCE_FACTOR, energy_stop=True,
                            stop_at_capacity=(a.overturn == "static"), restitution_factor=float(restitution[m])),
                       False))
-    what = (f"c_r ± {100 * a.restitution_variation:g} %, then the suite with amplitude ± 0.1 %, c_r ± 2 %, "
-            f"rtol ÷ {1 / TOLERANCE_FACTOR:g}")
+    what = f"c_r ± {100 * a.restitution_variation:g} %, then the suite with {draw_words()}"
     for k, (label, kw, failures_count) in enumerate(draws):
         scales = kw.pop("scales")
         res = run_jobs(system, chosen, motions, scales, **kw)
