@@ -289,7 +289,7 @@ def _plot_azimuth(case: StabilityCase):
                         color=COLORS["rockdesign"] if contact == "rigid" else "C0", label=f"{contact}: |Δθ| / bound")
         ax.axhline(1.0, color="k", ls=":", lw=0.8, label="tolerance bound")
         ax.set_xlabel("resultant PGA / g tan α (azimuths side by side)")
-        ax.set_ylabel("max |Δθ| / bound")
+        ax.set_ylabel("max |Δθ| / bound (0 drawn at 1e-12)")
         ax.legend(fontsize=6.5)
         fig.tight_layout()
         return fig
