@@ -33,8 +33,9 @@ LINE_TOLERANCE = 1e-12
 
 Rounding puts a rotated record off its line by at most 1.05 ε = 2.3e-16 of each sample (measured: three
 records × ten azimuths × three scales; the line read from one sample), two equal components by less; a
-record is written to 5–8 significant digits, so a component across the line that is real starts near 1e-8 of
-the sample.  1e-12 lies four decades above the first and four below the second."""
+record file carries 2–8 significant digits (the FEMA P695 AT2 files 7–8), so a component across the line that
+a file can carry is of order 1e-8 of the sample or more.  1e-12 lies four decades above the first and four
+below the second."""
 
 
 @njit(cache=True, inline="always")
