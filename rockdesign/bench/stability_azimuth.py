@@ -170,7 +170,7 @@ def _scipy_3d(method: str, cyl, pair, start: tuple, t_stop: float, rtol: float, 
         if sol.y.size and np.min(sol.y[0]) < 0.0:
             k = int(np.argmax(sol.y[0] < 0.0))
             return {"ok": False, "t": float(sol.t[k]), "theta": float(sol.y[0, k]),
-                    "why": "θ < 0: stepped through the apex, where the equations no longer hold",
+                    "why": "θ < 0: stepped through the apex, out of the equations' domain θ ≥ 0",
                     "seconds": time.perf_counter() - t0}
         if sol.status != 0:
             return {"ok": False, "t": float(sol.t[-1]), "theta": float(sol.y[0, -1]), "why": sol.message,
