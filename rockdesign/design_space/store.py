@@ -28,7 +28,7 @@ from pathlib import Path
 
 from .. import __version__
 
-FORMAT = 3
+FORMAT = 4
 """The layout of a stored variant (a file of another layout is analysed again)."""
 
 VERDICTS = ("PASS", "FAIL", "INVALID", "ERROR")

@@ -57,10 +57,15 @@ def fake(monkeypatch):
     return calls
 
 
-def project(folder, a=1, b=3):
+def project(folder, a=1, b=3, exact=True):
+    """A project whose suite file names p695-ff/{a}a and p695-ff/{b}a; ``exact``: its width is built exactly
+    ([design.tolerance] 0 %: no tolerance neighbours are checked)."""
     folder.mkdir(parents=True, exist_ok=True)
     (folder / "suite.toml").write_text(SUITE.format(a=a, b=b), encoding="utf-8")
     text = stocky_podium_toml(records=[]).replace("records = []", 'suites = ["suite.toml"]')
+    if exact:
+        text += '\n[design.tolerance]\n"podium.width" = "0%"\n'
+
     (folder / "p.toml").write_text(text, encoding="utf-8")
     return folder / "p.toml"
 
@@ -75,18 +80,23 @@ def design(path, out, *vary, extra=("--no-pdf",)):
 
 def test_another_projects_results_are_not_reused(tmp_path, fake):
     """Project B (the same text beside another suite file) run into A's folder reported A's verdicts."""
-    a = project(tmp_path / "A", 1, 3)
-    b = project(tmp_path / "B", 2, 4)          # p695-ff/2a: every cell of B fails
+    a = project(tmp_path / "A", 1, 3, exact=False)
+    b = project(tmp_path / "B", 2, 4, exact=False)          # p695-ff/2a: every cell of B fails
     assert a.read_text() == b.read_text()
     out = tmp_path / "out"
     res, data = design(a, out, "podium.width=0.4m:0.6m:3")
     assert res.exit_code == 0 and [c["verdict"] for c in data["cells"]] == ["FAIL", "PASS", "PASS"]
+    # 0.5 m fails at its tolerance neighbour 0.495 m (the stand-in passes from 0.5 m): 0.6 m is recommended,
+    # its neighbours 0.594 and 0.606 m pass; 3 cells + 4 neighbour checks
+    assert data["recommended"]["labels"] == {"podium.width": "0.6 m"} and data["recommended"]["tolerance_robust"]
+    assert [n["verdict"] for n in data["recommended"]["neighbourhood"]] == ["PASS", "PASS"]
+    assert len(fake) == 7
     res, data = design(b, out, "podium.width=0.4m:0.6m:3")
     assert data["variants_resumed"] == 0 and [c["verdict"] for c in data["cells"]] == ["FAIL"] * 3
     assert res.exit_code == 1
     res, data = design(a, out, "podium.width=0.4m:0.6m:3")      # A again: both stored, A's reused
     assert data["variants_resumed"] == 3 and [c["verdict"] for c in data["cells"]] == ["FAIL", "PASS", "PASS"]
-    assert len(fake) == 6
+    assert len(fake) == 10          # A's cells and its tolerance neighbours all stored: nothing checked again
 
 
 def test_a_resumed_variant_takes_its_place_in_the_current_grid(tmp_path, fake):
