@@ -245,7 +245,7 @@ def _summary(data: dict, target: Path, console, escape) -> None:
                                  f"{n['verdict']}" + (f", {n['n_unacceptable']} unacceptable"
                                                      if n.get("n_unacceptable") is not None else "")
                                  + (f", flip margin {n['flip_margin']:.3g}" if n.get("flip_margin") is not None
-                                    else "")), highlight=False)
+                                    else "")), highlight=False, soft_wrap=True)
         full = rec.get("check")
         if full:
             console.print(escape(f"full check of the recommended design: {full['verdict']}, "

@@ -31,6 +31,9 @@ class Task:
     records: object
     store: object = None
     digest: str | None = None
+    draws: bool = True
+    """Run a passing variant's perturbation draws (a grid cell); a tolerance neighbour is judged by its check's
+    verdict alone."""
 
 
 @dataclass
@@ -96,7 +99,10 @@ class VariantChecker:
             nominal = analyses()
             cell = checked_cell(kind, variant, self.variables, result, nominal)
             cell.update(not_passing())
-            if cell["verdict"] == "PASS":
+            if cell["verdict"] == "PASS" and not task.draws:
+                cell.update(robust=None, robustness="not evaluated: a tolerance neighbour is judged by its check's "
+                                                    "verdict (no perturbation draws)")
+            elif cell["verdict"] == "PASS":
                 precision = getattr(variant.project.analysis, "margin_precision", 0.0)
                 near = margin_undecided(cell, precision)
                 draws = None if near else kind.grid_draws(result, records=task.records, executor=executor)

@@ -97,17 +97,20 @@ def read_records(variant_list: list[Variant], records_dir=None, cache: dict | No
     return cache
 
 
-def task_of(key, variant: Variant, records: dict, store: VariantStore | None, tool: str) -> tuple[Task, dict | None]:
-    """The task of checking ``variant`` and its stored cell of an earlier run (None: to be checked)."""
+def task_of(key, variant: Variant, records: dict, store: VariantStore | None, tool: str,
+            draws: bool = True) -> tuple[Task, dict | None]:
+    """The task of checking ``variant`` (``draws``: with a passing variant's perturbation draws) and its stored
+    cell of an earlier run (None: to be checked); a check without draws is stored under another name."""
     kind = kind_of(variant.project)
     recs, recs_digest = records[records_key(variant)]
     digest = None
     if store is not None:
-        digest = variant_digest(kind.name, variant_toml(variant.raw), recs_digest, tool)
+        text = variant_toml(variant.raw) + ("" if draws else "\n# verdict only: no perturbation draws\n")
+        digest = variant_digest(kind.name, text, recs_digest, tool)
         stored = store.load(digest)
         if stored is not None:
-            return Task(key, variant, kind, recs, store, digest), stored
-    return Task(key, variant, kind, recs, store, digest), None
+            return Task(key, variant, kind, recs, store, digest, draws), stored
+    return Task(key, variant, kind, recs, store, digest, draws), None
 
 
 def run_grid(variant_list: list[Variant], variables, *, records_dir=None, executor=None, store=None,
@@ -232,8 +235,9 @@ def run_grid(variant_list: list[Variant], variables, *, records_dir=None, execut
 
 
 def check_off_grid(run: GridRun, jobs, records_dir=None) -> dict:
-    """The cells of variants off the grid (``jobs``: (name, variant) pairs, e.g. tolerance neighbours), checked as
-    the grid's cells are — together, stored and resumed likewise; their analyses are added to the run's."""
+    """The cells of variants off the grid (``jobs``: (name, variant) pairs: tolerance neighbours), checked as the
+    grid's cells are — together, stored and resumed likewise — but judged by their check's verdict alone (no
+    perturbation draws); their analyses are added to the run's."""
     records = read_records([v for _, v in jobs], records_dir, run.records)
     tool = tool_digest() if run.store is not None else ""
     out, tasks = {}, []
@@ -241,7 +245,7 @@ def check_off_grid(run: GridRun, jobs, records_dir=None) -> dict:
         if variant.project is None:
             out[name] = invalid_cell(variant, run.variables)
             continue
-        task, stored = task_of(name, variant, records, run.store, tool)
+        task, stored = task_of(name, variant, records, run.store, tool, draws=False)
         if stored is not None:
             out[name] = {**stored, **_place(variant, run.variables), "resumed": True}
         else:

@@ -110,8 +110,9 @@ def check_exit_code(cells: list[dict]) -> int:
 MAX_CANDIDATES = 12
 """Robust passing variants whose tolerance neighbourhood is checked, best-ranked first, before the chart says that
 none of them survives its tolerance (each costs one check per neighbour)."""
-AT_ONCE = 2
-"""Candidates whose neighbourhoods are checked together (their variants share batches)."""
+AT_ONCE = 1
+"""Candidates whose neighbourhoods are checked together (their variants share batches): one, since the best-ranked
+candidate usually survives and a second one's checks would be spent for nothing."""
 
 
 def neighbourhood_of(candidate: dict, variables, tolerances: dict, raw: dict, file: str) -> list:
@@ -170,8 +171,10 @@ def with_tolerance(rec: dict | None, cells: list[dict], run_neighbours, variable
     if rec is None:
         return None
     rank = _rank(prefer)
+    # a robust PASS whose flip margin is ≤ 1 passes only at the exact design level (ground motions overturn in
+    # bands below it): tried after those with a margin above 1
     robust = sorted((c for c in cells if c.get("analysed", True) and c["verdict"] == "PASS" and c.get("robust")),
-                    key=rank)
+                    key=lambda c: (not (c.get("flip_margin") or 0.0) > 1.0, rank(c)))
     chosen = robust[:MAX_CANDIDATES] if robust else [next(c for c in cells if c["index"] == rec["index"])]
     tried: list[tuple[dict, list[dict]]] = []
     survivor = None
@@ -200,7 +203,7 @@ def with_tolerance(rec: dict | None, cells: list[dict], run_neighbours, variable
         out = dict(rec) if best["index"] == rec["index"] else recommended(cells, material, prefer, choice=best)
         out.update(tolerance_robust=bool(best.get("robust")), neighbourhood=entries)
         out["reason"] += f"; tolerance: {_summary(entries)}" + _flip_words(best)
-        skipped = [c for c, _ in tried if c is not best]
+        skipped = [c for c, _ in tried[:[c for c, _ in tried].index(best)]]
         if skipped:
             out["reason"] += ("; preferred over it but not surviving their tolerance: "
                               + "; ".join(_labels(c) for c in skipped))

@@ -298,11 +298,16 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
         return lambda done: progress(name, done, total)
 
     tick = stage("elastic spectra (SD_max)", n)
-    sds = []
-    for k, m in enumerate(motions):
-        sds.append(sd_max(m, rule.damping, rule.band))
-        if tick:
-            tick(k + 1)
+    sds = resolved.derived.get(("sd_max", rule.damping, tuple(rule.band)))
+    if sds is None:          # (the records' own property: shared by the variants of a design grid)
+        sds = []
+        for k, m in enumerate(motions):
+            sds.append(sd_max(m, rule.damping, rule.band))
+            if tick:
+                tick(k + 1)
+        resolved.derived[("sd_max", rule.damping, tuple(rule.band))] = sds
+    elif tick:
+        tick(n)
     run_kw = dict(rtol=a.rtol, atol=a.atol, free_vibration=a.free_vibration, criterion=a.overturn,
                   rest_velocity=a.rest_velocity, executor=executor)
     selection, runs = select_model(system, a, motions, run_kw, progress=stage("suite analysis (RHA)", n))
@@ -359,8 +364,8 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
         system, chosen, motions, runs, run_kw, q["uplift_acceleration"].value, stage=stage,
         names=[(r.id, ground_motion_id(r.id, r.meta)) for r in resolved.records],
         target=target) if not decided_fail else ([None] * n, [None] * n, None, None)
-    scaling = scaling_block(resolved, period_range=scaling_period_range(characteristic_periods(system, q)),
-                            gravity=system.g)
+    scaling = None if verdict_only else scaling_block(     # (report data: not in a design grid's cell)
+        resolved, period_range=scaling_period_range(characteristic_periods(system, q)), gravity=system.g)
     outcomes = []
     for i, (rec, (sd, t_sd), run) in enumerate(zip(resolved.records, sds, runs)):
         ratio = rule.utilisation(sd)
@@ -420,7 +425,8 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
         acc = engine_accuracy(a.rtol, a.atol)
         settings["engine_accuracy"] = {k: v for k, v in acc.items() if k != "seconds"}
     intensity = {"design_pga": spec.design_pga, "intensity_analysed": resolved.scale_description,
-                 "scaling_sentence": scaling_sentence(scaling, system.g), "record_warnings": record_warnings}
+                 "scaling_sentence": None if scaling is None else scaling_sentence(scaling, system.g),
+                 "record_warnings": record_warnings}
     return CheckResult(project, q, rule, selection, outcomes, resolved.missing, resolved.scale_description,
                        resolved.default_used or spec.default_used, resolved.suites, stats, checks, verdict, histories,
                        sensitivity, settings, decision.reason, decision.robust, intensity, fragility, margin_fema,
