@@ -99,8 +99,10 @@ def parse_tolerance(text, variable, *, key: str, file: str | None = None, source
     """
     err = ProjectError if file is not None else RockdesignError
     kw = {"file": file} if file is not None else {}
+    plain_key = not variable.unit or variable.plain
+    example = "" if plain_key else ("4 mm" if _dimension(variable.unit) == "[length]" else f"0.1 {variable.unit}")
     expected = (f"a relative tolerance such as \"1%\" or an absolute one in the units of {variable.key}"
-                + (f" (e.g. \"2 {variable.unit}\")" if variable.unit and not variable.plain else " (a plain number)"))
+                + (f" (e.g. \"{example}\")" if example else " (a plain number)"))
     if isinstance(text, bool) or not isinstance(text, (str, int, float)):
         raise err("cannot read the tolerance", key=key, expected=expected, found=repr(text), **kw)
     shown = str(text).strip()
@@ -123,7 +125,6 @@ def parse_tolerance(text, variable, *, key: str, file: str | None = None, source
                   **kw) from None
     if not hasattr(q, "magnitude"):
         q = registry().Quantity(float(q), "")
-    plain_key = not variable.unit or variable.plain
     if plain_key:
         if not q.dimensionless:
             raise err("the tolerance has the wrong units", key=key, expected=expected,
