@@ -352,10 +352,46 @@ def refuse_control_characters(raw, file: str, path: str = "") -> None:
             refuse_control_characters(v, file, key)
 
 
+DESIGN_SECTION = "design"
+"""The table of ``rockdesign design``'s settings every kind's project file may hold (``[design.tolerance]``)."""
+
+
+def parse_design_table(raw: dict, file: str) -> None:
+    """Validate the shape of ``[design]``: only a ``tolerance`` table, whose entries are ``"table.key" = VALUE``
+    (or ``table.key = VALUE`` as a nested table), VALUE a string or a number; what VALUE means is read by the design
+    command against the keys it varies (:mod:`rockdesign.design_space.tolerance`)."""
+    section = raw.get(DESIGN_SECTION)
+    if section is None:
+        return
+    example = '[design.tolerance] with e.g. "podium.width" = "1%" or "podium.width" = "4 mm"'
+    if not isinstance(section, dict):
+        raise ProjectError("wrong type", file=file, key=DESIGN_SECTION, expected=f"a table: {example}", found=section)
+    for k, v in section.items():
+        if k != "tolerance":
+            raise ProjectError("unknown key", file=file, key=f"design.{k}", expected="design.tolerance",
+                               found=k)
+        if not isinstance(v, dict):
+            raise ProjectError("wrong type", file=file, key="design.tolerance", expected=f"a table: {example}",
+                               found=v)
+        for table, entry in v.items():
+            items = entry.items() if isinstance(entry, dict) else [(None, entry)]
+            for name, value in items:
+                key = f"design.tolerance.{table}" + (f".{name}" if name is not None else "")
+                if "." not in (table if name is None else f"{table}.{name}"):
+                    raise ProjectError("not a key of the project file", file=file, key=key,
+                                       expected="TABLE.KEY of a key the design chart varies, e.g. \"podium.width\"",
+                                       found=table)
+                if isinstance(value, bool) or not isinstance(value, (str, int, float)):
+                    raise ProjectError("wrong type", file=file, key=key,
+                                       expected="a tolerance such as \"1%\" or \"4 mm\"", found=value)
+
+
 def project_info(raw: dict, file: str, g: float, example: str = "5-storey block") -> dict:
     """The ``[project]`` table (name required, engineer/notes optional; all strings) of any project file; no
-    text of the document may hold a control character (:func:`refuse_control_characters`)."""
+    text of the document may hold a control character (:func:`refuse_control_characters`); the shape of the
+    ``[design]`` table (:func:`parse_design_table`)."""
     refuse_control_characters(raw, file)
+    parse_design_table(raw, file)
     section = raw.get("project", {})
     if not isinstance(section, dict):
         raise ProjectError("wrong type", file=file, key="project", expected="a [project] table with name = \"...\"",

@@ -14,7 +14,7 @@ collapse margin at the risk category's target, the binomial bound) are in
 Roles (documented for users in ``docs/model.md``, "Verdict"):
 
 - ``governs``: decides.  PASS only when every governing criterion was evaluated and passed; FAIL when
-  an evaluated one fails; otherwise NOT DECIDED (a governing criterion skipped, e.g. ``--no-margins``).
+  an evaluated one fails; otherwise NOT DECIDED (a governing criterion skipped, e.g. a check without margins).
 - ``robustness``: does not change the word but says whether it survives a perturbation of an uncertain
   input (``verdict_robust``; "PASS, not robust: fails with c_r − 2 %").
 - ``informative``: reported for comparison (Polyakov's rules of thumb, largest rotation, the other rule).
@@ -96,8 +96,8 @@ def evaluate_criteria(ctx: CheckContext, criteria) -> tuple[list[CheckItem], lis
 
 
 NOT_COVERED = {
-    "collapse_margin": "collapse margin not evaluated (no incremental analysis: --no-margins)",
-    "incremental_margin": "intensities below the design level not analysed (--no-margins)",
+    "collapse_margin": "collapse margin not evaluated (no incremental analysis: the check ran without margins)",
+    "incremental_margin": "intensities below the design level not analysed (the check ran without margins)",
     "restitution_robustness": "c_r sensitivity not analysed",
     "ensemble_robustness": "perturbation ensembles not analysed",
 }

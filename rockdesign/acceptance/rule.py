@@ -23,7 +23,6 @@ import math
 from dataclasses import dataclass
 
 from ..errors import ProjectError
-from .collapse_margin import MEDIAN_DEFINITION
 from .statistics import overturning_probability
 
 RISK_CATEGORIES = ("I", "II", "III", "IV")
@@ -217,39 +216,3 @@ def first_overturn_scale(outcome) -> float | None:
     if run is not None and run.overturned and (s is None or s > 1.0):
         return 1.0
     return s
-
-
-def acceptance_summary(rule: AcceptanceRule, items, verdict, valid, margin: dict | None) -> dict:
-    """The ``acceptance`` section of results.json (CONTRACT §6.1): the rule, the numbers that decided,
-    whether every governing criterion was evaluated, and the per-ground-motion table (``valid``: the
-    outcomes whose analysis completed)."""
-    over = {o.id for o in valid if o.run.overturned}
-    bad = unacceptable_ground_motions(valid, over)
-    n = len(ground_motions_in_order(valid))
-    governing = [i for i in items if i.governs_verdict]
-    evaluated = not verdict.not_covered and all(i.evaluated for i in governing)
-    acmr = None if margin is None else margin["ACMR"]
-    need = None if margin is None else margin["ACMR_target"]
-    robustness = {i.key: [{"run": lab, "holds": h} for lab, h in i.perturbations]
-                  for i in items if i.role == "robustness"}
-    return {
-        **rule.as_json(), "label": rule.label,
-        "design_intensity_is_mce_r": True,
-        "n_ground_motions": n, "n_records": len(valid),
-        "n_unacceptable": len(bad), "unacceptable_ground_motions": bad,
-        "acmr": acmr if rule.collapse_margin_available else None,
-        "acmr_required": need if rule.collapse_margin_available else None,
-        "acmr_is_lower_bound": None if margin is None else margin["CMR_is_lower_bound"],
-        "p_collapse_design": None if margin is None or not rule.collapse_margin_available
-        else margin["p_collapse_design"],
-        "median_definition": MEDIAN_DEFINITION,
-        "acmr_fitted": None if margin is None or not rule.collapse_margin_available else margin["ACMR_fitted"],
-        "p_collapse_design_fitted": None if margin is None or not rule.collapse_margin_available
-        else margin["p_collapse_design_fitted"],
-        "binomial_bound": probability_bound(len(bad), n),
-        "governing_criteria": [i.key for i in governing], "not_evaluated": list(verdict.not_covered)
-        + [i.key for i in governing if not i.evaluated],
-        "evaluated": evaluated, "passed": verdict.verdict == "PASS", "verdict": verdict.verdict,
-        "reason": verdict.reason, "robust": verdict.robust, "perturbed_draws": robustness,
-        "ground_motions": ground_motion_table(valid),
-    }

@@ -20,7 +20,7 @@ import typer
 from ..console import make_console
 
 OPTIONS = {"vary": "--vary", "out_dir": "-o/--out", "records_dir": "--records-dir", "executor": "--dask",
-           "dask": "--dask", "project": "PROJECT", "prefer": "--prefer"}
+           "dask": "--dask", "project": "PROJECT", "prefer": "--prefer", "tolerance": "--tolerance"}
 """The library's parameter names → this command's options (in error messages)."""
 
 SLOW = 30.0
@@ -52,13 +52,19 @@ def register(app: typer.Typer, handle_errors) -> None:
                prefer: Optional[str] = typer.Option(None, "--prefer", metavar="material|shear", help="What the "
                                                     "recommendation minimises among robust passing variants "
                                                     "(default: the superstructure's shear coefficient where "
-                                                    "there is one, else the material).")):
+                                                    "there is one, else the material)."),
+               tolerance: Optional[List[str]] = typer.Option(None, "--tolerance", metavar="KEY=VALUE",
+                                                             help="Construction tolerance of a varied key, "
+                                                             "relative (podium.width=1%) or in the key's units "
+                                                             "(podium.width=4mm); the recommendation must pass at "
+                                                             "each varied key ± its tolerance (default ±1 % of a "
+                                                             "length, ±2 % of another key; repeatable).")):
         """Design chart: the check of every variant of one or two keys, the pass/fail region, contours of ACMR and of the superstructure's shear coefficient (a cylinder: of its overturning record pairs), and the recommended design (exit 0 = at least one variant passes, 1 = none does, 2 = input error, 3 = internal error, 130 = interrupted)."""  # noqa: E501  (one paragraph: the help rewraps it)
         # the heavy modules (numpy, numba, pint, scipy) are imported here, not at module level: the CLI
         # mounts this command at every start-up (tests/cli/test_startup.py)
         with option_names():
             code = _design(project, vary, out, as_json=as_json, no_pdf=no_pdf, records_dir=records_dir, dask=dask,
-                           every_cell=every_cell, prefer=prefer)
+                           every_cell=every_cell, prefer=prefer, tolerance=tolerance)
         raise typer.Exit(code)
 
 
@@ -76,7 +82,7 @@ def option_names():
 
 
 def _design(project: Path, vary, out, *, as_json: bool, no_pdf: bool, records_dir, dask, every_cell: bool = False,
-            prefer: str | None = None) -> int:
+            prefer: str | None = None, tolerance=None) -> int:
     import rockdesign as rd
     from rich.markup import escape
     err = make_console(stderr=True)
@@ -84,7 +90,7 @@ def _design(project: Path, vary, out, *, as_json: bool, no_pdf: bool, records_di
     folder = rd.design_folder(out if out is not None else Path(f"{project.stem}_design"), key="out_dir")
     executor = rd.make_executor(dask) if dask is not None else None     # an unreachable scheduler stops here
     plan = rd.plan_design(proj, vary, records_dir=records_dir, executor=executor, every_cell=every_cell,
-                          prefer=prefer)
+                          prefer=prefer, tolerance=list(tolerance) if tolerance else None)
     say = _Say(err)
     with folder.locked():                       # a busy folder stops here, before the kernels compile
         rd.prepare_design(plan, say=err.print)
@@ -93,7 +99,7 @@ def _design(project: Path, vary, out, *, as_json: bool, no_pdf: bool, records_di
                 executor.start()
             with _display(err, len(plan.variants), say) as (on_variant, on_stage):
                 result = rd.run_design(plan, store=folder.store, progress=on_variant, stage_progress=on_stage,
-                                       warn=say.warning)
+                                       warn=say.warning, say=on_stage.new_step)
                 if not no_pdf and result.recommended is not None:
                     on_stage.new_step(rd.FULL_CHECK)
                     result.recommended_check = rd.recommended_check(result, progress=on_stage)
@@ -224,15 +230,33 @@ def _summary(data: dict, target: Path, console, escape) -> None:
     if rec:
         if rec.get("no_robust_pass"):
             console.print(escape(rec["no_robust_pass"]), highlight=False, soft_wrap=True)
+        if rec.get("no_tolerance_robust_pass"):
+            console.print(escape(rec["no_tolerance_robust"]), highlight=False, soft_wrap=True)
         console.print(escape("recommended: " + ", ".join(f"{k} = {v}" for k, v in rec["labels"].items())
                              + (" (robust PASS)" if rec.get("robust") else " (PASS, not robust)")
                              + f" — {rec['reason']}"), highlight=False, soft_wrap=True)
+        cell = next((c for c in data["cells"] if c["index"] == rec["index"]), {})
+        if cell.get("flip_margin") is not None:
+            console.print(escape(f"distance to the flip: λ = {'≥ ' if cell.get('flip_margin_is_lower_bound') else ''}"
+                                 f"{cell['flip_margin']:.3g} × the design intensity ({cell.get('flip_governing')}; "
+                                 "> 1 passes)"), highlight=False)
+        for n in rec.get("neighbourhood") or []:
+            console.print(escape(f"  tolerance neighbour {', '.join(f'{k} = {v}' for k, v in n['labels'].items())}: "
+                                 f"{n['verdict']}" + (f", {n['n_unacceptable']} unacceptable"
+                                                     if n.get("n_unacceptable") is not None else "")
+                                 + (f", flip margin {n['flip_margin']:.3g}" if n.get("flip_margin") is not None
+                                    else "")), highlight=False, soft_wrap=True)
         full = rec.get("check")
         if full:
             console.print(escape(f"full check of the recommended design: {full['verdict']}, "
                                  + ("robust" if full.get("robust") else "not robust")), highlight=False)
     else:
         console.print("no variant passes", highlight=False)
+    audit = (data.get("settings") or {}).get("inference_audit") or {}
+    inferred = (data.get("settings") or {}).get("cells_inferred") or 0
+    if inferred or audit.get("n"):
+        console.print(f"cells inferred from agreeing neighbours far from their flip: {inferred}; audited: "
+                      f"{audit.get('agreed', 0)} of {audit.get('n', 0)} agreed", highlight=False)
     console.print(f"analyses run: {data['analyses_run']}; saved by shared work and early stopping: at least "
                   f"{data['analyses_saved']}", highlight=False)
     console.print(escape(f"written: {target}"), highlight=False, soft_wrap=True)

@@ -42,11 +42,12 @@ from ..motions.motion import record_motion
 from ..motions.pairs import suite_pairs
 from ..motions.spectra import sd_max_of_samples
 from ..planar.system import Column, RockingSystem
-from ..acceptance.rule import (AcceptanceRule, acceptance_rule, acceptance_summary, count_rule, minimum_records,
+from ..acceptance.summary import acceptance_summary
+from ..acceptance.rule import (AcceptanceRule, acceptance_rule, count_rule, minimum_records,
                          require_suite_size)
 from ..acceptance.criteria import CheckContext, decide, evaluate_criteria
 from .criteria import cylinder_criteria
-from .margins import pair_fragility, pair_margins
+from .margins import pair_fragility, pair_margins, pair_need
 from ..acceptance.collapse_margin import collapse_margin
 from ..acceptance.scans import SCAN_RATIO, Margin
 from .ensemble import suite_ensembles
@@ -411,12 +412,17 @@ def run_cylinder_check(project, progress=None, margins: bool = True, *, records:
             progress("cylinder and planar analyses" if not verdict_only else "cylinder analyses", i + 1, len(pairs))
     records = records_out
     decided = verdict_only and decided_at_design_level(rule, records)
-    margins = margins and not decided
-    if margins:
+    need = pair_need(rule, records, decided) if verdict_only and margins else None
+    flip_scans = None
+    if (margins and not decided) or need is not None:
         found = pair_margins(cyl, [p.scaled(f) for (_, p), f in zip(pairs, sp.factors)], [o.run for o in records], a,
-                             lambda pair, rtol: _run_3d(cyl, pair, a, rtol=rtol, note=note), progress)
-        for o, m in zip(records, found):
-            o.margin = m
+                             lambda pair, rtol: _run_3d(cyl, pair, a, rtol=rtol, note=note), progress, need=need)
+        if decided:         # a decided FAIL: scanned below the design level for its distance to the flip alone
+            flip_scans = found
+        else:
+            for o, m in zip(records, found):
+                o.margin = m
+    margins = margins and not decided
     slow = _slow_notes(progress)
     ens = None if verdict_only else suite_ensembles(
         lambda pair, rtol, atol: _run_3d(cyl, pair, a, rtol=rtol, atol=atol, note=slow), [p for _, p in pairs],
@@ -438,7 +444,9 @@ def run_cylinder_check(project, progress=None, margins: bool = True, *, records:
                                   "collapse_margin": margin_fema}, rule=rule)
     items, skipped = evaluate_criteria(context, cylinder_criteria(rule))
     decision = decide(items, skipped, rule)
-    acceptance = acceptance_summary(rule, items, decision, context.valid, margin_fema)
+    acceptance = acceptance_summary(rule, items, decision, context.valid, margin_fema,
+                                    scans=None if flip_scans is None else
+                                    [m for o, m in zip(records, flip_scans) if o.run.status == "completed"])
     checks = [i.as_json() for i in items]
     checks.sort(key=lambda c: (not c["governs_verdict"], -c["utilisation"]))
     ensemble_json = None if ens is None else {

@@ -6,7 +6,6 @@ import statistics
 
 from .check import (GOVERNING_PAIRS, MAX_HISTORIES, run_cylinder_check, suite_pair_records,
                                      suite_pairs_key)
-from .margins import pair_grid
 
 RULE = ("the project's acceptance rule over the record pairs, each pair one ground motion: the ASCE 7-22 "
         "§16.4.1.1 count of pairs that overturn (θ reaching θ_ot, thesis Sec 5.5.1) at the design level and at "
@@ -39,20 +38,13 @@ def grid_check(project, *, records, records_dir, executor, progress):
 
 def saved_by_stopping(result, decided_early: bool) -> int:
     """Analyses a full ``rockdesign check`` of this variant runs that the grid did not (a lower bound): the
-    planar runs (2 per pair), the ensembles (``ensemble_size`` per pair), the report's histories (at least
-    2, every overturning pair up to 8) and, for a variant decided at the design level, the first factor of
-    the incremental scan of every pair whose design level reaches uplift."""
-    cyl, a = result.project.system, result.project.analysis
+    planar runs (2 per pair), the ensembles (``ensemble_size`` per pair) and the report's histories (at least
+    2, every overturning pair up to 8); a variant decided at the design level is scanned below it for its
+    distance to the flip, as the check scans it."""
+    a = result.project.analysis
     n = len(result.records)
     overturned = sum(1 for o in result.records if o.run.overturned)
-    saved = 2 * n + (a.ensemble_size or 0) * n + min(max(GOVERNING_PAIRS, overturned), MAX_HISTORIES, n)
-    if decided_early:
-        uplift = cyl.g * cyl.tan_alpha
-        for o in result.records:
-            f_up = uplift / o.resultant_pga if o.resultant_pga > 0 else float("inf")
-            if f_up < 1.0:
-                saved += min(1, len(pair_grid(f_up, a.margin_max_scale)) - 1)
-    return saved
+    return 2 * n + (a.ensemble_size or 0) * n + min(max(GOVERNING_PAIRS, overturned), MAX_HISTORIES, n)
 
 
 def grid_cell(result, analyses: int) -> dict:

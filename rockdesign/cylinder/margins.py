@@ -14,8 +14,9 @@ the fragility's stripe fit.
 """
 from __future__ import annotations
 
+from ..acceptance.flip import allowance
 from ..acceptance.fragility import check_fragility
-from ..acceptance.scans import SCAN_AFTER_FIRST, SCAN_RATIO, Margin, scan_grid
+from ..acceptance.scans import SCAN_AFTER_FIRST, SCAN_RATIO, Margin, ScanNeed, scan_grid
 
 
 def pair_grid(f_up: float, max_scale: float) -> list[float]:
@@ -26,7 +27,7 @@ def pair_grid(f_up: float, max_scale: float) -> list[float]:
     return below + (scan_grid(1.0, max_scale, SCAN_RATIO)[1:] if max_scale > 1.0 else [])
 
 
-def pair_margins(cyl, scaled_pairs, nominal, a, run, progress=None) -> list[Margin]:
+def pair_margins(cyl, scaled_pairs, nominal, a, run, progress=None, need: ScanNeed | None = None) -> list[Margin]:
     """The first overturning factor (on the design-level pair) of every pair, up to ``a.margin_max_scale``,
     and the overturning bands the scan sees.
 
@@ -36,6 +37,12 @@ def pair_margins(cyl, scaled_pairs, nominal, a, run, progress=None) -> list[Marg
         a: the project's ``[analysis]`` (``margin_max_scale``, ``margin_precision``; the scan runs at
             rtol = max(rtol, scan_rtol)).
         run: ``run(pair, rtol) -> run summary`` (``overturned``, ``status``) of one 3D analysis.
+        need: what a design-grid cell needs (:class:`~rockdesign.acceptance.scans.ScanNeed`): a pair then stops
+            at its first overturning factor or once scanned past its threshold, and is bisected only below it
+            (the cell's order statistics are the full scan's); None: the check's full scan.
+
+    The pairs advance together, one analysis each per round, so that a cell knows after every round which
+    pairs still matter; each pair's own sequence of factors is the check's.
 
     Returns one :class:`~rockdesign.acceptance.scans.Margin` per pair: ``overturn_scale`` the bisected
     first overturning factor (None: none up to ``margin_max_scale``); ``intervals`` the overturning bands
@@ -45,53 +52,109 @@ def pair_margins(cyl, scaled_pairs, nominal, a, run, progress=None) -> list[Marg
     """
     uplift = cyl.g * cyl.tan_alpha
     rtol = max(a.rtol, a.scan_rtol)
-    margins = []
-    for i, (pair, base) in enumerate(zip(scaled_pairs, nominal)):
-        f_up = uplift / pair.resultant_pga if pair.resultant_pga > 0 else float("inf")
-        grid = pair_grid(f_up, a.margin_max_scale)
-        margin = Margin(None, scanned_up_to=grid[-1])
-        flags, safe, first = [], [], None     # safe: analysed (or below uplift) and not overturned
-        for k, f in enumerate(grid):
-            if first is not None and k - first > SCAN_AFTER_FIRST:
-                break
-            if f < f_up:                 # below uplift the cylinder does not move
-                flags.append(False)
-                safe.append(True)
-                continue
-            r = base if f == 1.0 else run(pair.scaled(f), rtol)
-            margin.runs += f != 1.0
-            if r.status != "completed":
-                margin.failed_scales.append(f)
-            flags.append(r.status == "completed" and bool(r.overturned))
-            safe.append(r.status == "completed" and not r.overturned)
-            if flags[-1] and first is None:
-                first = k
-        grid = grid[:len(flags)]
-        margin.scanned_up_to = grid[-1]
-        bands = []
-        for k, hit in enumerate(flags):
-            if hit and (k == 0 or not flags[k - 1]):
-                bands.append([grid[k], None])
-            elif not hit and k > 0 and flags[k - 1]:
-                bands[-1][1] = grid[k]
-        below = [k for k in range(first or 0) if safe[k]]
-        if first is not None and below:     # bisect the first rise between the last safe factor and it
-            lo, hi = grid[below[-1]], grid[first]
-            while hi / lo - 1.0 > a.margin_precision:
-                mid = (lo * hi) ** 0.5
-                r = run(pair.scaled(mid), rtol)
-                margin.runs += 1
+    scans = [_PairScan(pair_grid(uplift / p.resultant_pga if p.resultant_pga > 0 else float("inf"),
+                                 a.margin_max_scale), uplift / p.resultant_pga if p.resultant_pga > 0 else float("inf"))
+             for p in scaled_pairs]
+    done = 0
+    active = list(range(len(scans)))
+    while active:
+        for i in active:
+            s = scans[i]
+            while s.more():
+                f = s.grid[s.k]
+                s.k += 1
+                if f < s.f_up:                 # below uplift the cylinder does not move
+                    s.record(False, True)
+                    continue
+                r = nominal[i] if f == 1.0 else run(scaled_pairs[i].scaled(f), rtol)
+                s.margin.runs += f != 1.0
                 if r.status != "completed":
-                    margin.failed_scales.append(mid)
-                    break
-                lo, hi = (lo, mid) if r.overturned else (mid, hi)
-            bands[0][0] = hi
-        margin.intervals = [(lower, upper) for lower, upper in bands]
-        margin.overturn_scale = bands[0][0] if bands else None
-        margins.append(margin)
-        if progress is not None:
-            progress("overturning margins (incremental 3D RHA)", i + 1, len(scaled_pairs))
-    return margins
+                    s.margin.failed_scales.append(f)
+                s.record(r.status == "completed" and bool(r.overturned), r.status == "completed" and not r.overturned)
+                break
+        limits = need.thresholds([s.first_factor() for s in scans]) if need is not None else None
+        still = []
+        for i in active:
+            s = scans[i]
+            if not s.more() or (need is not None and (s.first is not None or s.grid[s.k - 1] >= limits[i])):
+                done += 1
+                if progress is not None:
+                    progress("overturning margins (incremental 3D RHA)", done, len(scans))
+                continue
+            still.append(i)
+        active = still
+    brackets = {i: s.bracket() for i, s in enumerate(scans) if s.bracket() is not None}
+    while brackets:                        # bisect the first rise between the last safe factor and it
+        limits = need.thresholds([brackets[i][1] if i in brackets else s.upper() for i, s in enumerate(scans)]) \
+            if need is not None else None
+        for i in list(brackets):
+            lo, hi = brackets[i]
+            if hi / lo - 1.0 <= a.margin_precision or (limits is not None and lo >= limits[i]):
+                scans[i].settle(hi)
+                del brackets[i]
+                continue
+            mid = (lo * hi) ** 0.5
+            r = run(scaled_pairs[i].scaled(mid), rtol)
+            scans[i].margin.runs += 1
+            if r.status != "completed":
+                scans[i].margin.failed_scales.append(mid)
+                scans[i].settle(hi)
+                del brackets[i]
+                continue
+            brackets[i] = (lo, mid) if r.overturned else (mid, hi)
+    return [s.finish() for s in scans]
+
+
+class _PairScan:
+    """One pair's scan: its grid, the factors analysed so far and its margin."""
+
+    def __init__(self, grid: list[float], f_up: float):
+        self.grid, self.f_up, self.k = grid, f_up, 0
+        self.flags: list[bool] = []
+        self.safe: list[bool] = []
+        self.first: int | None = None
+        self.margin = Margin(None, scanned_up_to=grid[-1])
+        self.lower_edge: float | None = None
+
+    def more(self) -> bool:
+        """Another grid factor to analyse (up to :data:`SCAN_AFTER_FIRST` past the first overturning one)."""
+        return self.k < len(self.grid) and not (self.first is not None and self.k - self.first > SCAN_AFTER_FIRST)
+
+    def record(self, hit: bool, safe: bool) -> None:
+        self.flags.append(hit)
+        self.safe.append(safe)
+        if hit and self.first is None:
+            self.first = len(self.flags) - 1
+
+    def first_factor(self) -> float | None:
+        return None if self.first is None else self.grid[self.first]
+
+    def bracket(self) -> tuple[float, float] | None:
+        """(last safe factor below the first overturning one, that one), or None (nothing to bisect)."""
+        below = [k for k in range(self.first or 0) if self.safe[k]]
+        return (self.grid[below[-1]], self.grid[self.first]) if self.first is not None and below else None
+
+    def upper(self) -> float | None:
+        """The first overturning factor as known now (bisected where it was), or None."""
+        return self.lower_edge if self.lower_edge is not None else self.first_factor()
+
+    def settle(self, hi: float) -> None:
+        self.lower_edge = hi
+
+    def finish(self) -> Margin:
+        grid = self.grid[:len(self.flags)]
+        self.margin.scanned_up_to = grid[-1]
+        bands = []
+        for k, hit in enumerate(self.flags):
+            if hit and (k == 0 or not self.flags[k - 1]):
+                bands.append([grid[k], None])
+            elif not hit and k > 0 and self.flags[k - 1]:
+                bands[-1][1] = grid[k]
+        if bands and self.lower_edge is not None:
+            bands[0][0] = self.lower_edge
+        self.margin.intervals = [(lower, upper) for lower, upper in bands]
+        self.margin.overturn_scale = bands[0][0] if bands else None
+        return self.margin
 
 
 def pair_fragility(valid, a, n_overturned: int) -> dict | None:
@@ -102,3 +165,14 @@ def pair_fragility(valid, a, n_overturned: int) -> dict | None:
     ``resultant_pga`` scaling)."""
     return check_fragility(valid, a, empirical=(n_overturned, len(valid)), stripe_ratio=SCAN_RATIO,
                            measure=("resultant_pga", [o.resultant_pga for o in valid]))
+
+
+def pair_need(rule, outcomes, decided: bool):
+    """What a design-grid cell needs of its pairs' scans (:class:`~rockdesign.acceptance.scans.ScanNeed`): the
+    incremental count and the distance to the flip always, Ŝ_CT (on the resultant PGA) only while the collapse
+    margin can decide; None when an analysis failed (no flip)."""
+    if any(o.run.status != "completed" for o in outcomes):
+        return None
+    return ScanNeed([o.ground_motion for o in outcomes], [bool(o.run.overturned) for o in outcomes],
+                    allowance(rule, len({o.ground_motion for o in outcomes})),
+                    None if decided else [o.resultant_pga for o in outcomes], incremental=not decided)

@@ -154,7 +154,7 @@ def parse_cylinder_project(raw: dict, *, file: str = "<project>", text: str = ""
     The ``[analysis]`` table is validated by the planar loader, except ``overturn_tilt`` (read here)
     and the planar keys, which are refused.
     """
-    sections = ("project", "cylinder", "excitation", "analysis")
+    sections = ("project", "cylinder", "excitation", "analysis", "design")
     for section in raw:
         if section not in sections and section not in PLANAR_SECTIONS:
             close = difflib.get_close_matches(section, sections, n=1, cutoff=0.5)

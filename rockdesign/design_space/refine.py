@@ -12,6 +12,9 @@ agree on.  Axes with fewer values are analysed at every value (``every_cell`` an
 from __future__ import annotations
 
 import itertools
+import math
+
+import numpy as np
 
 MIN_AXIS = 5
 """The fewest values along an axis for it to be analysed coarse first."""
@@ -78,16 +81,57 @@ def level_strides(shape: tuple[int, ...], level: int) -> tuple[int, ...]:
 
 
 def agreed(index, shape, level: int, known: dict) -> str | None:
-    """The category every corner of the coarser box around ``index`` agrees on (one of :data:`AGREEING`),
-    or None: the cell must be analysed (``known``: index → cell of the coarser levels)."""
+    """The category every corner of the coarser box around ``index`` agrees on (one of :data:`AGREEING`), every
+    corner far from its flip, or None: the cell must be analysed (``known``: index → cell of the coarser
+    levels)."""
+    from ..acceptance.flip import far_from_flip
     if level == 0:
         return None
-    found = {category(known.get(c)) for c in corners(index, shape, level_strides(shape, level - 1))}
+    around = [known.get(c) for c in corners(index, shape, level_strides(shape, level - 1))]
+    found = {category(c) for c in around}
     if len(found) == 1:
         (only,) = found
-        if only in AGREEING:
+        if only in AGREEING and all(not c.get("analysed", True) or far_from_flip(c) for c in around):
             return only
     return None
 
 
-__all__ = ["levels", "agreed", "category", "corners", "level_strides", "MIN_AXIS", "AGREEING"]
+def neighbours(index: tuple[int, ...], shape: tuple[int, ...]) -> list[tuple[int, ...]]:
+    """The cells touching ``index`` along an axis or a diagonal (inside the grid)."""
+    out = []
+    for step in itertools.product((-1, 0, 1), repeat=len(shape)):
+        other = tuple(i + d for i, d in zip(index, step))
+        if any(step) and all(0 <= i < n for i, n in zip(other, shape)):
+            out.append(other)
+    return out
+
+
+def unsafe(shape: tuple[int, ...], known: dict) -> list[tuple[int, ...]]:
+    """Cells left out that touch a cell of another category (analysed, or left out between other corners): the
+    inference would cross an edge there, so they must be analysed."""
+    out = []
+    for index, cell in sorted(known.items()):
+        if cell is None or cell.get("analysed", True):
+            continue
+        mine = category(cell)
+        if any(known.get(n) is not None and category(known[n]) != mine for n in neighbours(index, shape)):
+            out.append(index)
+    return out
+
+
+AUDIT_FRACTION = 0.1
+"""The share of the cells left out that is analysed as an audit of the inference (at least one)."""
+
+
+def audit_sample(left_out: list[tuple[int, ...]], seed: int) -> list[tuple[int, ...]]:
+    """A seeded sample of the cells left out (:data:`AUDIT_FRACTION`, at least one when any is left out), in grid
+    order: the same cells on every run."""
+    if not left_out:
+        return []
+    n = max(1, math.ceil(AUDIT_FRACTION * len(left_out)))
+    pick = np.random.default_rng(seed).choice(len(left_out), size=n, replace=False)
+    return sorted(left_out[int(k)] for k in pick)
+
+
+__all__ = ["levels", "agreed", "category", "corners", "level_strides", "neighbours", "unsafe", "audit_sample",
+           "MIN_AXIS", "AGREEING", "AUDIT_FRACTION"]

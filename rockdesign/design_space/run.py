@@ -30,7 +30,9 @@ from ..errors import ProjectError, RockdesignError
 from ..kinds import kind_of
 from ..outdir import DesignFolder
 from ..project_tables import Project
-from .grid import PREFER, GridRun, check_exit_code, read_records, recommended, run_grid
+from .grid import PREFER, GridRun, check_exit_code, check_off_grid, read_records, recommended, run_grid
+from .recommend import with_tolerance
+from .tolerance import Tolerance, tolerances
 from .variants import Variable, Variant, parse_vary, refuse_overlaps, variants
 
 
@@ -47,6 +49,10 @@ class DesignPlan:
     executor: object | None = None
     every_cell: bool = False
     prefer: str | None = None
+    tolerances: dict[str, Tolerance] = field(default_factory=dict)
+    """The construction tolerance of each varied key (:mod:`.tolerance`)."""
+    notes: list[str] = field(default_factory=list)
+    """What of the input this chart does not use ([design.tolerance] entries of keys it does not vary)."""
 
     @property
     def kind(self):
@@ -112,7 +118,7 @@ def _vary_list(vary) -> list[str]:
 
 
 def plan_design(project, vary, *, records_dir=None, executor=None, every_cell: bool = False,
-                prefer: str | None = None) -> DesignPlan:
+                prefer: str | None = None, tolerance: dict | None = None) -> DesignPlan:
     """Validate a design grid without analysing anything (see module docstring).
 
     Args:
@@ -123,10 +129,12 @@ def plan_design(project, vary, *, records_dir=None, executor=None, every_cell: b
         every_cell: analyse every cell (default: coarse to fine, cells between agreeing neighbours left out).
         prefer: what the recommendation minimises among robust passing variants, ``"material"`` or
             ``"shear"`` (default: the superstructure's shear where there is one, else the material).
+        tolerance: ``{KEY: VALUE}``, the construction tolerance of varied keys ("1%", "2 mm"), over the project
+            file's ``[design.tolerance]`` and the defaults (:mod:`rockdesign.design_space.tolerance`).
 
     Raises:
-        RockdesignError: naming the parameter (``vary``, ``records_dir``, ``executor``, ``prefer``) or the
-            project file's key.
+        RockdesignError: naming the parameter (``vary``, ``records_dir``, ``executor``, ``prefer``,
+            ``tolerance``) or the project file's key.
     """
     project = _project(project)
     if prefer is not None and prefer not in PREFER:
@@ -137,6 +145,11 @@ def plan_design(project, vary, *, records_dir=None, executor=None, every_cell: b
     raw = project.raw
     variables = [parse_vary(v, raw, alternatives=kind.key_alternatives) for v in specs]
     refuse_overlaps(variables)
+    if tolerance is not None and not isinstance(tolerance, (dict, list, tuple)):
+        raise RockdesignError("tolerances must be a mapping", key="tolerance",
+                              expected="{KEY: VALUE} or [\"KEY=VALUE\", …], e.g. {\"podium.width\": \"1%\"}",
+                              found=repr(tolerance))
+    tols, notes = tolerances(variables, tolerance, raw, file=str(project.path))
     if project.excitation_raw is None:
         raise ProjectError("the design chart needs an excitation", file=project.path, key="excitation",
                            expected="an [excitation] table (the default intensity would move with the varied keys)",
@@ -144,7 +157,7 @@ def plan_design(project, vary, *, records_dir=None, executor=None, every_cell: b
     cells = variants(raw, variables, file=str(project.path))
     records = read_records(cells, str(records_dir) if records_dir else None)
     return DesignPlan(project, variables, cells, records, str(records_dir) if records_dir else None, executor,
-                      bool(every_cell), prefer)
+                      bool(every_cell), prefer, tols, notes)
 
 
 def prepare_design(plan: DesignPlan, say=None) -> float:
@@ -154,28 +167,45 @@ def prepare_design(plan: DesignPlan, say=None) -> float:
     return compilation.prepare("design", plan.kind.kernels("check"), say)
 
 
-def run_design(plan: DesignPlan, *, store=None, progress=None, stage_progress=None, warn=None) -> DesignResult:
-    """Check every variant of a :func:`plan_design`.
+def run_design(plan: DesignPlan, *, store=None, progress=None, stage_progress=None, warn=None,
+               say=None) -> DesignResult:
+    """Check every variant of a :func:`plan_design`, then the tolerance neighbourhood of the recommendation.
 
     Args:
         store: the folder of stored variants (resumable; None: nothing stored).
         progress: ``progress(done, total, cell)`` as each variant ends.
         stage_progress: ``stage_progress(stage, done, total)`` inside a variant checked alone.
         warn: ``warn(text)`` for a stored variant that cannot be used (analysed again).
+        say: ``say(text)`` as the checks of a candidate's tolerance neighbourhood start.
     """
     kind = plan.kind
     grid = run_grid(plan.variants, plan.variables, records_dir=plan.records_dir, executor=plan.executor,
                     store=store, progress=progress, stage_progress=stage_progress, warn=warn, records=plan.records,
-                    every_cell=plan.every_cell)
+                    every_cell=plan.every_cell, seed=getattr(plan.project.analysis, "seed", 0))
+    before = grid.analyses_run
+    rec = with_tolerance(recommended(grid.cells, kind.design_material, plan.prefer), grid.cells,
+                         lambda jobs: check_off_grid(grid, jobs, plan.records_dir), plan.variables, plan.tolerances,
+                         plan.project.raw, str(plan.project.path), material=kind.design_material, prefer=plan.prefer,
+                         say=say)
+    if grid.checker is not None and grid.checker.shared["variants"]:
+        grid.shared_batches = dict(grid.checker.shared)      # the cells' and the neighbours' shared calls
     analysed = sum(1 for c in grid.cells if c.get("analysed", True))
+    inference = grid.inference or {}
     settings = {"early_stopping": kind.design_skipped, "verdict_rule": kind.design_rule,
                 "executor": "dask" if plan.executor is not None else "local",
                 "shared_batches": grid.shared_batches,
                 "order": "every cell" if plan.every_cell else "coarse to fine",
                 "cells_analysed": analysed, "cells_not_analysed": len(grid.cells) - analysed,
+                "cells_inferred": len(grid.cells) - analysed,
+                "inference_audit": {"n": inference.get("audited", 0), "agreed": inference.get("agreed", 0),
+                                    "cells": inference.get("cells", []),
+                                    **({"fallback": inference["fallback"]} if "fallback" in inference else {})},
+                "inference_rule": INFERENCE,
+                "flip_margin": FLIP,
+                "tolerances": {k: t.as_json() for k, t in plan.tolerances.items()},
+                "tolerance_analyses": grid.analyses_run - before,
                 "robustness": ROBUSTNESS, "prefer": plan.prefer}
-    return DesignResult(plan.project, grid, recommended(grid.cells, kind.design_material, plan.prefer), settings,
-                        warnings=list(grid.warnings), plan=plan)
+    return DesignResult(plan.project, grid, rec, settings, warnings=list(grid.warnings) + list(plan.notes), plan=plan)
 
 
 ROBUSTNESS = ("a variant that passes at nominal values is run again under its check's perturbation draws (c_r − 2 % "
@@ -184,6 +214,19 @@ ROBUSTNESS = ("a variant that passes at nominal values is run again under its ch
               "design-level acceptance rule fails: robust when every draw passes; an ACMR above its requirement by "
               "less than the scans' resolution (margin_precision + 0.1 %) is not robust")
 """How a cell's robustness is decided (design.json ``settings.robustness``)."""
+
+
+INFERENCE = ("a cell is left unanalysed only between analysed cells (the corners of the coarser box around it) that "
+             "agree — all robust PASS or all FAIL — and are far from their flip (flip margin ≥ 1.25, or ≤ 0.8 for a "
+             "FAIL); a cell left out that touches a cell of another verdict is analysed; then a seeded tenth of the "
+             "cells left out is analysed as an audit, and if one disagrees every cell left out is analysed")
+"""How a chart infers cells (design.json ``settings.inference_rule``)."""
+
+FLIP = ("flip_margin: the factor λ on the design intensity at which the verdict changes — the smaller of the "
+        "factor at which the count of ground motions unacceptable at or below λ × the design intensity exceeds the "
+        "allowance (from each ground motion's first overturning factor) and ACMR / ACMR required; > 1 passes, ≤ 1 "
+        "fails")
+"""What a cell's flip margin is (design.json ``settings.flip_margin``)."""
 
 
 FULL_CHECK = ("full check of the recommended design: the stages the grid skipped (c_r sensitivity, perturbation "
@@ -240,7 +283,7 @@ def write_design(result: DesignResult, folder, *, pdf: bool = True, html: bool =
 
 def design(project, vary, *, out_dir=None, records_dir=None, executor=None, pdf: bool = True, html: bool = True,
            full_check: bool | None = None, progress=None, stage_progress=None, warn=None, say=None,
-           every_cell: bool = False, prefer: str | None = None) -> DesignResult:
+           every_cell: bool = False, prefer: str | None = None, tolerance: dict | None = None) -> DesignResult:
     """The design chart of a project: the check of every variant of one or two keys (SPEC §15, docs/design.md).
 
     Args:
@@ -260,6 +303,8 @@ def design(project, vary, *, out_dir=None, records_dir=None, executor=None, pdf:
         every_cell: analyse every cell (default: coarse to fine; a cell between agreeing neighbours is left
             unanalysed, ``"analysed": false``, and shows no verdict).
         prefer: ``"material"`` or ``"shear"``: what the recommendation minimises among robust passing variants.
+        tolerance: ``{KEY: VALUE}``: the construction tolerance of varied keys ("1%", "2 mm"; default ±1 % of a
+            length, ±2 % of another key; the project file's ``[design.tolerance]`` in between).
 
     Returns:
         A :class:`DesignResult` (``verdicts``, ``recommended``, ``exit_code``, ``as_json()`` = design.json).
@@ -270,18 +315,19 @@ def design(project, vary, *, out_dir=None, records_dir=None, executor=None, pdf:
     project = _project(project)
     folder = design_folder(out_dir) if out_dir is not None else None
     plan = plan_design(project, vary, records_dir=records_dir, executor=executor, every_cell=every_cell,
-                       prefer=prefer)
+                       prefer=prefer, tolerance=tolerance)
     if full_check is None:
         full_check = out_dir is not None and (pdf or html)
     if folder is None:
-        result = run_design(plan, progress=progress, stage_progress=stage_progress, warn=warn)
+        result = run_design(plan, progress=progress, stage_progress=stage_progress, warn=warn, say=say)
         if full_check:
             if say is not None and result.recommended is not None:
                 say(FULL_CHECK)
             result.recommended_check = recommended_check(result, progress=stage_progress)
         return result
     with folder.locked():
-        result = run_design(plan, store=folder.store, progress=progress, stage_progress=stage_progress, warn=warn)
+        result = run_design(plan, store=folder.store, progress=progress, stage_progress=stage_progress, warn=warn,
+                            say=say)
         if full_check:
             if say is not None and result.recommended is not None:
                 say(FULL_CHECK)

@@ -28,7 +28,7 @@ from pathlib import Path
 
 from .. import __version__
 
-FORMAT = 3
+FORMAT = 4
 """The layout of a stored variant (a file of another layout is analysed again)."""
 
 VERDICTS = ("PASS", "FAIL", "INVALID", "ERROR")
@@ -185,7 +185,8 @@ def shape_problem(data, digest: str) -> str | None:
     if not isinstance(cell.get("analyses"), int) or not isinstance(cell.get("decided_at_design_level"), bool):
         return "missing counts"
     robust, draws = cell.get("robust", "missing"), cell.get("draws")
-    if robust not in (True, False, None) or (robust is None) != (cell["verdict"] != "PASS"):
+    verdict_only = str(cell.get("robustness") or "").startswith("not evaluated")    # a tolerance neighbour
+    if robust not in (True, False, None) or (robust is None) != (cell["verdict"] != "PASS" or verdict_only):
         return f"robust = {robust!r} for {cell['verdict']}"
     if not isinstance(draws, dict) or any(isinstance(draws.get(k), bool) or not isinstance(draws.get(k), int)
                                           or draws[k] < 0 for k in ("n", "failed")):

@@ -69,6 +69,22 @@ class Variable:
     def as_json(self) -> dict:
         return {"key": self.key, "unit": self.unit or "1", "values": list(self.values), "values_si": list(self.si)}
 
+    def user_value(self, si: float) -> float:
+        """An SI value of the key in the user's unit (as :attr:`values` hold them)."""
+        return si / registry_si(1.0, self.unit) if self.unit else si
+
+    def toml_of(self, si: float):
+        """Any SI value of the key as the project file writes it (a neighbour between grid values)."""
+        if self.plain:
+            return float(f"{si:.12g}")
+        v = self.user_value(si)
+        return f"{v:.10g} {self.unit}" if self.unit else float(f"{v:.12g}")
+
+    def label_of(self, si: float) -> str:
+        """Any SI value of the key for tables ("0.3967 m"), one digit finer than :meth:`label` so that a value ± its
+        tolerance reads apart from the grid value."""
+        return f"{self.user_value(si):.5g}" + (f" {self.unit}" if self.unit else "")
+
 
 def _quantity(text: str, option: str, spec: str):
     from ..units import registry
@@ -209,6 +225,27 @@ class Variant:
     project: object | None
     invalid: str | None
     notes: tuple[str, ...] = ()
+    values: dict | None = None
+    """A variant off the grid (a tolerance neighbour): its values {key: SI value}; None on the grid (the values
+    are the variables' at ``index``)."""
+    labels: dict | None = None
+
+
+def neighbour_variant(raw: dict, variables, index, key: str, si: float, *, file: str) -> Variant:
+    """The grid's variant at ``index`` with ``key`` set to the SI value ``si`` (off the grid: a tolerance
+    neighbour, SPEC §15), validated by the project loader like every variant (an impossible one is INVALID)."""
+    from ..kinds import parse_document
+    doc, notes = variant_document(raw, variables, index)
+    var = next(v for v in variables if v.key == key)
+    doc[var.table][var.name] = var.toml_of(si)
+    values = {v.key: (si if v.key == key else v.si[k]) for v, k in zip(variables, index)}
+    labels = {v.key: (v.label_of(si) if v.key == key else v.label(k)) for v, k in zip(variables, index)}
+    label = ", ".join(f"{k} = {t}" for k, t in labels.items())
+    try:
+        proj = parse_document(doc, file=f"{file} [{label}]", text=variant_toml(doc))
+        return Variant(tuple(index), doc, proj, None, tuple(notes), values, labels)
+    except ProjectError as exc:
+        return Variant(tuple(index), doc, None, str(exc), tuple(notes), values, labels)
 
 
 def variant_document(raw: dict, variables, index) -> tuple[dict, list[str]]:

@@ -103,6 +103,7 @@ class ResolvedSuite:
             group with records; one entry (None, rule) when one rule scaled all records.
         asce7_22: the outcome of ASCE 7-22 §16.2.3 scaling (factors per ground motion, period range,
             spectra), when the records were scaled so; else None.
+        derived: see below.
     """
 
     records: list[ResolvedRecord]
@@ -112,6 +113,9 @@ class ResolvedSuite:
     suites: list[str] = field(default_factory=list)
     rules: list = field(default_factory=list)
     asce7_22: object | None = None
+    derived: dict = field(default_factory=dict, repr=False, compare=False)
+    """Numbers that follow from the scaled records alone, computed once for every check that shares them (a
+    design grid's variants): e.g. the SD_max of each record by (damping, band)."""
 
 
 def default_excitation(design_pga: float | None, *, file: str | None = None) -> ExcitationSpec:

@@ -9,7 +9,6 @@ from .checks.check import characteristic_periods, run_check, suite_records
 from .checks.runner import analysis_failed, run_jobs
 from ..acceptance.perturbations import TOLERANCE_FACTOR, draw_words, perturbations
 from ..acceptance.rule import acceptance_rule, count_rule
-from ..acceptance.scans import SCAN_BLOCK, SCAN_RATIO, scan_grid
 from .design.quantities import design_quantities
 
 RULE = ("ASCE 7-22 §16.4.1.1 count of unacceptable ground motions and the FEMA P695 collapse margin at the risk "
@@ -53,16 +52,11 @@ def grid_check(project, *, records, records_dir, executor, progress):
 def saved_by_stopping(result, decided_early: bool) -> int:
     """Analyses a full ``rockdesign check`` of this variant runs that the grid did not (a lower bound):
     the c_r sensitivity (2 per record), the ensembles, and for a variant decided at the design level the
-    first round of its margin scan (at least min(4, grid) factors per record) and the demand's 2DOF re-run."""
+    demand's 2DOF re-run (its scan below the design level, for the distance to the flip, the grid runs too)."""
     a = result.project.analysis
     n = len(result.records)
     saved = 2 * n + (a.ensemble_size or 0) * n
     if decided_early:
-        up = result.quantities["uplift_acceleration"].value
-        for o in result.records:
-            f_up = up / o.motion.pga if o.motion.pga > 0 else a.margin_max_scale
-            grid = scan_grid(min(max(0.5 * f_up, 1e-3), a.margin_max_scale / 4), a.margin_max_scale, SCAN_RATIO)
-            saved += min(SCAN_BLOCK, len(grid))
         s = result.project.system
         chosen = result.selection.chosen
         if s.kind == "podium" and s.superstructure is not None and not s.superstructure.rigid \

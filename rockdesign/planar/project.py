@@ -19,7 +19,7 @@ from ..project_tables import (ANALYSIS_KEYS, RESTITUTION_RULES, AnalysisSettings
                              _parse_analysis, _Table, project_info)
 from .validity import validity_warnings
 
-SECTIONS_TOP = ("project", "column", "podium", "superstructure", "excitation", "analysis")
+SECTIONS_TOP = ("project", "column", "podium", "superstructure", "excitation", "analysis", "design")
 
 COLUMN_KEYS = ("height", "half_height", "width", "slenderness", "extended_width", "radius", "curvature",
                "mass", "density", "depth", "section", "mass_distribution", "end_plate_thickness",

@@ -78,6 +78,11 @@ def test_each_cell_verdict_equals_the_check_of_its_project_file(grid):
         assert full["verdict"] == cell["verdict"]
         assert full["acceptance"]["n_unacceptable"] == cell["n_unacceptable"]
         assert full["acceptance"]["binomial_bound"] == cell["p_overturn_bound"]
+        # the distance to the flip: the check's full scans and the cell's (stopped once decided) agree
+        if not cell["decided_at_design_level"]:
+            assert cell["flip_margin"] == pytest.approx(full["acceptance"]["flip_margin"], rel=1e-12)
+        else:
+            assert cell["flip_margin"] == pytest.approx(full["acceptance"]["flip"]["count"]["value"], rel=1e-12)
         if cell["verdict"] == "PASS":   # the draws are the check's ensemble runs: the same robustness
             assert cell["robust"] == full["verdict_robust"] and cell["draws"]["n"] >= 1, cell["robustness"]
         else:
@@ -117,13 +122,24 @@ def test_cells_hold_the_cylinders_numbers(grid):
         assert (c["verdict"] == "PASS") <= (bound <= 0.8)
         if c["verdict"] == "FAIL" and c["decided_at_design_level"]:
             assert c["n_incremental_unacceptable"] is None and "not needed" in c["reason"]
-            assert c["analyses"] == 2          # the two pairs once in 3D: no planar runs, scans or ensemble
+            # the two pairs once in 3D, then scanned below the design level for the distance to the flip
+            # alone (no planar runs, no scan above the design level, no ensemble)
+            assert c["analyses"] >= 2 and c["flip_margin"] is not None and c["flip_margin"] <= 1.0
     # the recommended design: the robust passing variant with the least mass, said so in its reason
     passing = [c for c in data["cells"] if c["verdict"] == "PASS"]
     passing = [c for c in passing if c["robust"]] or passing
     rec = data["recommended"]
     assert rec["index"] == min(passing, key=lambda c: c["column_material"])["index"]
     assert "least material: the cylinder's mass" in rec["reason"]
+    # through the kind's door like a podium's: diameter and height (lengths) each ± 1 %, the other nominal
+    hood = rec["neighbourhood"]
+    assert [(n["key"], n["side"]) for n in hood] == [("cylinder.diameter", "−"), ("cylinder.diameter", "+"),
+                                                     ("cylinder.height", "−"), ("cylinder.height", "+")]
+    d, h = rec["values"]["cylinder.diameter"], rec["values"]["cylinder.height"]
+    assert hood[1]["values"] == {"cylinder.diameter": pytest.approx(1.01 * d), "cylinder.height": h}
+    assert hood[2]["values"] == {"cylinder.diameter": d, "cylinder.height": pytest.approx(0.99 * h)}
+    assert rec["tolerance_robust"] == all(n["verdict"] == "PASS" for n in hood)
+    assert data["settings"]["tolerances"]["cylinder.diameter"] == {"relative": 0.01, "source": "default"}
     rows = (out / "design.csv").read_text(encoding="utf-8").splitlines()
     assert rows[0].startswith("cylinder.diameter [m],cylinder.height [m],analysed,verdict,robust,draws_n,")
     assert "p_overturn_bound [-]" in rows[0] and "theta_overturn [rad]" in rows[0] and len(rows) == 5

@@ -18,13 +18,13 @@ CYLINDER = REPO_ROOT / "examples" / "cylinder.toml"
 
 def refuse_analysing(monkeypatch):
     """Bad input is refused before any kernel compiles or any variant is analysed."""
-    import rockdesign.design_space.grid as grid
+    import rockdesign.design_space.batches as batches
     import rockdesign.execution.compilation as compilation
 
     def boom(*args, **kwargs):
         raise AssertionError("compiled or analysed for a bad input")
     monkeypatch.setattr(compilation, "prepare", boom)
-    monkeypatch.setattr(grid, "_check_variant", boom)
+    monkeypatch.setattr(batches.VariantChecker, "check", boom)
 
 
 def one_line_error(result, *fragments):

@@ -57,10 +57,15 @@ def fake(monkeypatch):
     return calls
 
 
-def project(folder, a=1, b=3):
+def project(folder, a=1, b=3, exact=True):
+    """A project whose suite file names p695-ff/{a}a and p695-ff/{b}a; ``exact``: its width is built exactly
+    ([design.tolerance] 0 %: no tolerance neighbours are checked)."""
     folder.mkdir(parents=True, exist_ok=True)
     (folder / "suite.toml").write_text(SUITE.format(a=a, b=b), encoding="utf-8")
     text = stocky_podium_toml(records=[]).replace("records = []", 'suites = ["suite.toml"]')
+    if exact:
+        text += '\n[design.tolerance]\n"podium.width" = "0%"\n'
+
     (folder / "p.toml").write_text(text, encoding="utf-8")
     return folder / "p.toml"
 
@@ -75,18 +80,23 @@ def design(path, out, *vary, extra=("--no-pdf",)):
 
 def test_another_projects_results_are_not_reused(tmp_path, fake):
     """Project B (the same text beside another suite file) run into A's folder reported A's verdicts."""
-    a = project(tmp_path / "A", 1, 3)
-    b = project(tmp_path / "B", 2, 4)          # p695-ff/2a: every cell of B fails
+    a = project(tmp_path / "A", 1, 3, exact=False)
+    b = project(tmp_path / "B", 2, 4, exact=False)          # p695-ff/2a: every cell of B fails
     assert a.read_text() == b.read_text()
     out = tmp_path / "out"
     res, data = design(a, out, "podium.width=0.4m:0.6m:3")
     assert res.exit_code == 0 and [c["verdict"] for c in data["cells"]] == ["FAIL", "PASS", "PASS"]
+    # 0.5 m fails at its tolerance neighbour 0.495 m (the stand-in passes from 0.5 m): 0.6 m is recommended,
+    # its neighbours 0.594 and 0.606 m pass; 3 cells + 4 neighbour checks
+    assert data["recommended"]["labels"] == {"podium.width": "0.6 m"} and data["recommended"]["tolerance_robust"]
+    assert [n["verdict"] for n in data["recommended"]["neighbourhood"]] == ["PASS", "PASS"]
+    assert len(fake) == 7
     res, data = design(b, out, "podium.width=0.4m:0.6m:3")
     assert data["variants_resumed"] == 0 and [c["verdict"] for c in data["cells"]] == ["FAIL"] * 3
     assert res.exit_code == 1
     res, data = design(a, out, "podium.width=0.4m:0.6m:3")      # A again: both stored, A's reused
     assert data["variants_resumed"] == 3 and [c["verdict"] for c in data["cells"]] == ["FAIL", "PASS", "PASS"]
-    assert len(fake) == 6
+    assert len(fake) == 10          # A's cells and its tolerance neighbours all stored: nothing checked again
 
 
 def test_a_resumed_variant_takes_its_place_in_the_current_grid(tmp_path, fake):
@@ -259,3 +269,54 @@ def test_prefer_names_its_choices(tmp_path, fake):
                               "--no-pdf", "--prefer", "mass"])
     assert res.exit_code == 2 and "--prefer" in res.output and "material or shear" in res.output
     assert "Traceback" not in res.output
+
+
+def test_an_audit_that_disagrees_makes_every_inferred_cell_analysed(tmp_path, fake, monkeypatch):
+    """A stand-in landscape that is smooth except for one FAIL inside a passing region (2B = 0.45 m): the coarse
+    corners all pass far from their flip, so the cells between them are inferred; when the audit's sample hits a
+    cell that disagrees, every cell left out is analysed and the FAIL is found (SPEC §15: never infer across an
+    edge).  Without the hit, the audit says how many cells were inferred and that the sample agreed."""
+    from types import SimpleNamespace
+
+    from rockdesign.design_space import refine
+    from rockdesign.planar.kind import Planar
+
+    def grid_check(self, project, *, records, records_dir, executor, progress):
+        width = project.system.column.half_width * 2
+        fake.append((round(width, 4), ()))
+        ok = abs(width - 0.45) > 1e-6
+        return SimpleNamespace(project=project, ok=ok, acceptance={"flip": {
+            "value": 2.0 if ok else 0.5, "lower_bound": False, "governing": "count", "note": "stand-in"}})
+
+    def grid_cell(self, result, analyses):
+        ok = result.ok
+        return {"verdict": "PASS" if ok else "FAIL", "reason": "stand-in", "governing": "count",
+                "decided_at_design_level": not ok, "acmr": None, "acmr_required": None, "p_collapse_design": None,
+                "target_p_collapse": 0.1, "n_unacceptable": 0 if ok else 2, "allowed_unacceptable": 1,
+                "n_ground_motions": 2, "n_failed_analyses": 0, "superstructure_shear_p84": None,
+                "superstructure_drift_p84": None, "median_theta_max_over_theta_c": 0.1, "uplift_acceleration": 1.0,
+                "uplift_shear_coefficient": 0.1, "theta_c": 0.2, "column_material": 1.0, "model": "stand-in",
+                "analyses": 1, "analyses_saved": 0}
+    monkeypatch.setattr(Planar, "grid_check", grid_check)
+    monkeypatch.setattr(Planar, "grid_cell", grid_cell)
+    p = project(tmp_path / "A")
+    vary = "podium.width=0.3m:0.7m:9"                        # 0.30, 0.35, … 0.70: coarse 0.30, 0.50, 0.70
+    picked = []
+
+    def sample(left_out, seed, pick=None):
+        chosen = [i for i in left_out if i == pick] or left_out[:1]
+        picked.append(chosen)
+        return chosen
+    monkeypatch.setattr(refine, "audit_sample", lambda left, seed: sample(left, seed, (1,)))   # 0.35 m: agrees
+    res, data = design(p, tmp_path / "o1", vary)
+    settings = data["settings"]
+    assert settings["inference_audit"]["n"] == 1 and settings["inference_audit"]["agreed"] == 1
+    assert settings["cells_inferred"] == sum(not c["analysed"] for c in data["cells"]) > 0
+    assert not next(c for c in data["cells"] if c["labels"]["podium.width"] == "0.45 m")["analysed"]   # missed
+    monkeypatch.setattr(refine, "audit_sample", lambda left, seed: sample(left, seed, (3,)))   # 0.45 m: the FAIL
+    res, data = design(p, tmp_path / "o2", vary)
+    settings = data["settings"]
+    assert settings["inference_audit"]["n"] == 1 and settings["inference_audit"]["agreed"] == 0
+    assert "fallback" in settings["inference_audit"] and settings["cells_inferred"] == 0
+    assert all(c["analysed"] for c in data["cells"])
+    assert [c["verdict"] for c in data["cells"]].count("FAIL") == 1

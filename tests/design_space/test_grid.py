@@ -47,6 +47,12 @@ def test_each_cell_verdict_equals_the_check_of_its_project_file(small, grid):
         assert cell["n_unacceptable"] == full.acceptance["n_unacceptable"]
         if not cell["decided_at_design_level"]:      # the margin was analysed: the same numbers
             assert cell["acmr"] == pytest.approx(full.acceptance["acmr"], rel=1e-12)
+            # the cell's scans stop once its numbers are decided: the same distance to the flip as the check's
+            # full scans (SPEC §15)
+            assert cell["flip_margin"] == pytest.approx(full.acceptance["flip_margin"], rel=1e-12)
+            assert cell["flip_governing"] == full.acceptance["flip"]["governing"]
+        else:     # scanned below the design level only: the count's flip of the full scans
+            assert cell["flip_margin"] == pytest.approx(full.acceptance["flip"]["count"]["value"], rel=1e-12)
         # robustness: the cell's draws are the check's own c_r runs and ensemble (same seed), run separately
         if cell["verdict"] == "PASS":
             assert cell["robust"] in (True, False) and cell["draws"]["n"] >= 1
@@ -61,16 +67,20 @@ def test_each_cell_verdict_equals_the_check_of_its_project_file(small, grid):
     assert sorted(verdicts) == ["FAIL", "PASS"]      # the grid spans the boundary (the test can fail)
 
 
-def test_a_decided_variant_skips_its_margin_scans(grid):
+def test_a_decided_variant_scans_only_below_the_design_level_for_its_flip(grid):
     cells = {c["verdict"]: c for c in grid.grid.cells}
     fail, ok = cells["FAIL"], cells["PASS"]
     assert fail["decided_at_design_level"] and fail["n_unacceptable"] > fail["allowed_unacceptable"]
     assert fail["acmr"] is None and fail["analyses"] < ok["analyses"]
-    # 11 records analysed once at the design level (+ the model check on ≤ 4 governing records)
-    assert 11 <= fail["analyses"] <= 11 + 4 + 11
-    # saved at least: c_r ± (2 per record), 8 ensemble runs per record, one scan round per record
-    assert fail["analyses_saved"] >= 11 * (2 + 8) + 11
-    assert grid.grid.analyses_run == sum(c["analyses"] for c in grid.grid.cells)
+    # no margin: the count decides, and its distance to the flip lies at or below the design level
+    assert fail["flip_governing"] == "count" and fail["flip_margin"] <= 1.0
+    assert ok["flip_margin"] > 1.0
+    # saved at least: c_r ± (2 per record), 8 ensemble runs per record
+    assert fail["analyses_saved"] >= 11 * (2 + 8)
+    # the analyses run: the cells' and the recommendation's tolerance neighbours'
+    tolerance = grid.settings["tolerance_analyses"]
+    assert tolerance > 0 and len(grid.recommended["neighbourhood"]) == 2
+    assert grid.grid.analyses_run == sum(c["analyses"] for c in grid.grid.cells) + tolerance
 
 
 def test_recommended_is_the_passing_cell_and_the_run_resumes(small, grid):
@@ -150,7 +160,8 @@ def test_variants_checked_together_equal_variants_checked_one_after_the_other(sm
     change nothing in a cell: the same grid checked one variant after the other gives the same cells."""
     from rockdesign.planar.kind import Planar
     shared = grid.grid.shared_batches
-    assert shared["variants"] == 2 and shared["driver_calls"] < shared["batches"]
+    # the two cells, then the recommendation's two tolerance neighbours
+    assert shared["variants"] == 2 + len(grid.recommended["neighbourhood"]) and shared["driver_calls"] < shared["batches"]
     assert shared["analyses"] == grid.grid.analyses_run
     monkeypatch.setattr(Planar, "grid_batches", lambda self: None)
     folder, path = small
@@ -178,8 +189,8 @@ def test_an_error_in_one_variant_stops_the_grid_without_hanging(small, monkeypat
 
 
 def test_more_variants_than_threads_queue_and_share_what_runs(small, grid, monkeypatch, tmp_path):
-    from rockdesign.design_space import grid as grid_module
-    monkeypatch.setattr(grid_module, "at_once", lambda: 1)   # one variant at a time: nothing shared
+    from rockdesign.design_space import batches
+    monkeypatch.setattr(batches, "at_once", lambda: 1)   # one variant at a time: nothing shared
     folder, path = small
     waves = design(path, VARY)
     assert waves.grid.shared_batches["driver_calls"] == waves.grid.shared_batches["batches"]

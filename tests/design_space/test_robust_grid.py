@@ -7,7 +7,8 @@ import itertools
 
 import pytest
 
-from rockdesign.design_space.grid import margin_undecided, recommended, robustness
+from rockdesign.design_space.cells import margin_undecided, robustness
+from rockdesign.design_space.recommend import recommended
 from rockdesign.display import verdict_words
 from rockdesign.design_space.refine import agreed, corners, levels, level_strides
 from rockdesign.design_space.store import shape_problem
@@ -30,8 +31,11 @@ def test_corners_bracket_a_cell_with_the_coarser_lattice():
     assert sorted(corners((4, 6), (10, 10), (4, 4))) == [(4, 4), (4, 8)]      # on a coarse line: 2 corners
 
 
-def _c(verdict, robust=None):
-    return {"verdict": verdict, "robust": robust, "analysed": True}
+def _c(verdict, robust=None, flip=None):
+    """An analysed cell, far from its flip unless ``flip`` says otherwise."""
+    if flip is None:
+        flip = 2.0 if verdict == "PASS" else 0.5
+    return {"verdict": verdict, "robust": robust, "analysed": True, "flip_margin": flip}
 
 
 def test_a_cell_is_left_out_only_between_agreeing_robust_or_failing_corners():
@@ -45,6 +49,38 @@ def test_a_cell_is_left_out_only_between_agreeing_robust_or_failing_corners():
     assert agreed((2,), shape, 1, known) == "robust PASS"
     known[(4,)] = _c("INVALID")
     assert agreed((2,), shape, 1, known) is None
+    # agreeing corners near their flip (SPEC §15: a chaotic landscape is not smooth): analysed
+    known = {(0,): _c("PASS", True, 1.3), (4,): _c("PASS", True, 1.2)}
+    assert agreed((2,), shape, 1, known) is None
+    known[(4,)] = _c("PASS", True, 1.25)
+    assert agreed((2,), shape, 1, known) == "robust PASS"
+    known = {(0,): _c("FAIL", flip=0.5), (4,): _c("FAIL", flip=0.9)}     # a FAIL that passes at 0.9 × design
+    assert agreed((2,), shape, 1, known) is None
+    known[(4,)] = _c("FAIL", flip=0.8)
+    assert agreed((2,), shape, 1, known) == "FAIL"
+    known[(4,)] = {**_c("FAIL", flip=0.7), "flip_margin_is_lower_bound": True}   # only known to be ≥ 0.7
+    assert agreed((2,), shape, 1, known) is None
+    known[(4,)] = {**_c("FAIL"), "flip_margin": None}                   # no distance known: never inferred
+    assert agreed((2,), shape, 1, known) is None
+
+
+def test_no_cell_left_out_touches_a_cell_of_another_category():
+    from rockdesign.design_space.refine import audit_sample, neighbours, unsafe
+    assert sorted(neighbours((0, 0), (3, 3))) == [(0, 1), (1, 0), (1, 1)]
+    assert len(neighbours((1, 1), (3, 3))) == 8
+    left = {"analysed": False, "between": "robust PASS"}
+    known = {(0, 0): _c("PASS", True), (0, 1): left, (0, 2): _c("PASS", True),
+             (1, 0): _c("PASS", True), (1, 1): left, (1, 2): _c("FAIL"),
+             (2, 0): _c("PASS", True), (2, 1): _c("PASS", True), (2, 2): _c("PASS", True)}
+    assert unsafe((3, 3), known) == [(0, 1), (1, 1)]          # both touch the FAIL at (1, 2), (0, 1) diagonally
+    known[(1, 2)] = _c("PASS", True)
+    assert unsafe((3, 3), known) == []
+    known[(1, 2)] = {"analysed": False, "between": "FAIL"}     # two inferred regions meeting: an edge too
+    assert (1, 2) in unsafe((3, 3), known)
+    cells = [(i, j) for i in range(10) for j in range(10)]
+    sample = audit_sample(cells, 7)
+    assert len(sample) == 10 and sample == audit_sample(cells, 7) and sample == sorted(sample)
+    assert audit_sample([(1, 1)], 0) == [(1, 1)] and audit_sample([], 0) == []
 
 
 def _cell(i, verdict="PASS", robust=True, shear=None, mass=1000.0, failed=0, analysed=True):

@@ -45,6 +45,20 @@ def test_coarse_to_fine_cells_equal_every_cell(small):
         above = min(j for (j,) in analysed if j > i)
         assert analysed[(below,)] == analysed[(above,)] == c["between"]
     assert coarse.as_json()["settings"]["cells_not_analysed"] == len(left)
+    assert coarse.as_json()["settings"]["cells_inferred"] == len(left)
+    # inference only where it is safe (SPEC §15): between corners far from their flip, never beside an analysed
+    # cell of another category; an audited sample analysed (and, here, agreeing)
+    from rockdesign.acceptance.flip import far_from_flip
+    for c in left:
+        (i,) = c["index"]
+        for j in (i - 1, i + 1):
+            other = coarse.grid.cells[j]
+            assert category(other) == c["between"]
+            assert not other["analysed"] or far_from_flip(other)
+    audit = coarse.as_json()["settings"]["inference_audit"]
+    audited = [c for c in coarse.grid.cells if c.get("audit")]
+    assert audit["n"] == len(audited) >= 1 and audit["agreed"] == audit["n"]
+    assert all(c["analysed"] and c["audit"]["agreed"] for c in audited)
     assert coarse.grid.analyses_run <= every.grid.analyses_run
 
 

@@ -31,7 +31,8 @@ from ...motions.measures import plausibility_warnings
 from ...motions.spectra import motion_spectrum, period_grid, sd_max
 from ..project import Project
 from ...motions.grouping import earthquake_id, ground_motion_id
-from ...acceptance.rule import acceptance_rule, acceptance_summary, minimum_records, require_suite_size
+from ...acceptance.rule import acceptance_rule, minimum_records, require_suite_size
+from ...acceptance.summary import acceptance_summary
 from ...acceptance.criteria import CheckContext, decide, evaluate_criteria
 from .criteria import criteria_for
 from .runner import analysis_failed
@@ -39,7 +40,7 @@ from ...acceptance.collapse_margin import collapse_margin
 from .ensemble import ensemble_summary, record_fields, run_ensembles
 from ...acceptance.fragility import check_fragility
 from ...acceptance.scans import SCAN_AFTER_FIRST, SCAN_RATIO, Margin, scan_grid
-from .margins import overturning_margins
+from .margins import overturning_margins, scan_need
 from .polyakov import CLASS_MEANING, CLASSES, PolyakovRule, classify
 from .runner import RunSummary, run_jobs
 from .selection import ModelSelection, select_model
@@ -297,11 +298,16 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
         return lambda done: progress(name, done, total)
 
     tick = stage("elastic spectra (SD_max)", n)
-    sds = []
-    for k, m in enumerate(motions):
-        sds.append(sd_max(m, rule.damping, rule.band))
-        if tick:
-            tick(k + 1)
+    sds = resolved.derived.get(("sd_max", rule.damping, tuple(rule.band)))
+    if sds is None:          # (the records' own property: shared by the variants of a design grid)
+        sds = []
+        for k, m in enumerate(motions):
+            sds.append(sd_max(m, rule.damping, rule.band))
+            if tick:
+                tick(k + 1)
+        resolved.derived[("sd_max", rule.damping, tuple(rule.band))] = sds
+    elif tick:
+        tick(n)
     run_kw = dict(rtol=a.rtol, atol=a.atol, free_vibration=a.free_vibration, criterion=a.overturn,
                   rest_velocity=a.rest_velocity, executor=executor)
     selection, runs = select_model(system, a, motions, run_kw, progress=stage("suite analysis (RHA)", n))
@@ -310,18 +316,24 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     # incremental analyses need verdicts to 1 %, not histories to 1e-10: a looser tolerance there
     scan_kw = dict(run_kw, rtol=max(a.rtol, a.scan_rtol))
     margin_list: list[Margin | None] = [None] * n
+    flip_scans = None
     decided_fail = verdict_only and decided_at_design_level(acceptance_rule(a), resolved.records, runs)
     margins_run = margins and not decided_fail
-    if margins_run:
+    need = scan_need(a, resolved.records, runs, motions, sds, decided_fail) if verdict_only and margins else None
+    if margins_run or need is not None:
         up = q["uplift_acceleration"].value
         uplift_factors = [up / m.pga if m.pga > 0 else a.margin_max_scale for m in motions]
         total = 0
         for f_up in uplift_factors:
             total += len(scan_grid(min(max(0.5 * f_up, 1e-3), a.margin_max_scale / 4), a.margin_max_scale,
                                     SCAN_RATIO))
-        margin_list = overturning_margins(system, chosen, motions, uplift_factors=uplift_factors,
-                                          max_scale=a.margin_max_scale, precision=a.margin_precision,
-                                          progress=stage("overturning margins (incremental RHA)", total), **scan_kw)
+        scanned = overturning_margins(system, chosen, motions, uplift_factors=uplift_factors,
+                                      max_scale=a.margin_max_scale, precision=a.margin_precision, need=need,
+                                      progress=stage("overturning margins (incremental RHA)", total), **scan_kw)
+        if margins_run:
+            margin_list = scanned
+        else:       # a decided FAIL: scanned below the design level for its distance to the flip alone
+            flip_scans = scanned
 
     # sensitivity of the verdicts to c_r ± variation
     tick = stage(f"restitution sensitivity (c_r ± {100 * a.restitution_variation:g} %)", 2 * n)
@@ -352,8 +364,8 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
         system, chosen, motions, runs, run_kw, q["uplift_acceleration"].value, stage=stage,
         names=[(r.id, ground_motion_id(r.id, r.meta)) for r in resolved.records],
         target=target) if not decided_fail else ([None] * n, [None] * n, None, None)
-    scaling = scaling_block(resolved, period_range=scaling_period_range(characteristic_periods(system, q)),
-                            gravity=system.g)
+    scaling = None if verdict_only else scaling_block(     # (report data: not in a design grid's cell)
+        resolved, period_range=scaling_period_range(characteristic_periods(system, q)), gravity=system.g)
     outcomes = []
     for i, (rec, (sd, t_sd), run) in enumerate(zip(resolved.records, sds, runs)):
         ratio = rule.utilisation(sd)
@@ -379,7 +391,9 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     items, skipped = evaluate_criteria(CheckContext(outcomes, a, q, sensitivity, margins_run, extra, acc_rule),
                                        criteria_for(acc_rule))
     decision = decide(items, skipped, acc_rule)
-    acceptance = acceptance_summary(acc_rule, items, decision, valid, margin_fema)
+    acceptance = acceptance_summary(acc_rule, items, decision, valid, margin_fema,
+                                    scans=None if flip_scans is None else
+                                    [flip_scans[i] for i, o in enumerate(outcomes) if not analysis_failed(o.run.status)])
     checks = [i.as_json() for i in items]
     checks.sort(key=lambda c: (not c["governs_verdict"], -c["utilisation"]))
     verdict = decision.verdict
@@ -411,7 +425,8 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
         acc = engine_accuracy(a.rtol, a.atol)
         settings["engine_accuracy"] = {k: v for k, v in acc.items() if k != "seconds"}
     intensity = {"design_pga": spec.design_pga, "intensity_analysed": resolved.scale_description,
-                 "scaling_sentence": scaling_sentence(scaling, system.g), "record_warnings": record_warnings}
+                 "scaling_sentence": None if scaling is None else scaling_sentence(scaling, system.g),
+                 "record_warnings": record_warnings}
     return CheckResult(project, q, rule, selection, outcomes, resolved.missing, resolved.scale_description,
                        resolved.default_used or spec.default_used, resolved.suites, stats, checks, verdict, histories,
                        sensitivity, settings, decision.reason, decision.robust, intensity, fragility, margin_fema,
