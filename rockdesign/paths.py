@@ -58,3 +58,40 @@ def shared_dir() -> Path | None:
         if (c / "SPEC.md").exists():
             return c
     return None
+
+
+# --- paths the user gives -------------------------------------------------------------------------------
+def require_path(value, key: str, what: str = "a file name") -> None:
+    """Refuse a path argument that is not text or a path (``rd.load_project(None)``, ``out_dir=123``) or is
+    blank, naming the parameter ``key``."""
+    from .errors import ProjectError
+    if isinstance(value, bool) or not isinstance(value, (str, os.PathLike)) or \
+            (isinstance(value, str) and not value.strip()):
+        raise ProjectError("not a path", key=key, expected=f"{what} (a string or a pathlib.Path)",
+                           found=f"{value!r} ({type(value).__name__})")
+
+
+def expand_user(path, key: str | None, *, file: str | None = None, error=None) -> Path:
+    """``Path(path).expanduser()``, or an input error naming ``key`` (and ``file``) when ``~user`` names no
+    user of this machine or there is no home folder (Python raises RuntimeError "Could not determine home
+    directory").  ``error``: the error class (default :class:`~rockdesign.errors.ProjectError`)."""
+    from .errors import ProjectError
+    try:
+        return Path(path).expanduser()
+    except RuntimeError:
+        text = str(path)
+        user = text.split("/", 1)[0].split(os.sep, 1)[0]
+        raise (error or ProjectError)(
+            f"'{user}' names no home folder on this machine", file=file, key=key,
+            expected="a path whose ~user is a user of this machine (or a path without ~)",
+            found=repr(text)) from None
+
+
+def path_problem(exc: OSError) -> str:
+    """A path's OS error in words (a name too long, no permission, …), for messages."""
+    import errno
+    if exc.errno == errno.ENAMETOOLONG:
+        return "a file name too long for the file system (Errno 36)"
+    if exc.errno in (errno.EACCES, errno.EPERM):
+        return "no permission to read a folder on the way"
+    return exc.strerror or str(exc)

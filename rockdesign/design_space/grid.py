@@ -433,7 +433,7 @@ def recommended(cells: list[dict], material: tuple[str, str] = ("column material
     why = (f"the {kind_of_pass} variant with the lowest superstructure shear coefficient (84th percentile "
            f"{shear:.3g})" if by_shear else
            f"the {kind_of_pass} variant with the least {what}"
-           + (f" ({material[1]})" if prefer != "material" else " (--prefer material)"))
+           + (f" ({material[1]})" if prefer != "material" else " (preferred: material)"))
     reason = f"{why}; margin: " + "; ".join(margin) if margin else why
     reason += "; " + (best.get("robustness") or "robustness not evaluated")
     near = _neighbours(best, cells, rank, "shear" if by_shear else "material")

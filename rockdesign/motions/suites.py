@@ -240,8 +240,8 @@ def _resolve_entry(raw: dict, index: int, path: Path, gravity: float, records_di
             return SuiteEntry(record_id, dict(meta, resolved_from=f"built-in {builtin}"), motion)
         pattern = f"RSN{rsn}_*{component}.AT2"
         if records_dir is None:
-            reason = (f"not built in, and no records folder given (set [excitation] records_dir or "
-                      f"--records-dir to a folder holding {pattern} from the PEER NGA database)")
+            reason = (f"not built in, and no records folder given (set [excitation] records_dir, or pass "
+                      f"records_dir, to a folder holding {pattern} from the PEER NGA database)")
         else:
             reason = f"no file {pattern} in {records_dir}, and not built in"
         return SuiteEntry(record_id, meta, reason=reason)
