@@ -163,7 +163,7 @@ def simulation_request(project: Project, motion, *, model: str = "auto", t_end: 
         return kind_of(project).simulation_request(project, motion, model=model, t_end=t_end, rtol=rtol,
                                                    records_dir=str(records_dir) if records_dir else None)
     except RockdesignError as exc:
-        if exc.key in KEYED_BY_MOTION:    # the record a motion string names: the caller passed ``motion``
+        if exc.key is None or exc.key in KEYED_BY_MOTION:    # the record a motion names: the caller's ``motion``
             exc.key = "motion"
             exc.args = (exc.format(),)
         raise

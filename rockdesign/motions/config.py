@@ -32,6 +32,7 @@ from pathlib import Path
 from typing import Mapping
 
 from ..errors import MotionError, ProjectError, RecordError
+from ..paths import user_path
 from ..units import QuantityParseError, parse_quantity
 from .grouping import ground_motion_id
 from .identity import Entry, refuse_repeated_recordings
@@ -140,9 +141,10 @@ def _base_dir(file: str | None) -> Path:
     return Path(file).expanduser().resolve().parent if file else Path.cwd()
 
 
-def _relative(text: str, base: Path) -> str:
-    path = Path(text).expanduser()
-    return str(path if path.is_absolute() else base / path)
+def _relative(text: str, base: Path, *, file: str | None = None, key: str | None = None) -> str:
+    """A path of the project file, relative to its folder (``~`` expanded; a ``~user`` that names nobody, a name
+    too long or an unreadable folder is refused naming ``key``)."""
+    return str(user_path(text, key, file=file, base=base))
 
 
 def _looks_like_path(text: str) -> bool:
@@ -188,7 +190,7 @@ def parse_excitation(raw: dict | None, *, file: str, gravity: float = 9.81) -> E
     suites = _string_list(raw.get("suites", []), "suites", file)
     for i, name in enumerate(suites):
         if _looks_like_path(name):
-            suites[i] = _relative(name, base)
+            suites[i] = _relative(name, base, file=file, key=f"excitation.suites[{i}]")
         try:
             suite_path(suites[i])
         except MotionError as exc:
@@ -197,9 +199,9 @@ def parse_excitation(raw: dict | None, *, file: str, gravity: float = 9.81) -> E
     records = _string_list(raw.get("records", []), "records", file)
     for i, rid in enumerate(records):
         if rid.lower().startswith("file:"):
-            records[i] = "file:" + _relative(rid[5:].strip(), base)
+            records[i] = "file:" + _relative(rid[5:].strip(), base, file=file, key=f"excitation.records[{i}]")
         elif not rid.lower().startswith(("rsn:", "p695-")) and _looks_like_path(rid):
-            records[i] = _relative(rid, base)
+            records[i] = _relative(rid, base, file=file, key=f"excitation.records[{i}]")
     if not suites and not records:
         suites = [DEFAULT_SUITE]
     scale = None
@@ -212,7 +214,7 @@ def parse_excitation(raw: dict | None, *, file: str, gravity: float = 9.81) -> E
         if not isinstance(raw["records_dir"], str) or not raw["records_dir"].strip():
             raise ProjectError("invalid records folder", file=file, key="excitation.records_dir",
                                expected="a folder path string", found=repr(raw["records_dir"]))
-        records_dir = Path(_relative(raw["records_dir"].strip(), base))
+        records_dir = Path(_relative(raw["records_dir"].strip(), base, file=file, key="excitation.records_dir"))
         if not records_dir.is_dir():
             raise ProjectError("records folder not found", file=file, key="excitation.records_dir",
                                expected="an existing folder of PEER *.AT2 files", found=str(records_dir))

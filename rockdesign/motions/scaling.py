@@ -38,6 +38,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import MotionError, ProjectError
+from ..paths import user_path
 from ..units import QuantityParseError, parse_quantity
 from .design_spectra import EC8_GROUND_TYPES, ASCE7Spectrum, EC8Spectrum
 from .targets import MCERSpectrum, TabulatedSpectrum, read_target_spectrum
@@ -239,9 +240,8 @@ def _parse_asce7_22_rule(raw, *, file, key, gravity) -> ScaleRule:
         if not isinstance(text, str) or not text.strip():
             raise _error("invalid target spectrum", file=file, key=f"{key}.target",
                          expected='a file name like "mce_r.csv" (columns period [s], Sa [g])', found=repr(text))
-        path = Path(text.strip()).expanduser()
-        if not path.is_absolute():
-            path = (Path(file).expanduser().resolve().parent if file else Path.cwd()) / path
+        base = Path(file).expanduser().resolve().parent if file else Path.cwd()
+        path = user_path(text.strip(), f"{key}.target", file=file, base=base)
         if not path.is_file():
             raise _error("target spectrum file not found", file=file, key=f"{key}.target",
                          expected="a two-column file (period [s], Sa [g]) relative to this file's folder",
