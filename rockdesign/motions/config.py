@@ -34,7 +34,7 @@ from typing import Mapping
 from ..errors import MotionError, ProjectError, RecordError
 from ..paths import user_path
 from ..units import QuantityParseError, parse_quantity
-from .grouping import ground_motion_id
+from .grouping import ground_motion_id, refuse_inconsistent_ground_motions
 from .identity import Entry, refuse_repeated_recordings
 from .library import load_record
 from .motion import GroundMotion
@@ -294,16 +294,19 @@ def resolve_motions(spec: ExcitationSpec, *, gravity: float = 9.81, uplift_accel
     groups: list[tuple[str | None, ScaleRule | None, list[tuple[str, GroundMotion, dict]]]] = []
     missing: list[tuple[str, str, str | None]] = []
     entries: list[Entry] = []
+    stations: list[tuple] = []      # (id, the acceptance's meta, the record's meta, where, file): one ground motion, one station
     for name in spec.suites:
         suite = load_suite(name, gravity=gravity, records_dir=folder)
         found = []
-        for entry in suite.entries:
-            entries.append(Entry(entry.id, f"suite {suite.name}", entry.motion, entry.meta,
-                                 str(suite.path) if suite.path else None))
+        for index, entry in enumerate(suite.entries):
+            manifest = str(suite.path) if suite.path else None
+            entries.append(Entry(entry.id, f"suite {suite.name}", entry.motion, entry.meta, manifest))
             if entry.motion is None:
                 missing.append((entry.id, entry.reason, suite.name))
             else:
                 found.append((entry.id, entry.motion, dict(entry.meta, suite=suite.name)))
+                stations.append((entry.id, found[-1][2], {**entry.motion.meta, **entry.meta},
+                                 f"suite {suite.name}, records[{index}]", manifest))
         groups.append((suite.name, suite.default_scale, found))
     extra = []
     for i, rid in enumerate(spec.records):
@@ -318,8 +321,10 @@ def resolve_motions(spec: ExcitationSpec, *, gravity: float = 9.81, uplift_accel
             raise
         entries.append(Entry(rid, where, motion, {}, spec.file))
         extra.append((rid, motion, dict(motion.meta)))
+        stations.append((rid, extra[-1][2], dict(motion.meta), where, spec.file))
     groups.append((None, None, extra))
     refuse_repeated_recordings(entries, file=spec.file, key="excitation")
+    refuse_inconsistent_ground_motions(stations, file=spec.file, key="excitation")
     if spec.time_scale != 1.0:
         groups = [(s, r, [(i, time_scaled(m, spec.time_scale), meta) for i, m, meta in items])
                   for s, r, items in groups]
