@@ -212,3 +212,13 @@ def test_a_split_suite_from_the_command_line(tmp_path):
     path = manifest(tmp_path, body, "split")
     flat = check_cli(tmp_path, 'suites = ["p695-farfield"]', f'suites = ["{path}"]')
     assert str(path) in flat and "key 'records[1].ground_motion'" in flat and "separate ground motions" in flat
+
+
+def test_a_shifted_copy_from_the_command_line(tmp_path):
+    original = load_record("p695-ff/2a")
+    g = np.asarray(original.samples) / G
+    copy = write_at2(tmp_path / "delayed.AT2", np.concatenate([np.zeros(int(round(2.0 / original.dt))), g]),
+                     original.dt)
+    flat = check_cli(tmp_path, 'suites = ["p695-farfield"]',
+                     f'suites = ["p695-farfield"]\nrecords = ["{copy}"]')
+    assert "key 'excitation'" in flat and "delayed.AT2" in flat and "shifted by 2 s" in flat
