@@ -209,8 +209,8 @@ def check_options(project: Project, *, records_dir=None, executor=None) -> None:
     _require_project(project, "check")
     if records_dir is not None:
         require_path(records_dir, "records_dir", "a folder of record files")
+    kind_of(project).check_options(project, records_dir=records_dir, executor=executor)   # a kind's refusal first
     check_executor(executor)
-    kind_of(project).check_options(project, records_dir=records_dir, executor=executor)
 
 
 def prepare_check(project: Project, *, records_dir=None, say=None) -> None:

@@ -138,8 +138,8 @@ def plan_design(project, vary, *, records_dir=None, executor=None, every_cell: b
     kind = kind_of(project)
     if records_dir is not None:
         require_path(records_dir, "records_dir", "a folder of record files")
+    kind.check_options(project, records_dir=records_dir, executor=executor)   # a kind's refusal first
     check_executor(executor, text=False)        # rd.design starts an address; a plan holds an executor
-    kind.check_options(project, records_dir=records_dir, executor=executor)
     raw = project.raw
     variables = [parse_vary(v, raw, alternatives=kind.key_alternatives) for v in specs]
     refuse_overlaps(variables)
@@ -278,6 +278,7 @@ def design(project, vary, *, out_dir=None, records_dir=None, executor=None, pdf:
     """
     project = _project(project)
     folder = design_folder(out_dir) if out_dir is not None else None
+    kind_of(project).check_options(project, records_dir=records_dir, executor=executor)   # a kind's refusal first
     check_executor(executor)                    # a dask value is checked (and its scheduler reached) here
     if isinstance(executor, str):               # started here and closed when the chart is done
         with make_executor(executor) as owned:
