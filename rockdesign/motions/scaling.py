@@ -271,7 +271,7 @@ def _parse_asce7_22_rule(raw, *, file, key, gravity) -> ScaleRule:
             if not (math.isfinite(value) and 0.0 < value <= limit):
                 shown = f"{limit / gravity:g} g" if unit == "g" else f"{limit:g} s"
                 raise _error("MCE_R parameter out of its physical range", file=file, key=f"{key}.{name}",
-                             expected=f"0 < {name} ≤ {shown} ({_RANGE_WHY[name]})",
+                             expected=f"{name} > 0 and {name} ≤ {shown} ({_RANGE_WHY[name]})",
                              found=f"{raw.get(name, '8 s')!r}" + ("" if math.isfinite(value) else " (not finite)"))
         if not sm1 / sms < tl:
             raise _error("invalid MCE_R parameters", file=file, key=f"{key}.TL",

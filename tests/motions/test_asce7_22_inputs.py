@@ -61,9 +61,10 @@ def no_compiling(monkeypatch):
 
 # ------------------------------------------------------------------ finite, physical MCE_R parameters
 @pytest.mark.parametrize("name,value,limit", [
-    ("SMS", "1e400 g", "0 < SMS ≤ 10 g"), ("SMS", "nan g", "an acceleration like"), ("SMS", "60 g", "0 < SMS ≤ 10 g"),
-    ("SMS", "-0.3 g", "0 < SMS ≤ 10 g"), ("SM1", "1e400 g", "0 < SM1 ≤ 10 g"), ("SM1", "0 g", "0 < SM1 ≤ 10 g"),
-    ("TL", "1e999 s", "0 < TL ≤ 100 s"), ("TL", "1e6 s", "0 < TL ≤ 100 s"), ("TL", "inf s", "a time like"),
+    ("SMS", "1e400 g", "SMS > 0 and SMS ≤ 10 g"), ("SMS", "nan g", "an acceleration like"),
+    ("SMS", "60 g", "SMS > 0 and SMS ≤ 10 g"), ("SMS", "-0.3 g", "SMS > 0 and SMS ≤ 10 g"),
+    ("SM1", "1e400 g", "SM1 > 0 and SM1 ≤ 10 g"), ("SM1", "0 g", "SM1 > 0 and SM1 ≤ 10 g"),
+    ("TL", "1e999 s", "TL > 0 and TL ≤ 100 s"), ("TL", "1e6 s", "TL > 0 and TL ≤ 100 s"), ("TL", "inf s", "a time like"),
 ])
 def test_mce_r_parameters_have_finite_physical_ranges(name, value, limit):
     keys = {"SMS": "0.6 g", "SM1": "0.3 g", "TL": "8 s", name: value}
@@ -87,7 +88,7 @@ def test_a_period_range_is_finite(periods):
 
 def test_sms_1e400_g_from_the_command_line(tmp_path):
     flat = check_cli(tmp_path, 'SMS = "0.30 g"', 'SMS = "1e400 g"')
-    assert "key 'excitation.scale.SMS'" in flat and "0 < SMS ≤ 10 g" in flat and "'1e400 g' (not finite)" in flat
+    assert "key 'excitation.scale.SMS'" in flat and "SMS > 0 and SMS ≤ 10 g" in flat and "'1e400 g' (not finite)" in flat
 
 
 # ------------------------------------------------------------------ periods the records' samples resolve
