@@ -294,7 +294,8 @@ def resolve_motions(spec: ExcitationSpec, *, gravity: float = 9.81, uplift_accel
     groups: list[tuple[str | None, ScaleRule | None, list[tuple[str, GroundMotion, dict]]]] = []
     missing: list[tuple[str, str, str | None]] = []
     entries: list[Entry] = []
-    stations: list[tuple] = []      # (id, the acceptance's meta, the record's meta, where, file): one ground motion, one station
+    # (id, the acceptance's meta, the record's meta, where, file): one ground motion, one station
+    stations: list[tuple] = []
     for name in spec.suites:
         suite = load_suite(name, gravity=gravity, records_dir=folder)
         found = []

@@ -17,10 +17,10 @@ entries of a suite are the same recording when any of these hold (checked in thi
    thousand times the rounding of stored records (float32, 7-digit AT2 text: ~1e-7) and a thousand times
    below the difference of two distinct recordings (of the order of their PGA);
 5. **the same samples shifted in time**: equal time step and a normalised cross-correlation
-   max_k |Σ a₁[n] a₂[n+k]| / (‖a₁‖ ‖a₂‖) ≥ :data:`SHIFT_CORRELATION` (:func:`scipy.signal.correlate`) — a copy
-   delayed by 2 s under another name, with or without the first or last seconds cut.  Measured: such copies of
-   the built-in records correlate at ≥ 0.998 (2 s cut at either end); the 2,046 pairs of distinct built-in
-   records sharing a time step at most 0.52 (the two components of p695-ff/7).
+   max_k |Σ a₁[n] a₂[n+k]| / (‖a₁‖ ‖a₂‖) ≥ :data:`SHIFT_CORRELATION` (:func:`scipy.signal.correlate`) —
+   a copy delayed by 2 s under another name, with or without the first or last seconds cut.  Measured: such
+   copies of the built-in records correlate at ≥ 0.998 (2 s cut at either end); the 2,046 pairs of distinct
+   built-in records sharing a time step at most 0.52 (the two components of p695-ff/7).
 
 :func:`refuse_repeated_recordings` raises a :class:`~rockdesign.errors.ProjectError` naming both entries
 (where each was given) and the file: counting one recording twice would count one trial twice in every
