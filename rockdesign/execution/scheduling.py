@@ -14,25 +14,43 @@ thread (a *worker*), and every worker takes the next job from a shared counter u
 
 Each job writes only its own rows, so the results are those of a serial loop, bit for bit and in
 job order, whichever thread ran which job (docs/engine.md, "Threads").
+
+numba (0.68) has no atomic operation for the CPU (numba issue #2988), so the counter is one LLVM
+``atomicrmw add``, built from public APIs only: the counter's data pointer from cffi's ``from_buffer``
+(which numba compiles, docs: "Supported Python features", cffi), and the instruction from numba's
+documented ``numba.extending.intrinsic`` with llvmlite's ``IRBuilder.atomic_rmw``.  No integer ↔ pointer
+cast is involved (llvmlite warns against those under LLVM 22).  The machine code is the one of the
+earlier intrinsic on numba's internal array model: one ``lock xadd`` on the array's data.
 """
 from __future__ import annotations
 
+import cffi
 import numba
-from numba import types
+from llvmlite import ir
+from numba import njit, types
 from numba.extending import intrinsic
+
+_FFI = cffi.FFI()
+"""cffi's ``from_buffer`` turns a contiguous array into a typed raw pointer in nopython code."""
 
 
 @intrinsic
-def take(typingctx, counter):
-    """``counter[0]`` (an int64 array), atomically incremented by one (LLVM ``atomicrmw add``, sequentially
-    consistent): the next job for the worker that calls it."""
-    if not (isinstance(counter, types.Array) and counter.dtype == types.int64 and counter.ndim == 1):
+def _fetch_add_one(typingctx, pointer):
+    """``*pointer`` (an int64 pointer) before adding one to it atomically (LLVM ``atomicrmw add``,
+    sequentially consistent)."""
+    if not (isinstance(pointer, types.CPointer) and pointer.dtype == types.int64):
         return None
 
     def codegen(context, builder, signature, args):
-        ary = context.make_array(signature.args[0])(context, builder, args[0])
-        return builder.atomic_rmw("add", ary.data, context.get_constant(types.int64, 1), "seq_cst")
-    return types.int64(counter), codegen
+        return builder.atomic_rmw("add", args[0], ir.Constant(ir.IntType(64), 1), "seq_cst")
+    return types.int64(pointer), codegen
+
+
+@njit(cache=True)
+def take(counter):
+    """``counter[0]`` (a contiguous int64 array), atomically incremented by one: the next job for the worker
+    that calls it."""
+    return _fetch_add_one(_FFI.from_buffer(counter))
 
 
 def worker_count(jobs: int) -> int:

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from support import G, block_from_p, reference_podium, table34_column
-from rockdesign.planar.dynamics.dop853 import A853, B853, C853
+from rockdesign.planar.dynamics.dop853 import A853, B853, C853, E3, E5, N_STAGES
 from rockdesign.planar.dynamics.engine import resolve_method
 from rockdesign.planar.dynamics.layout import DOP853_BELOW_RTOL, METHOD_DOP853, METHOD_DP5
 from rockdesign.planar.dynamics.linear_exact import sampled_pulse
@@ -25,6 +25,27 @@ def test_tableau_is_consistent():
     # row sums of A equal C (every stage evaluated at its own time), the weights sum to one
     assert np.allclose(A853.sum(axis=1), C853, atol=1e-14)
     assert B853.sum() == pytest.approx(1.0, abs=1e-14)
+
+
+def test_tableau_has_its_orders():
+    """The coefficients written out from dop853.f satisfy the order conditions a transcription error would
+    break: the weights integrate c^k exactly up to k = 7 (order 8) and not for k = 8, and the trees
+    b·A·c^k up to order 8 (k ≤ 6); the two error estimates vanish on c^k to their orders (5th: k ≤ 4,
+    3rd: k ≤ 2)."""
+    b = np.zeros(C853.size)
+    b[:N_STAGES] = B853
+    for k in range(8):
+        assert b @ C853 ** k == pytest.approx(1.0 / (k + 1), abs=1e-15)
+    for k in range(7):
+        assert b @ (A853 @ C853 ** k) == pytest.approx(1.0 / ((k + 1) * (k + 2)), abs=1e-15)
+    assert abs(b @ C853 ** 8 - 1.0 / 9.0) > 1e-6
+    c = C853[:N_STAGES + 1]
+    for k in range(5):
+        assert abs(E5 @ c ** k) <= 1e-15
+    assert abs(E5 @ c ** 5) > 1e-5
+    for k in range(3):
+        assert abs(E3 @ c ** k) <= 1e-15
+    assert abs(E3 @ c ** 3) > 1e-3
 
 
 @pytest.mark.parametrize("name", ["B1", "B3ec"])

@@ -106,6 +106,7 @@ def test_figures_have_no_raw_subscripts(podium_html, cylinder_html):
         assert not raw, raw
 
 
+@pytest.mark.slow   # needs the podium's check to HTML (≈ 19 s warm at load 8)
 def test_inputs_echoed_in_the_units_given(podium_html):
     """podium_flat gives cap_beam_mass = "290 t" and the superstructure's mass = "2160 t": the formulas
     and the drawing repeat them so, never in kg."""
@@ -118,6 +119,7 @@ def test_inputs_echoed_in_the_units_given(podium_html):
         assert si not in squeezed, si
 
 
+@pytest.mark.slow   # needs both reports: the cylinder's check (≈ 23 s warm at load 8)
 def test_informative_checks_are_not_failures(podium_html, cylinder_html):
     """A check that informs (Polyakov's rule 1 here, the planar question of the cylinder) is "not met" or
     answered, on a grey row; FAILED in red is kept for the checks that decide the verdict."""
