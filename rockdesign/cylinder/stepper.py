@@ -1,8 +1,8 @@
 """One DOP853 step of the cylinder's equations, its error norm and its 7th-order dense output (numba).
 
 Split from :mod:`rockdesign.cylinder.kernel`, whose integrator calls them.  The Runge–Kutta tableau
-(Hairer's DOP853: 12 stages, error estimators of order 5 and 3, 3 extra stages for the dense output) is
-scipy's, read from the public class ``scipy.integrate.DOP853``; within a step a record's ü_g is linear (no step
+(Hairer's DOP853: 12 stages, error estimators of order 5 and 3, 3 extra stages for the dense output) is the
+one the planar engine steps with (:mod:`rockdesign.dop853_tableau`, written out from Hairer & Wanner's ``dop853.f``); within a step a record's ü_g is linear (no step
 crosses a sample), so it is evaluated at the two ends only and interpolated at the stages.
 """
 from __future__ import annotations
@@ -11,21 +11,10 @@ import math
 
 import numpy as np
 from numba import njit
-from scipy.integrate import DOP853
 
+from ..dop853_tableau import A853 as A, B853 as B, C853 as C, D853 as D, E3, E5, N_STAGES as _STAGES  # noqa: F401
 from ..motions.excitation import EXC_SAMPLES
 from .eom import ground_xy, rhs_ground
-
-_STAGES = DOP853.n_stages                                  # 12, the 13th (FSAL) is f(t + h, y_new)
-A = np.zeros((_STAGES + 1 + len(DOP853.C_EXTRA),) * 2)     # 16 × 16 with the 3 stages of the dense output
-A[:_STAGES, :_STAGES] = DOP853.A
-A[_STAGES, :_STAGES] = DOP853.B
-A[_STAGES + 1:] = DOP853.A_EXTRA
-B = np.ascontiguousarray(DOP853.B)
-C = np.concatenate([DOP853.C, [1.0], DOP853.C_EXTRA])
-E3 = np.ascontiguousarray(DOP853.E3)
-E5 = np.ascontiguousarray(DOP853.E5)
-D = np.ascontiguousarray(DOP853.D)
 
 @njit(cache=True)
 def dop853_step(t, y, f0, h, K, y_new, ytmp, n, par, active, kind, params, sx, sy, dirx, diry):

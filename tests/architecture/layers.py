@@ -12,7 +12,7 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
     ("base", ("rockdesign", "rockdesign.errors", "rockdesign.units", "rockdesign.paths", "rockdesign.kernel_cache",
               "rockdesign.jsonable", "rockdesign.mplfig", "rockdesign.plots", "rockdesign.progress",
               "rockdesign.console", "rockdesign.outdir", "rockdesign.display", "rockdesign.execution",
-              "rockdesign.quantity", "rockdesign.project_tables")),
+              "rockdesign.quantity", "rockdesign.project_tables", "rockdesign.dop853_tableau")),
     ("design", ("rockdesign.planar.design", "rockdesign.planar.system", "rockdesign.planar.validity",
                 "rockdesign.cylinder.system", "rockdesign.cylinder.quantities")),
     ("motions", ("rockdesign.motions",)),
