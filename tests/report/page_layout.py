@@ -20,8 +20,9 @@ from pathlib import Path
 
 import pypdf
 
-MIN_LINES_AFTER_HEADING = 4
-"""A heading needs this many lines of its section (text, a table's rows or a figure's labels) on its page."""
+MIN_LINES_AFTER_HEADING = 2
+"""A heading needs this many lines of its section (text, a table's rows or a figure's labels) on its page: a
+heading with one line under it at a page foot, its section going on over the page, is stranded."""
 
 _TAG = re.compile(r"<[^>]+>")
 
@@ -40,6 +41,11 @@ def pages_text(pdf: Path) -> list[str]:
 def _flat(text: str) -> str:
     """Whitespace collapsed."""
     return re.sub(r"\s+", " ", text)
+
+
+def _bare(text: str) -> str:
+    """Without any whitespace."""
+    return re.sub(r"\s+", "", text)
 
 
 def header_words(html: str) -> list[str]:
@@ -123,12 +129,12 @@ def figure_texts(html: str) -> list[tuple[str, str]]:
 def captions_apart(html: str, pdf: Path) -> list[str]:
     """Captions printed on a page that does not show their figure (the figure's longest text is not on it):
     "page 4: 'Figure 5. The variants in the'"."""
-    texts = [_flat(t) for t in pages_text(pdf)]
+    texts = [_bare(t) for t in pages_text(pdf)]        # an SVG's text comes out letter by letter: compare bare
     found = []
     for caption, drawn in figure_texts(html):
-        pages = [k for k, text in enumerate(texts, 1) if _flat(caption) in text]
+        pages = [k for k, text in enumerate(texts, 1) if _bare(caption) in text]
         for number in pages:
-            if _flat(drawn) not in texts[number - 1]:
+            if _bare(drawn) not in texts[number - 1]:
                 found.append(f"page {number}: {caption!r} without its figure ({drawn!r})")
         if not pages:
             found.append(f"caption {caption!r} not found")
