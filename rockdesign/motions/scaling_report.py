@@ -225,6 +225,31 @@ def _asce7_22_block(resolved, result, gravity: float) -> dict:
             "factors": {gm: float(f) for gm, f in result.factors.items()}, "note": " ".join(notes)}
 
 
+RECORDS_SCALED = {"factor": "records multiplied by a factor", "pga": "records scaled to PGA",
+                  "uplift": "records scaled to the uplift acceleration", "sdmax": "records scaled to SD_max",
+                  "spectrum": "records scaled to a design spectrum",
+                  "resultant_pga": "record pairs scaled to a resultant PGA", "none": "records as recorded"}
+"""How a verdict's headline names a scaling method that is not ASCE 7-22 §16.2's (:func:`headline_basis`)."""
+
+
+def headline_basis(block: dict | None) -> str:
+    """What a verdict's headline says about the records when they do not follow ASCE 7-22 §16.2 — "records scaled
+    to PGA, not per ASCE 7-22 §16.2" — or "" when they were scaled per §16.2.3 and conform: an acceptance rule of
+    ASCE 7-22 §16.4 applied to other records must say so where the verdict is read."""
+    if not block:
+        return ""
+    if block.get("standard"):
+        return "" if block.get("conformant") else f"records scaled per {block['standard']}, not conformant"
+    method = block.get("method") or "none"
+    if method in RECORDS_SCALED:
+        words = RECORDS_SCALED[method]
+    elif method.startswith("per suite: "):
+        words = f"records scaled per suite ({method.removeprefix('per suite: ')})"
+    else:
+        words = f"records scaled by {method}"
+    return f"{words}, not per ASCE 7-22 §16.2"
+
+
 def scaling_sentence(block: dict, gravity: float = 9.81) -> str:
     """One line for page 1 of the report: how the suite was scaled and whether it conforms (ASCE 7-22 §16.2.3)."""
     lo_hi = block.get("period_range")

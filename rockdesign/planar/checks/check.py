@@ -26,7 +26,7 @@ from ...kernel_cache import sources_digest
 from ...errors import ProjectError
 from ...motions.asce7_22 import rocking_structure_periods, scaling_period_range
 from ...motions.config import default_excitation, resolve_motions
-from ...motions.scaling_report import scaling_block, scaling_sentence, suite_target
+from ...motions.scaling_report import headline_basis, scaling_block, scaling_sentence, suite_target
 from ...motions.measures import plausibility_warnings
 from ...motions.spectra import motion_spectrum, period_grid, sd_max
 from ..project import Project
@@ -242,12 +242,17 @@ def characteristic_periods(system, q) -> dict[str, float]:
     superstructure's fixed-base T_s and uplifted T_s/S_r (Eq 4.25), and the rocking period at the design
     rotation θ = α/2, T_R = (4/p̂) acosh(1/(1 − θ/α)) = (4/p̂) acosh 2 (Eq 2.8) with the system's frequency
     parameter p̂ (Eq 4.32 for a podium; p, Eq 3.13, for a column)."""
-    p_hat = q["p_hat"].value if "p_hat" in q else q["p"].value
     s = system.superstructure
     elastic = s is not None and not s.rigid and "S_r" in q
     t_s = 2.0 * math.pi / s.omega_s if elastic else None
-    return rocking_structure_periods(fixed_base=t_s, uplifted=t_s / q["S_r"].value if elastic else None,
-                                     rocking=4.0 / p_hat * math.acosh(2.0))
+    periods = rocking_structure_periods(fixed_base=t_s, uplifted=t_s / q["S_r"].value if elastic else None)
+    # named with its frequency parameter and rotation, as the quantities table names T_R (one value per symbol)
+    if "p_hat" in q:
+        label = f"rocking period T_R(α/2; p̂) = (4/p̂) acosh 2 (Eq 2.8 with p̂, {q['p_hat'].equation})"
+        periods[label] = 4.0 / q["p_hat"].value * math.acosh(2.0)
+    else:
+        periods["rocking period T_R(α/2; p) (Eq 2.8)"] = 4.0 / q["p"].value * math.acosh(2.0)
+    return periods
 
 
 def _records(project: Project, q, records_dir):
@@ -378,7 +383,7 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     extra = {"ensemble": ens, "collapse_margin": margin_fema}
     items, skipped = evaluate_criteria(CheckContext(outcomes, a, q, sensitivity, margins_run, extra, acc_rule),
                                        criteria_for(acc_rule))
-    decision = decide(items, skipped, acc_rule)
+    decision = decide(items, skipped, acc_rule, basis=headline_basis(scaling))
     acceptance = acceptance_summary(acc_rule, items, decision, valid, margin_fema)
     checks = [i.as_json() for i in items]
     checks.sort(key=lambda c: (not c["governs_verdict"], -c["utilisation"]))
