@@ -266,11 +266,16 @@ def field_figure(data: dict, key: str, label: str, cmap: str = "viridis", levels
         return fig
 
 
+CONTOUR_MIN_CELLS = 4
+"""Contour lines of a field need this many cells along each variable: on a 3 × 3 grid they cut across the cells
+between three values and read as more than the grid says."""
+
+
 def _contours(ax, bar, z: np.ndarray, levels, level_labels) -> list:
-    """Contour lines of ``z`` (where at least four cells have a value), marked on the colour bar; the legend
-    handles that name them."""
+    """Contour lines of ``z`` (where at least four cells have a value and each variable has
+    :data:`CONTOUR_MIN_CELLS` values), marked on the colour bar; the legend handles that name them."""
     nx, ny = z.shape
-    if np.isfinite(z).sum() < 4 or min(nx, ny) < 2:
+    if np.isfinite(z).sum() < 4 or min(nx, ny) < CONTOUR_MIN_CELLS:
         return []
     try:
         cs = ax.contour(np.arange(nx), np.arange(ny), np.ma.masked_invalid(z.T), levels=levels or 5, colors="k",
