@@ -28,9 +28,10 @@ _TAG = re.compile(r"<[^>]+>")
 
 
 def _text(fragment: str) -> str:
-    """The text of an HTML fragment: tags dropped (a subscript joins its symbol, ``SD<sub>max</sub>`` → SDmax),
-    entities decoded, whitespace collapsed."""
-    return re.sub(r"\s+", " ", html_lib.unescape(_TAG.sub("", fragment.replace("<wbr>", "")))).strip()
+    """The text of an HTML fragment: tags dropped (a subscript joins its symbol, ``SD<sub>max</sub>`` → SDmax; a
+    line break is a space), entities decoded, whitespace collapsed."""
+    fragment = re.sub(r"<br\s*/?>", " ", fragment.replace("<wbr>", ""))
+    return re.sub(r"\s+", " ", html_lib.unescape(_TAG.sub("", fragment))).strip()
 
 
 def pages_text(pdf: Path) -> list[str]:

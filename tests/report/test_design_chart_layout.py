@@ -109,6 +109,7 @@ def test_every_variant_of_the_thesis_plane_has_a_mark_of_its_own():
     assert distance.min() >= radius, "two variants share one mark"
 
 
+@pytest.mark.slow       # the design report to PDF (≈ 14–30 s)
 def test_the_design_report_keeps_headers_whole_and_captions_with_their_figures(tmp_path):
     """design.pdf of the 10 × 10 chart: no header broken inside a word ("podium.widt|h"), no caption on a page
     without its figure (Figure 5's caption stood alone on a blank page), no heading left at a page foot, and the
