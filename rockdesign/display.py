@@ -148,22 +148,32 @@ def readable_units(text: str) -> str:
     return _POWER.sub(lambda m: "²" if m.group(1) == "2" else "³", str(text))
 
 
-RATIO_HEADING = "demand/limit (≤ 1 passes)"
+RATIO_HEADING = "demand vs limit (passes at ≤ 1 × limit)"
 """What a check's ``utilisation`` is, in the report's and the console's words: the criterion's demand over its
-limit (a count over the allowance, a required over an achieved margin, θ_max over θc …), ≤ 1 when it passes."""
+limit (a count over the allowance, a required over an achieved margin, θ_max over θc, a 95 % bound of P(overturn)
+over its limit …), ≤ 1 when it passes.  Each value is written as a multiple of the limit ("1.98 × limit"): a bare
+"1.98" beside a check about ground motions read as "1.98 ground motions"."""
 CANNOT_PASS = 1e8
 """Utilisations at or above this are the criteria's cap (:data:`rockdesign.acceptance.criterion_base.UTILISATION_CAP`,
 e.g. a zero limit): not a number to read."""
 
 
-def utilisation_text(value) -> str:
-    """A check's demand/limit for a table: three significant digits ("2.00", never a bare "2" beside "FAILED"
-    that reads as a count), "—" when the criterion cannot pass (the cap) or has no number."""
-    if value is None or not isinstance(value, (int, float)) or math.isnan(value):
+def utilisation_number(value) -> str:
+    """A check's demand/limit as a number: three significant digits ("2.00", never a bare "2"), "—" when the
+    criterion cannot pass (the cap) or has no number."""
+    if value is None or not isinstance(value, (int, float)) or math.isnan(value) or value >= CANNOT_PASS:
         return "—"
-    if value >= CANNOT_PASS:
-        return "— (cannot pass)"
     return f"{value:.3g}" if value >= 1e-3 or value == 0 else f"{value:.1e}"
+
+
+def utilisation_text(value) -> str:
+    """A check's demand/limit for a table, as a multiple of its limit: "1.98 × limit" (the 95 % bound 0.198 of
+    P(overturn) against its limit 0.10), "0.67 × limit"; "— (cannot pass)" at the criteria's cap, "—" without a
+    number."""
+    if isinstance(value, (int, float)) and not math.isnan(value) and value >= CANNOT_PASS:
+        return "— (cannot pass)"
+    number = utilisation_number(value)
+    return number if number == "—" else f"{number} × limit"
 
 
 def check_order(checks: list[dict], governing: str | None = None) -> list[dict]:

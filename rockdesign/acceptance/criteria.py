@@ -105,7 +105,7 @@ QUALIFIERS = {"restitution_robustness", "ensemble_robustness"}
 """Skipped criteria that qualify the verdict (named as not covered) but leave it decided."""
 
 
-def decide(items: list[CheckItem], skipped=(), rule: AcceptanceRule | None = None) -> Verdict:
+def decide(items: list[CheckItem], skipped=(), rule: AcceptanceRule | None = None, basis: str = "") -> Verdict:
     """The one verdict of the check (SPEC §14: a criterion that was not evaluated cannot pass).
 
     FAIL when an evaluated governing item fails (the reason quotes each); otherwise NOT DECIDED when a
@@ -113,7 +113,10 @@ def decide(items: list[CheckItem], skipped=(), rule: AcceptanceRule | None = Non
     otherwise PASS.  The reason names the rule: "PASS (ASCE 7-22 §16.4, risk category II): 0 of 22
     ground motions unacceptable (1 allowed); ACMR 2.41 ≥ 1.96 (P(collapse) 4.7 % ≤ 10 %)".  A PASS
     whose design-level rule fails under a robustness perturbation adds "; not robust: fails with c_r − 2 %"; a FAIL
-    that only the design-level rule decides and that some perturbation would pass is flagged too.
+    that only the design-level rule decides and that some perturbation would pass is flagged too.  ``basis``:
+    how the records were scaled when not per ASCE 7-22 §16.2 (:func:`rockdesign.motions.scaling_report.headline_basis`),
+    named beside the rule: "PASS (ASCE 7-22 §16.4, risk category II; records scaled to PGA, not per ASCE 7-22
+    §16.2): …".
     """
     governing = [i for i in items if i.governs_verdict]
     failing = [i for i in governing if i.evaluated and not i.passed]
@@ -123,7 +126,7 @@ def decide(items: list[CheckItem], skipped=(), rule: AcceptanceRule | None = Non
     missing = [NOT_COVERED.get(k, f"{k} not evaluated") for k in skipped if k not in QUALIFIERS] \
         + [i.verdict_reason for i in undecided]
     qualifiers = [NOT_COVERED[k] for k in skipped if k in QUALIFIERS]
-    label = f" ({rule.label})" if rule is not None else ""
+    label = f" ({rule.label}{'; ' + basis if basis else ''})" if rule is not None else ""
     design_level = {"unacceptable_responses", "overturning_probability"}
     if failing:
         word = FAIL

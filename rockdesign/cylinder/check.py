@@ -40,6 +40,7 @@ from ..planar.dynamics.simulate import simulate
 from ..kernel_cache import sources_digest
 from ..motions.motion import record_motion
 from ..motions.pairs import suite_pairs
+from ..motions.scaling_report import headline_basis
 from ..motions.spectra import sd_max_of_samples
 from ..planar.system import Column, RockingSystem
 from ..acceptance.summary import acceptance_summary
@@ -443,7 +444,7 @@ def run_cylinder_check(project, progress=None, margins: bool = True, *, records:
                            extra={"ensemble": ens, "cylinder": cyl, "summary": summary,
                                   "collapse_margin": margin_fema}, rule=rule)
     items, skipped = evaluate_criteria(context, cylinder_criteria(rule))
-    decision = decide(items, skipped, rule)
+    decision = decide(items, skipped, rule, basis=headline_basis(e.scaling_block(records, cyl.g)))
     acceptance = acceptance_summary(rule, items, decision, context.valid, margin_fema,
                                     scans=None if flip_scans is None else
                                     [m for o, m in zip(records, flip_scans) if o.run.status == "completed"])

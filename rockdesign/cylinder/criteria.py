@@ -207,9 +207,10 @@ class PlanarSuffices(Criterion):
         passed = unsafe == 0 and kp >= k3
         util = (k3 / kp) if kp else (math.inf if k3 else 0.0)
         detail = (f"planar: {kp} of {n} overturn (P = {s['planar']['p_overturn']:.3g}); 3D − planar ΔP = "
-                  f"{s['difference_p_overturn']:+.3g}; {unsafe} pair(s) overturn in 3D but not in the planar analysis")
+                  f"{s['difference_p_overturn']:+.3g}; {unsafe} {'pair overturns' if unsafe == 1 else 'pairs overturn'} in 3D "
+                  "but not in the planar analysis")
         reason = ("the planar analysis overturns at least the pairs the 3D analysis does" if passed else
-                  f"{unsafe} pair(s) overturn in 3D but not in the planar analysis")
+                  f"{unsafe} {'pair overturns' if unsafe == 1 else 'pairs overturn'} in 3D but not in the planar analysis")
         return self.item(util, passed, detail, reason)
 
 

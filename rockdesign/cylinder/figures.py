@@ -6,7 +6,7 @@ import numpy as np
 
 from .engine import SPIN_TILT_MIN
 from .quantities import wobbling_curve
-from ..plots import STYLE, plt
+from ..plots import STYLE, legend_above, plt
 
 
 CONTACT_FORCE_TOP = 4.0
@@ -22,7 +22,7 @@ def cylinder_history_figure(response, g: float, title: str = "", pair=None):
     :data:`CONTACT_FORCE_TOP`); and the plan view of the path of the centre of mass [m] (Figs 5.9–5.15)."""
     r = response
     with plt.rc_context(STYLE):
-        fig = plt.figure(figsize=(10.0, 7.0))
+        fig = plt.figure(figsize=(10.0, 7.6))
         grid = fig.add_gridspec(4, 2, width_ratios=(1.7, 1.0))
         axes = [fig.add_subplot(grid[i, 0]) for i in range(4)]
         for ax in axes[1:]:
@@ -33,7 +33,7 @@ def cylinder_history_figure(response, g: float, title: str = "", pair=None):
         axes[0].plot(tg[keep], gx[keep] / g, lw=0.7, color="0.2", label="ü$_{gx}$")
         axes[0].plot(tg[keep], gy[keep] / g, lw=0.7, color="C1", alpha=0.8, label="ü$_{gy}$")
         axes[0].set_ylabel("ü$_g$ [g]")
-        axes[0].legend(loc="upper right", fontsize=7, ncol=2)
+        legend_above(axes[0], ncol=2, loc="lower right", bbox_to_anchor=(1.0, 1.01))
         axes[1].plot(t, r.theta / r.alpha, lw=0.9, color="C0")
         axes[1].axhline(1.0, color="0.5", lw=0.7, ls=":", label="θ = α")
         axes[1].axhline(r.theta_overturn / r.alpha, color="C3", lw=0.8, ls="--", label=r"$\theta_{ot}$")
@@ -42,23 +42,23 @@ def cylinder_history_figure(response, g: float, title: str = "", pair=None):
         if qi.size:
             axes[1].plot(qi, np.zeros(qi.size), "k|", ms=6, label=f"quasi-impacts ({qi.size})")
         axes[1].set_ylabel("θ/α [-]")
-        axes[1].legend(loc="upper right", fontsize=7, ncol=4)
+        legend_above(axes[1], ncol=4)
         spin = r.spin()
         axes[2].plot(t, spin, lw=0.8, color="C2")
         axes[2].axhline(0.0, color="0.5", lw=0.5)
         axes[2].set_ylabel(r"$\dot{\varphi}$ [rad/s]")
         if not np.any(np.isfinite(spin)):
             axes[2].set_ylim(-1.0, 1.0)
-        axes[2].text(0.01, 0.95, f"spin where θ ≥ {SPIN_TILT_MIN:g}α (below it the contact point whirls round the "
-                     "rim)", bbox=dict(fc="white", ec="none", alpha=0.8), transform=axes[2].transAxes, fontsize=7, ha="left", va="top")
+        axes[2].set_title(f"spin where θ ≥ {SPIN_TILT_MIN:g}α (below it the contact point whirls round the rim)",
+                          fontsize=7, loc="left")
         force = np.minimum(r.contact_force, CONTACT_FORCE_TOP)
         axes[3].plot(t, force, lw=0.8, color="C4")
         axes[3].axhline(0.0, color="C3", lw=0.7, ls="--")
         axes[3].axhline(1.0, color="0.5", lw=0.5, ls=":")
         peak = float(np.max(r.contact_force)) if r.contact_force.size else 0.0
         if peak > CONTACT_FORCE_TOP:
-            axes[3].text(0.01, 0.95, f"spikes at quasi-impacts up to {peak:.3g} (clipped at {CONTACT_FORCE_TOP:g})",
-                         transform=axes[3].transAxes, fontsize=7, ha="left", va="top")
+            axes[3].set_title(f"contact force: spikes at quasi-impacts up to {peak:.3g} (clipped at "
+                              f"{CONTACT_FORCE_TOP:g})", fontsize=7, loc="left")
         axes[3].set_ylim(min(0.0, float(np.min(force))) - 0.1, CONTACT_FORCE_TOP * 1.05 if peak > CONTACT_FORCE_TOP
                          else max(1.5, peak * 1.1))
         axes[3].set_ylabel("N/(m g) [-]")
@@ -75,10 +75,11 @@ def cylinder_history_figure(response, g: float, title: str = "", pair=None):
         orbit.set_xlabel("x [m]")
         orbit.set_ylabel("y [m]")
         orbit.set_title("plan view: path of the centre of mass", fontsize=8)
-        orbit.legend(loc="upper right", fontsize=7)
+        orbit.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), fontsize=7, ncol=1, frameon=False)
         if title:
             axes[0].set_title(title, fontsize=9, loc="left")
         fig.align_ylabels(axes)
+        fig.set_layout_engine("tight")
         return fig
 
 

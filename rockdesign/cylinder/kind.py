@@ -4,20 +4,13 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import numpy as np
-
-from . import check as cylinder_check
 from .project import claims, parse_cylinder_project
-from .quantities import cylinder_quantities, wobbling_curve
 from ..errors import RockdesignError
-from ..motions.warm_up import ELASTIC_SPECTRUM
-from ..planar.dynamics.warm_up import ENGINE
-from .warm_up import INTEGRATOR
-from ..plots import save
-from .figures import wobbling_figure
-from .report import FIGURE_FILES, cylinder_report_parts
-from . import grid as cylinder_grid, simulation as cylinder_simulation, spectrum_run as cylinder_spectra
 from ..kinds.base import StructureKind
+
+# Everything else is imported where it is used: reading and validating a project (``claims``, ``parse``) loads
+# no engine, numba kernel, figure or report module, so a mistake in a project file is reported before the
+# engine loads (tests/cli/test_startup.py).
 
 
 class Cylinder(StructureKind):
@@ -25,18 +18,39 @@ class Cylinder(StructureKind):
 
     name = "cylinder"
     systems = ("cylinder",)
-    report_files = frozenset(FIGURE_FILES)
-    csv_columns = tuple(cylinder_check.CSV_COLUMNS)
-    grid = cylinder_grid
-    design_rule = cylinder_grid.RULE
-    design_skipped = cylinder_grid.SKIPPED
     design_material = ("material: the cylinder's mass", "a free-standing cylinder carries no superstructure")
     key_alternatives = {"height": ("half_height",), "half_height": ("height",), "diameter": ("slenderness",),
                         "slenderness": ("diameter",), "mass": ("density",), "density": ("mass",)}
 
+    @property
+    def report_files(self):
+        from .report import FIGURE_FILES
+        return frozenset(FIGURE_FILES)
+
+    @property
+    def csv_columns(self):
+        from .check import CSV_COLUMNS
+        return tuple(CSV_COLUMNS)
+
+    @property
+    def grid(self):
+        from . import grid
+        return grid
+
+    @property
+    def design_rule(self):
+        return self.grid.RULE
+
+    @property
+    def design_skipped(self):
+        return self.grid.SKIPPED
+
     def kernels(self, command):
         """The cylinder's integrator (``simulate``); with the planar engine of the planar components and the
         elastic spectrum of their SD_max (``check``)."""
+        from ..motions.warm_up import ELASTIC_SPECTRUM
+        from ..planar.dynamics.warm_up import ENGINE
+        from .warm_up import INTEGRATOR
         return {"simulate": (INTEGRATOR,), "check": (INTEGRATOR, ENGINE, ELASTIC_SPECTRUM)}.get(command, ())
 
     def claims(self, raw):
@@ -46,6 +60,7 @@ class Cylinder(StructureKind):
         return parse_cylinder_project(raw, file=file, text=text)
 
     def quantities(self, project):
+        from .quantities import cylinder_quantities
         return cylinder_quantities(project.system)
 
     def quantities_title(self, project):
@@ -53,22 +68,29 @@ class Cylinder(StructureKind):
 
     def write_curve(self, project, path):
         """The wobbling-period curve (Fig 5.2): CSV (theta_over_alpha, Tw_p, T_housner_p) or a figure."""
+        import numpy as np
+
+        from .quantities import wobbling_curve
         path = Path(path)
         if path.suffix.lower() == ".csv":
             ratio, tw, th = wobbling_curve(project.system)
             np.savetxt(path, np.column_stack([ratio, tw, th]), delimiter=",", fmt="%.12g",
                        header="theta_over_alpha,Tw_p,T_housner_p", comments="")
         elif path.suffix.lower() in (".png", ".svg", ".pdf"):
+            from ..plots import save
+            from .figures import wobbling_figure
             save(wobbling_figure(project.system), path)
         else:
             raise RockdesignError("unknown file type", key="path", expected=".csv, .png, .svg or .pdf",
                                   found=f"'{path.name}'")
 
     def simulation_request(self, project, motion, *, model, t_end, rtol, records_dir):
+        from . import simulation as cylinder_simulation
         return cylinder_simulation.simulation_request(project, motion, model=model, t_end=t_end, rtol=rtol,
                                                       records_dir=records_dir)
 
     def run_simulation(self, request):
+        from . import simulation as cylinder_simulation
         return cylinder_simulation.run_simulation(request)
 
     def check_options(self, project, *, records_dir, executor):
@@ -79,14 +101,17 @@ class Cylinder(StructureKind):
                                       found=repr(str(value)) if isinstance(value, (str, Path)) else type(value).__name__)
 
     def check(self, project, *, progress, records_dir, margins, executor):
+        from . import check as cylinder_check
         return cylinder_check.cylinder_check(project, progress=progress, margins=margins)
 
     def report(self, result):
+        from .report import cylinder_report_parts
         return cylinder_report_parts(result)
 
     def spectrum(self, project, request):
         """The rocking spectrum of one record pair over R and PGA (Figs 5.16–5.17;
         :func:`~rockdesign.cylinder.spectrum_run.record_pair_spectrum`)."""
+        from . import spectrum_run as cylinder_spectra
         options = request.accepted(cylinder_spectra.OPTIONS, "the spectrum of a cylinder (a record pair on R × pga "
                                    "axes)", "record, x R:…, y pga/up:…, relative, out_dir and figures")
         reference = options.get("relative")

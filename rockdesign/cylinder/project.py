@@ -24,7 +24,6 @@ import math
 from dataclasses import dataclass
 
 from ..errors import ProjectError
-from ..motions.pairs import PAIR_SUITES
 from ..project_tables import Project, _parse_analysis, _Table, project_info
 from ..units import QuantityParseError, parse_quantity
 from .system import (CONTACTS, DEFAULT_CONTACT_DAMPING, DEFAULT_CONTACT_FREQUENCY, DEFAULT_OVERTURN_TILT,
@@ -105,6 +104,7 @@ def parse_cylinder_excitation(raw: dict | None, *, file: str, g: float, tan_alph
     if not isinstance(suites, list) or not all(isinstance(s, str) for s in suites) or not suites:
         raise ProjectError("wrong type", file=file, key="excitation.suites", expected="a list of suite names",
                            found=repr(suites))
+    from ..motions.pairs import PAIR_SUITES          # (numba under it: loaded once the keys above are valid)
     for s in suites:
         if s not in PAIR_SUITES:
             raise ProjectError("a cylinder needs suites of record pairs", file=file, key="excitation.suites",

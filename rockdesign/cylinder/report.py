@@ -30,6 +30,7 @@ from ..report.svg import svg
 from ..report.formatting import DIGITS, fmt
 from .methods import CYLINDER_METHODS
 from ..report.document import ReportParts
+from ..display import utilisation_text
 from ..report.render import environment, stylesheet
 
 FIGURE_FILES = ("cylinder_vs_planar.png", "wobbling_period.png")
@@ -69,7 +70,7 @@ def planar_answer(data: dict) -> str:
             text += (f" It does not predict the tilts: the median θ_max of the 3D cylinder is {fmt(ratio)} times the "
                      f"planar one where neither overturns.")
         return text
-    return (f"No: {unsafe} pair(s) overturn in 3D but not in the planar analysis "
+    return (f"No: {unsafe} {'pair overturns' if unsafe == 1 else 'pairs overturn'} in 3D but not in the planar analysis "
             f"({', '.join(s['planar_unconservative_records']) or '—'}); planar {kp} of {n}, 3D {k3} of {n}. "
             f"The wobbling cylinder needs the 3D analysis.")
 
@@ -77,16 +78,17 @@ def planar_answer(data: dict) -> str:
 def check_rows(checks: list[dict]) -> list[dict]:
     """The checks as the report's table prints them: a check that decides the verdict passes or FAILS; an
     informative one is "met"/"not met", and a question ("Does a planar analysis suffice?") is answered
-    yes/no with its ratio of overturning pairs (3D over planar) rather than a utilisation."""
+    yes/no with its ratio of overturning pairs (3D over planar) rather than a utilisation; a utilisation is written
+    as a multiple of the limit (:func:`rockdesign.display.utilisation_text`)."""
     rows = []
     for c in checks:
         if c["governs_verdict"]:
-            value, result = fmt(c["utilisation"]), "passed" if c["passed"] else "FAILED"
+            value, result = utilisation_text(c["utilisation"]), "passed" if c["passed"] else "FAILED"
         elif c["name"].startswith("Does a planar analysis suffice"):
             value = f"{fmt(c['utilisation'])} (pairs overturning 3D/planar)"
             result = "yes" if c["passed"] else "no"
         else:
-            value, result = fmt(c["utilisation"]), "met" if c["passed"] else "not met"
+            value, result = utilisation_text(c["utilisation"]), "met" if c["passed"] else "not met"
         rows.append(dict(c, value_text=value, result_text=result))
     return rows
 
@@ -97,7 +99,7 @@ def build_cylinder_context(result, *, figures: dict, date: str | None = None) ->
     scaling = data["summary"]["scaling"]
     text = SCALING_TEXT[scaling["method"]]
     scaling_text = text.format(target=fmt(scaling.get("target"), "m/s^2"), value=fmt(scaling.get("value")))
-    governing = [c for c in data["checks"] if c["governs_verdict"]]
+    governing = [dict(c, ratio=utilisation_text(c["utilisation"])) for c in data["checks"] if c["governs_verdict"]]
     quantities = cylinder_quantities(project.system)
     rows = {r["id"]: r for r in data["records"]}
     return {

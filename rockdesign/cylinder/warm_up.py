@@ -30,5 +30,5 @@ def spectrum_grid() -> None:
     cylinder_spectrum(cyl, pair, [cyl.R], [1.0], free_vibration=0.05)
 
 
-INTEGRATOR = Kernels("cylinder-integrator", integrator, 30.0)
+INTEGRATOR = Kernels("cylinder-integrator", integrator, 28.0)
 SPECTRUM = Kernels("cylinder-spectrum", spectrum_grid, 35.0)

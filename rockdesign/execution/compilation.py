@@ -10,7 +10,7 @@ names its own, :meth:`rockdesign.kinds.base.StructureKind.kernels`).  A group wh
 once on a tiny problem with the argument types of the real calls, so that the real calls load them —
 in this process, after the line
 
-    first run: compiling the numerical kernels of `check` (about 40 s, once per version)
+    first run: compiling the numerical kernels of `check` (about 60 s, once per version)
 
 and the marker is written when it is done.  The folder changes with the kernel sources, so a marker
 always speaks of the kernels in its folder; with every marker present nothing is printed or compiled.
@@ -38,7 +38,8 @@ class Kernels:
     Attributes:
         name: the group's name, unique among all groups (its marker is ``compiled-<name>``).
         warm_up: calls the group's kernels once on a tiny problem, with the argument types of the real calls.
-        seconds: its first-run compile time on an idle 2-core machine [s] (the announced estimate).
+        seconds: its first-run compile time on a quiet machine [s] (measured on the shared 2-core VM:
+            docs/engine.md, "First run"); the announced estimate is this times :func:`_load_factor`.
     """
 
     name: str
@@ -59,22 +60,40 @@ def missing(kernels: Sequence[Kernels]) -> list[Kernels]:
     return [k for k in kernels if not marker(k).is_file()]
 
 
+PROBE_SECONDS = 1.0
+"""CPU seconds of the busy loop that measures how much of a core this process gets (:func:`_load_factor`): long
+enough to average over the scheduler's slices and a passing spike (a 0.2-s loop scattered from a quarter to two
+thirds of a core at one load), short beside a compilation of a minute or more."""
+
+
+CONTENTION_EXPONENT = 1.5
+"""How a compilation's time grows with the slowdown of a core: ``slowdown ** CONTENTION_EXPONENT``.  Under load
+the compilation gets a smaller share of a core and also needs more CPU time itself (42 s of CPU for the planar
+engine at a load of 2.5, 60 s at 5.5, on the shared 2-core VM), so its time grows faster than the share falls;
+fitted to first runs of `check` at loads 2.5–6 (docs/engine.md, "First run")."""
+
+
 def _load_factor() -> float:
-    """How much slower than on an idle machine a compilation runs now: the 1-minute load average over the
-    usable cores (at least 1; 1 where the load average is unknown)."""
-    from .executor import usable_cores
-    try:
-        load = os.getloadavg()[0]
-    except (AttributeError, OSError):
-        return 1.0
-    return max(1.0, load / max(1, usable_cores()))
+    """How much slower than on a quiet machine a compilation runs now: the slowdown of a core — the wall time over
+    the CPU time of a short busy loop in this process, which gets the share of a core a one-thread compilation
+    gets — to the power :data:`CONTENTION_EXPONENT`.
+
+    The 1-minute load average over the cores, used before, lags the machine and counts what does not compete:
+    on first runs of `check` (2 cores, shared) it announced 132 s for a compilation of 69 s (load 6.3, falling)
+    and 88 s for one of 132 s (load 4.2, rising)."""
+    wall, cpu = time.perf_counter(), time.process_time()
+    while time.process_time() - cpu < PROBE_SECONDS:
+        pass
+    share = (time.process_time() - cpu) / max(time.perf_counter() - wall, 1e-9)
+    return max(1.0, 1.0 / max(share, 1e-3)) ** CONTENTION_EXPONENT
 
 
 def announcement(command: str, kernels: Sequence[Kernels]) -> str:
     """The line printed before compiling ``kernels`` for ``command``: :data:`MESSAGE`, the estimate being
-    their idle-machine seconds times the current :func:`_load_factor`."""
+    their idle-machine seconds times the current :func:`_load_factor` (rounded to 5 s above a minute: an
+    estimate, not a measurement)."""
     seconds = sum(k.seconds for k in kernels) * _load_factor()
-    return MESSAGE.format(command=command, seconds=max(1, round(seconds)))
+    return MESSAGE.format(command=command, seconds=max(1, round(seconds) if seconds < 60 else 5 * round(seconds / 5)))
 
 
 def prepare(command: str, kernels: Sequence[Kernels], say: Callable[[str], object] | None = None) -> float:

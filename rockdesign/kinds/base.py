@@ -23,12 +23,15 @@ from __future__ import annotations
 
 import abc
 from collections.abc import Callable, Mapping
+from typing import TYPE_CHECKING
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import RockdesignError
 from ..outdir import RUN_FILES, OutputFolder
-from ..report.document import ReportParts
+
+if TYPE_CHECKING:       # the report's modules load jinja2 and matplotlib: not needed to read a project
+    from ..report.document import ReportParts
 
 
 def _shown(value) -> str:

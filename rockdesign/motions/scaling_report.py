@@ -114,8 +114,7 @@ def scaling_block(resolved, *, period_range: PeriodRange | None = None, target=N
     if result is not None:
         return _asce7_22_block(resolved, result, gravity)
     rules = list(getattr(resolved, "rules", []) or [])
-    methods = sorted({rule.method for _, rule in rules})
-    method = methods[0] if len(methods) == 1 else ("none" if not methods else "per suite: " + ", ".join(methods))
+    method = method_block(resolved)["method"]
     how = "; ".join(((f"of {suite or 'the extra records'} " if len(rules) > 1 else "") + _method_words(rule, gravity))
                     for suite, rule in rules) or "none"
     if target is None and len(rules) == 1:
@@ -223,6 +222,42 @@ def _asce7_22_block(resolved, result, gravity: float) -> dict:
             "suite_average_max_direction": {"periods": result.periods.tolist(), "psa": result.average_psa.tolist()},
             "min_ratio": float(result.min_ratio), "conformant": bool(result.conformant),
             "factors": {gm: float(f) for gm, f in result.factors.items()}, "note": " ".join(notes)}
+
+
+RECORDS_SCALED = {"factor": "records multiplied by a factor", "pga": "records scaled to PGA",
+                  "uplift": "records scaled to the uplift acceleration", "sdmax": "records scaled to SD_max",
+                  "spectrum": "records scaled to a design spectrum",
+                  "resultant_pga": "record pairs scaled to a resultant PGA", "none": "records as recorded"}
+"""How a verdict's headline names a scaling method that is not ASCE 7-22 §16.2's (:func:`headline_basis`)."""
+
+
+def method_block(resolved) -> dict:
+    """The keys of :func:`scaling_block` a verdict's headline reads (``standard``, ``method``, ``conformant``), without
+    the spectra it compares: what a design grid's cell needs (:func:`headline_basis`)."""
+    result = getattr(resolved, "asce7_22", None)
+    if result is not None:
+        return {"standard": STANDARD, "method": "asce7-22", "conformant": bool(result.conformant)}
+    methods = sorted({rule.method for _, rule in (getattr(resolved, "rules", []) or [])})
+    method = methods[0] if len(methods) == 1 else ("none" if not methods else "per suite: " + ", ".join(methods))
+    return {"standard": None, "method": method}
+
+
+def headline_basis(block: dict | None) -> str:
+    """What a verdict's headline says about the records when they do not follow ASCE 7-22 §16.2 — "records scaled
+    to PGA, not per ASCE 7-22 §16.2" — or "" when they were scaled per §16.2.3 and conform: an acceptance rule of
+    ASCE 7-22 §16.4 applied to other records must say so where the verdict is read."""
+    if not block:
+        return ""
+    if block.get("standard"):
+        return "" if block.get("conformant") else f"records scaled per {block['standard']}, not conformant"
+    method = block.get("method") or "none"
+    if method in RECORDS_SCALED:
+        words = RECORDS_SCALED[method]
+    elif method.startswith("per suite: "):
+        words = f"records scaled per suite ({method.removeprefix('per suite: ')})"
+    else:
+        words = f"records scaled by {method}"
+    return f"{words}, not per ASCE 7-22 §16.2"
 
 
 def scaling_sentence(block: dict, gravity: float = 9.81) -> str:

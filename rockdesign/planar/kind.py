@@ -4,24 +4,13 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import numpy as np
-
-from .checks import check as planar_check
-from .design.geometry import rocking_geometry
-from .design.pushover import pushover_curve
-from .design.quantities import design_quantities
-from .dynamics.shared_batches import SharedBatches
-from .dynamics.warm_up import ENGINE, LINEAR_EXACT
 from ..errors import RockdesignError
-from ..motions.warm_up import ELASTIC_SPECTRUM
-from ..plots import save
 from .project import parse_planar_project
-from .report.figures import pushover_figure
-from ..report.document import ReportParts
-from .report.report import render_html
-from . import experiments as planar_experiments, grid as planar_grid, simulation as planar_simulation
-from .spectra import run as pulse_spectra
 from ..kinds.base import StructureKind
+
+# Everything else is imported where it is used: reading and validating a project (``parse``) loads no engine,
+# numba kernel, figure or report module, so a mistake in a project file is reported before the engine loads
+# (tests/cli/test_startup.py).
 
 
 class Planar(StructureKind):
@@ -29,19 +18,36 @@ class Planar(StructureKind):
 
     name = "planar"
     systems = ("column", "podium")
-    grid = planar_grid
-    experiments = planar_experiments
-    design_rule = planar_grid.RULE
-    design_skipped = planar_grid.SKIPPED
+
+    @property
+    def grid(self):
+        from . import grid
+        return grid
+
+    @property
+    def experiments(self):
+        from . import experiments
+        return experiments
+
+    @property
+    def design_rule(self):
+        return self.grid.RULE
+
+    @property
+    def design_skipped(self):
+        return self.grid.SKIPPED
 
     def grid_batches(self, executor=None):
         """Every analysis of the planar check runs through ``run_jobs``, which takes a pool member; on an
         ``executor`` the merged calls run there in chunks."""
+        from .dynamics.shared_batches import SharedBatches
         return SharedBatches(executor)
 
     def kernels(self, command):
         """The rocking engine (``simulate``); with the closed-form linear integrator of the report's accuracy
         statement and the elastic spectrum of Polyakov's rule (``check``)."""
+        from ..motions.warm_up import ELASTIC_SPECTRUM
+        from .dynamics.warm_up import ENGINE, LINEAR_EXACT
         return {"simulate": (ENGINE,), "check": (ENGINE, LINEAR_EXACT, ELASTIC_SPECTRUM)}.get(command, ())
 
     def claims(self, raw):
@@ -51,11 +57,16 @@ class Planar(StructureKind):
         return parse_planar_project(raw, file=file, text=text)
 
     def quantities(self, project):
+        from .design.quantities import design_quantities
         return design_quantities(project.system, project.analysis.rigid_superstructure_ratio)
 
     def write_curve(self, project, path):
         """The pushover curve F_R/(m_C g) against θ through both phases (Fig 3.15, Eqs 3.18/3.48), from
         θ = 0 to θc: a CSV table (``theta_rad, F_R_over_mg, phase``) or, for .png/.svg/.pdf, the report's plot."""
+        import numpy as np
+
+        from .design.geometry import rocking_geometry
+        from .design.pushover import pushover_curve
         path = Path(path)
         suffix = path.suffix.lower()
         if suffix == ".csv":
@@ -65,30 +76,39 @@ class Planar(StructureKind):
             np.savetxt(path, np.column_stack([theta, force, phase]), delimiter=",", fmt=["%.15g", "%.15g", "%d"],
                        header="theta_rad,F_R_over_mg,phase", comments="")
         elif suffix in (".png", ".svg", ".pdf"):
+            from ..plots import save
+            from .report.figures import pushover_figure
             save(pushover_figure(project.system), path)
         else:
             raise RockdesignError("unknown pushover file type", key="path",
                                   expected=".csv, .png, .svg or .pdf", found=f"'{path.name}'")
 
     def simulation_request(self, project, motion, *, model, t_end, rtol, records_dir):
+        from . import simulation as planar_simulation
         return planar_simulation.simulation_request(project, motion, model=model, t_end=t_end, rtol=rtol,
                                                     records_dir=records_dir)
 
     def run_simulation(self, request):
+        from . import simulation as planar_simulation
         return planar_simulation.run_simulation(request)
 
     def prepare_check(self, project, *, records_dir):
         """Read the records (an input error in them stops a first run before it compiles)."""
+        from .checks import check as planar_check
         planar_check.check_records(project, records_dir)
 
     def check(self, project, *, progress, records_dir, margins, executor):
+        from .checks import check as planar_check
         return planar_check.run_check(project, records_dir=records_dir, margins=margins, progress=progress, executor=executor)
 
     def report(self, result):
+        from ..report.document import ReportParts
+        from .report.report import render_html
         return ReportParts(html=lambda: render_html(result))
 
     def spectrum(self, project, request):
         """The rocking spectrum over a pulse family (thesis Sec 3.3.2; :func:`~rockdesign.planar.spectra.run.pulse_spectrum`)."""
+        from .spectra import run as pulse_spectra
         options = request.accepted(pulse_spectra.OPTIONS, "the spectrum of a planar system (pulses)",
                                    "pulse and the pulse spectrum's options (record is for a [cylinder] project)")
         reference = options.get("relative")

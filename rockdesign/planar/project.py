@@ -13,7 +13,6 @@ import math
 
 from .design.mass import SECTIONS, STEEL_TO_CONCRETE_DENSITY, composite_column, section_area
 from ..errors import ProjectError
-from ..motions.config import parse_excitation
 from .system import Column, RockingSystem, Superstructure
 from ..project_tables import (ANALYSIS_KEYS, RESTITUTION_RULES, AnalysisSettings, Project,  # noqa: F401 (re-exported)
                              _parse_analysis, _Table, project_info)
@@ -68,7 +67,9 @@ def parse_planar_project(raw: dict, *, file: str = "<project>", text: str = "") 
         raise ProjectError("must be a table", file=file, key="excitation", expected="an [excitation] table",
                            found=repr(raw["excitation"]))
     # parsed once, here, so that every command (quantities, simulate, check) rejects the same input and
-    # the check consumes the typed table
+    # the check consumes the typed table; last, and its module loaded only now: a mistake in the tables above is
+    # reported before the ground-motion modules (and numba under them) load (tests/cli/test_startup.py)
+    from ..motions.config import parse_excitation
     excitation = (parse_excitation(raw["excitation"], file=file, gravity=g)
                   if raw.get("excitation") is not None else None)
     return Project(file, info["name"], system, analysis, info, raw.get("excitation"), raw, text,

@@ -4,12 +4,14 @@ the figures are also written as SVG files beside them."""
 from __future__ import annotations
 
 import datetime as _dt
-import io
 import os
 from pathlib import Path
 
+from markupsafe import Markup
+
 from .design_figures import cell_reason, design_figures
 from .render import environment, html_to_pdf, stylesheet
+from .svg import svg
 
 TEMPLATE = "design.html.j2"
 
@@ -17,7 +19,7 @@ CAPTIONS = {
     "verdict": "Pass/fail region: the verdict of the check (ASCE 7-22 §16.4 count per ground motion and FEMA P695 "
                "collapse margin at the risk category's target) for every variant, with the governing reason; "
                "filled: robust PASS, hatched: PASS that fails in some perturbation draw, dotted outline: not "
-               "analysed (its analysed neighbours all agree).",
+               "analysed (its analysed neighbours all agree); black frame: the recommended design.",
     "acmr": "Adjusted collapse margin ratio ACMR of the variants whose margin was analysed (cells the count rule "
             "already fails at the design level need no margin scan and are left blank).",
     "shear": "Superstructure shear coefficient |f_s|/g, 84th percentile over the records that did not overturn "
@@ -29,7 +31,9 @@ CAPTIONS = {
                    "with the ASCE 7-22 §16.4.1.1 allowance.",
     "rotation": "Median θ_max/θc of the suite at the design level (Eq 3.56: θc the rotation capacity).",
     "thesis_plane": "The variants in the plane of the thesis's two curved-base design parameters: the uplift "
-                    "base-shear coefficient tan α (Eq 3.34) and the rotation capacity θc (Eq 3.56).",
+                    "base-shear coefficient tan α (Eq 3.34) and the rotation capacity θc (Eq 3.56); one mark per "
+                    "analysed variant, and variants that fall on one point (equal tan α and θc) drawn as a small "
+                    "block of marks around it.",
 }
 
 
@@ -44,12 +48,6 @@ COLUMNS = (
 a cell has the number (a cylinder has no shear or θc, but a P(overturn) bound and θ_ot)."""
 
 
-def _svg(fig) -> str:
-    buf = io.StringIO()
-    fig.savefig(buf, format="svg")
-    return buf.getvalue()
-
-
 def write_design_report(result, data: dict, out_dir: Path, *, pdf: bool = True, recommended_check=None) -> dict:
     """Write ``design.html``, ``design.pdf`` (``pdf``) and the figures ``design_<name>.svg`` into ``out_dir``;
     ``recommended_check``: the full :class:`~rockdesign.planar.checks.check.CheckResult` of the recommended variant
@@ -62,14 +60,15 @@ def write_design_report(result, data: dict, out_dir: Path, *, pdf: bool = True, 
     if rule:
         captions["verdict"] = f"Pass/fail region: the verdict of the check ({rule}) for every variant, with the " \
                               "governing reason; filled: robust PASS, hatched: PASS that fails in some perturbation " \
-                              "draw, dotted outline: not analysed (its analysed neighbours all agree)."
+                              "draw, dotted outline: not analysed (its analysed neighbours all agree); black frame: " \
+                              "the recommended design."
     if any(c.get("theta_overturn") is not None for c in data["cells"]):
         columns = [("median θ_max/θ_ot", k, u) if k == "median_theta_max_over_theta_c" else (h, k, u)
                    for h, k, u in columns]
         captions["rotation"] = ("Median θ_max/θ_ot of the record pairs at the design level (θ_ot = overturn_tilt·α, "
                                 "thesis Sec 5.5.1: the tilt at which the cylinder counts as overturned).")
 
-    svgs = {k: _svg(f) for k, f in figs.items()}
+    svgs = {k: svg(f, f"design-{k}", crop=False) for k, f in figs.items()}      # text stays text (searchable)
     written = {}
     for k, text in svgs.items():
         path = out_dir / f"design_{k}.svg"
@@ -91,7 +90,7 @@ def write_design_report(result, data: dict, out_dir: Path, *, pdf: bool = True, 
                  "superstructure": (r.statistics.get("superstructure") or {})}
     env = environment()
     html = env.get_template(TEMPLATE).render(
-        css=stylesheet(), data=data, rows=rows, figures=svgs, captions=captions, check=check, columns=columns,
+        css=Markup(stylesheet()), data=data, rows=rows, figures=svgs, captions=captions, check=check, columns=columns,
         project=result.project, date=date.strftime("%Y-%m-%d"))
     path = out_dir / "design.html"
     path.write_text(html, encoding="utf-8")

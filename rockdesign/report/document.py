@@ -9,8 +9,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
-from .render import html_to_pdf, write_html
-
 
 @dataclass
 class ReportParts:
@@ -33,6 +31,7 @@ def write_document(parts: ReportParts, folder, *, pdf: bool = True, html: bool =
     Returns:
         {"html": path, "pdf": path} for the report files written.
     """
+    from .render import html_to_pdf, write_html      # (jinja2, the report's filters: only when a report is written)
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     for name, writer in parts.files.items():

@@ -77,3 +77,9 @@ def number(value, digits: int = DIGITS) -> str:
         m = f"{mantissa:.{digits - 1}f}".rstrip("0").rstrip(".")
         text = f"{m}·10{str(exponent).translate(_SUPERSCRIPT)}"
     return text.replace("-", "−")
+
+
+def plural(count: int, word: str, words: str | None = None) -> str:
+    """``count`` and the noun in the number it needs: "1 ground motion", "2 ground motions", "0 records"
+    (``words``: an irregular plural)."""
+    return f"{number(count)} {word if count == 1 else (words or word + 's')}"

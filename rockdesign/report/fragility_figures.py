@@ -10,9 +10,10 @@ from .. import mplfig as plt  # pyplot-free Figures: importing never switches th
 
 from ..acceptance.rule import first_overturn_scale  # noqa: E402
 from .formatting import fmt  # noqa: E402
-from ..plots import STYLE  # noqa: E402
+from ..plots import STYLE, clear_position, legend_above  # noqa: E402
 
 UNIT_LABELS = {"m/s^2": "m/s²", "m": "m"}
+"""Units of the intensity measure as the figure writes them (results.json keeps "m/s^2")."""
 
 
 def fragility_figure(result):
@@ -36,7 +37,7 @@ def fragility_figure(result):
     hi = max(x.max(), levels.max()) * 1.3
     grid = np.geomspace(lo, hi, 300)
     with plt.rc_context(STYLE):
-        fig, (ax, bx) = plt.subplots(2, 1, figsize=(6.6, 3.4 + 0.075 * n), sharex=True,
+        fig, (ax, bx) = plt.subplots(2, 1, figsize=(6.6, 4.6 + 0.075 * n), sharex=True,
                                      gridspec_kw={"height_ratios": [3.4, max(1.2, 0.075 * n)]})
         ax.plot(x[~cens], pos[~cens], "o", color="C0", ms=3.5, label="capacity of a record (first overturning)")
         if cens.any():
@@ -62,11 +63,11 @@ def fragility_figure(result):
         if p_fit is not None:
             text += f"\nP(fit) = {fmt(p_fit)}"
         text += f"\nP(RHA) = {fmt(f['p_overturn_empirical'])}"
-        ax.text(design * 1.03, 0.97, text, fontsize=7, va="top", ha="left")
+        note = ax.text(0, 0, text, fontsize=7, transform=ax.transAxes)
         ax.set_xscale("log")
         ax.set_ylim(-0.02, 1.02)
         ax.set_ylabel("P(overturn) [-]")
-        ax.legend(fontsize=6.5, loc="lower right")
+        legend_above(ax, ncol=1, fontsize=6.5)
         by_id = {o.id: o for o in result.records}
         for row, i in enumerate(order):
             o = by_id[caps[i]["id"]]
@@ -89,6 +90,9 @@ def fragility_figure(result):
             axis.xaxis.set_minor_formatter(ticker.FuncFormatter(
                 lambda v, _: f"{v:g}" if f"{v:.1e}"[0] in "25" else ""))
         fig.set_layout_engine("tight")
+        at = ax.transAxes.inverted().transform(ax.transData.transform((design, 0.0)))[0]
+        clear_position(ax, note, [(at + 0.01, 0.97, "left", "top"), (at - 0.01, 0.97, "right", "top"),
+                                  (0.99, 0.03, "right", "bottom"), (0.01, 0.97, "left", "top")])
         return fig
 
 

@@ -23,14 +23,15 @@ import jinja2
 
 from ..display import readable_units
 from ..paths import templates_dir
-from .formatting import fmt, number
+from .formatting import fmt, number, plural
 from .methods import cite
 
 TEMPLATE = "report.html.j2"
 STYLESHEET = "report.css"
 
-_SUBSCRIPT = re.compile(r"(?<![A-Za-z]{4})_([A-Za-z0-9α-ωΑ-Ω,]{1,5})(?![A-Za-z0-9_])")
-"""A thesis subscript (``SD_max``, ``u_B,max``, ``ü_g,up``); longer words (``mass_distribution``) are names."""
+_SUBSCRIPT = re.compile(r"(?<![A-Za-z_]{4})_([A-Za-z0-9α-ωΑ-Ω,]{1,5})(?![A-Za-z0-9_])")
+"""A thesis subscript (``SD_max``, ``u_B,max``, ``ü_g,up``); longer words (``mass_distribution``) and the parts of a
+name (``margin_max_scale``) are names."""
 
 
 def symbols(text) -> str:
@@ -44,7 +45,8 @@ def symbols(text) -> str:
 
 
 def environment(folder: Path | None = None) -> jinja2.Environment:
-    """The jinja2 environment of the report, with the filters ``fmt``, ``number`` and ``sym``."""
+    """The jinja2 environment of the report, with the filters ``fmt``, ``number``, ``sym``, ``svgimg``, ``cite``
+    and ``plural`` (``{{ n|plural("ground motion") }}`` → "1 ground motion", "2 ground motions")."""
     env = jinja2.Environment(loader=jinja2.FileSystemLoader(str(folder or templates_dir())),
                              autoescape=jinja2.select_autoescape(["html", "j2", "xml"], default=True),
                              undefined=jinja2.Undefined,   # a key missing from results.json prints "—"
@@ -54,6 +56,7 @@ def environment(folder: Path | None = None) -> jinja2.Environment:
     env.filters["sym"] = lambda text: jinja2.utils.markupsafe.Markup(symbols(text))
     env.filters["svgimg"] = svg_image
     env.filters["cite"] = lambda text: "" if isinstance(text, jinja2.Undefined) else cite(text)
+    env.filters["plural"] = lambda count, word, words=None: plural(count, word, words)    # 1 ground motion, 2 …
     return env
 
 

@@ -185,5 +185,6 @@ def test_the_column_template_passes_on_its_own_default_suite(tmp_path):
     acc = data["acceptance"]
     assert data["verdict"] == "PASS" and acc["n_ground_motions"] == 22 and acc["n_unacceptable"] == 0
     assert acc["acmr"] >= acc["acmr_required"] and acc["evaluated"] is True
-    assert data["verdict_reason"].startswith("PASS (ASCE 7-22 §16.4, risk category II): 0 of 22 ground motions "
-                                             "unacceptable (1 allowed); ACMR ")
+    assert data["verdict_reason"].startswith("PASS (ASCE 7-22 §16.4, risk category II; records scaled to PGA, not "
+                                             "per ASCE 7-22 §16.2): 0 of 22 ground motions unacceptable (1 allowed); "
+                                             "ACMR ")

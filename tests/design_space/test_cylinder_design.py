@@ -160,7 +160,7 @@ def test_an_impossible_diameter_is_an_invalid_cell(two_pairs, tmp_path):
     assert (out / "design.pdf").read_bytes()[:5] == b"%PDF-"        # the report with charts, and the full check
     assert data["recommended"]["check"]["verdict"] == "PASS"
     html = (out / "design.html").read_text(encoding="utf-8")
-    assert "P(overturn) bound" in html and "θ_ot" in html and "superstructure shear" not in html
+    assert "P(overturn) bound" in html and "θ<sub>ot</sub>" in html and "superstructure shear" not in html
     assert (out / "design_overturning.svg").is_file() and not (out / "design_shear.svg").exists()
 
 
@@ -194,7 +194,7 @@ def test_cylinder_charts_render_for_two_variables(grid):
     scanned = any(c["acmr"] is not None for c in data["cells"])
     assert {"verdict", "overturning", "rotation"} | ({"acmr"} if scanned else set()) == set(written) - {"html"}
     table = html[html.index("Variants</h2>"):]
-    assert "median θ_max/θ_ot" in table and "P(overturn) bound (limit)" in table
+    assert "median θ<sub>max</sub>/θ<sub>ot</sub>" in table and "P(overturn) bound (limit)" in table
     assert ("ACMR (required)" in table) == scanned and "shear coeff." not in table
 
 

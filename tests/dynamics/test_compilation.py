@@ -132,3 +132,25 @@ def test_the_real_calls_use_the_warm_up_machine_code():
         real_call()
         after = _signatures()
         assert {k: v for k, v in after.items() if before.get(k, 0) not in (0, v)} == {}, [g.name for g in groups]
+
+
+def test_the_load_factor_is_the_share_of_a_core_this_process_gets():
+    """The estimate's factor follows the competition for the cores, measured at once (the load average lagged it
+    by a minute): with twice as many busy processes as cores beside it, this process gets at most a third of a
+    core, and a compilation is announced as at least twice as long as on a quiet machine."""
+    import os
+    import subprocess
+    import sys
+    import time
+    quiet = compilation._load_factor()
+    assert quiet >= 1.0
+    busy = [subprocess.Popen([sys.executable, "-c", "import time\nt = time.time()\nwhile time.time() - t < 8: pass"])
+            for _ in range(2 * (os.cpu_count() or 1))]
+    try:
+        time.sleep(0.5)
+        crowded = compilation._load_factor()
+    finally:
+        for p in busy:
+            p.kill()
+            p.wait()
+    assert crowded >= 2.0 and crowded > quiet

@@ -80,9 +80,10 @@ def key_numbers(data: dict, *, margins: bool):
 
 def printed(where: str, value) -> str:
     """How the report prints a number of results.json: a check's demand/limit by the checks table's own
-    format (rockdesign.display.utilisation_text, three digits), every other number by ``fmt``."""
-    from rockdesign.display import utilisation_text
-    return utilisation_text(value) if where.startswith("checks[") else fmt(value)
+    format (the number of rockdesign.display.utilisation_text, "1.98" of "1.98 × limit"), every other number by
+    ``fmt``."""
+    from rockdesign.display import utilisation_number
+    return utilisation_number(value) if where.startswith("checks[") else fmt(value)
 
 
 def missing_numbers(written, *, margins: bool) -> list[str]:

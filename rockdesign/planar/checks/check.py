@@ -26,7 +26,7 @@ from ...kernel_cache import sources_digest
 from ...errors import ProjectError
 from ...motions.asce7_22 import rocking_structure_periods, scaling_period_range
 from ...motions.config import default_excitation, resolve_motions
-from ...motions.scaling_report import scaling_block, scaling_sentence, suite_target
+from ...motions.scaling_report import headline_basis, method_block, scaling_block, scaling_sentence, suite_target
 from ...motions.measures import plausibility_warnings
 from ...motions.spectra import motion_spectrum, period_grid, sd_max
 from ..project import Project
@@ -40,7 +40,7 @@ from ...acceptance.collapse_margin import collapse_margin
 from .ensemble import ensemble_summary, record_fields, run_ensembles
 from ...acceptance.fragility import check_fragility
 from ...acceptance.scans import SCAN_AFTER_FIRST, SCAN_RATIO, Margin, scan_grid
-from .margins import overturning_margins, scan_need
+from .margins import decided_at_design_level, overturning_margins, scan_need
 from .polyakov import CLASS_MEANING, CLASSES, PolyakovRule, classify
 from .runner import RunSummary, run_jobs
 from .selection import ModelSelection, select_model
@@ -243,12 +243,17 @@ def characteristic_periods(system, q) -> dict[str, float]:
     superstructure's fixed-base T_s and uplifted T_s/S_r (Eq 4.25), and the rocking period at the design
     rotation θ = α/2, T_R = (4/p̂) acosh(1/(1 − θ/α)) = (4/p̂) acosh 2 (Eq 2.8) with the system's frequency
     parameter p̂ (Eq 4.32 for a podium; p, Eq 3.13, for a column)."""
-    p_hat = q["p_hat"].value if "p_hat" in q else q["p"].value
     s = system.superstructure
     elastic = s is not None and not s.rigid and "S_r" in q
     t_s = 2.0 * math.pi / s.omega_s if elastic else None
-    return rocking_structure_periods(fixed_base=t_s, uplifted=t_s / q["S_r"].value if elastic else None,
-                                     rocking=4.0 / p_hat * math.acosh(2.0))
+    periods = rocking_structure_periods(fixed_base=t_s, uplifted=t_s / q["S_r"].value if elastic else None)
+    # named with its frequency parameter and rotation, as the quantities table names T_R (one value per symbol)
+    if "p_hat" in q:
+        label = f"rocking period T_R(α/2; p̂) = (4/p̂) acosh 2 (Eq 2.8 with p̂, {q['p_hat'].equation})"
+        periods[label] = 4.0 / q["p_hat"].value * math.acosh(2.0)
+    else:
+        periods["rocking period T_R(α/2; p) (Eq 2.8)"] = 4.0 / q["p"].value * math.acosh(2.0)
+    return periods
 
 
 def _records(project: Project, q, records_dir):
@@ -390,7 +395,8 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     extra = {"ensemble": ens, "collapse_margin": margin_fema}
     items, skipped = evaluate_criteria(CheckContext(outcomes, a, q, sensitivity, margins_run, extra, acc_rule),
                                        criteria_for(acc_rule))
-    decision = decide(items, skipped, acc_rule)
+    decision = decide(items, skipped, acc_rule,
+                      basis=headline_basis(scaling if scaling is not None else method_block(resolved)))
     acceptance = acceptance_summary(acc_rule, items, decision, valid, margin_fema,
                                     scans=None if flip_scans is None else
                                     [flip_scans[i] for i, o in enumerate(outcomes) if not analysis_failed(o.run.status)])
@@ -438,20 +444,6 @@ def suite_records(project: Project, records_dir: str | None = None):
     ``records`` hook): the records read and scaled once, e.g. for every variant of a design grid."""
     q = design_quantities(project.system, project.analysis.rigid_superstructure_ratio)
     return _records(project, q, records_dir)
-
-
-def decided_at_design_level(rule, records, runs) -> bool:
-    """True when the design-level suite alone already makes the verdict FAIL, whatever the incremental
-    analyses would add (SPEC §15): an analysis failed (never counted as safe), or the count rule of
-    the acceptance method fails (ASCE 7-22 §16.4.1.1 count, or the binomial bound at the design level).
-    The margins can only add failing criteria, never remove one, so the word cannot change."""
-    if any(analysis_failed(r.status) for r in runs):
-        return True
-    from types import SimpleNamespace
-    from ...acceptance.rule import count_rule
-    rows = [SimpleNamespace(id=rec.id, ground_motion=ground_motion_id(rec.id, rec.meta)) for rec in records]
-    holds = count_rule(rule, rows, {rec.id for rec, r in zip(records, runs) if r.overturned})[0]
-    return not holds
 
 
 def _statistics(outcomes: list[RecordOutcome], a, with_margins: bool) -> dict:

@@ -35,7 +35,7 @@ class PolyakovRule2(Criterion):
         median = statistics.median(ratios)
         n_b = sum(o.klass == "b" for o in valid)
         detail = (f"{sum(x >= 1 for x in ratios)} of {len(ratios)} records with SD_max ≥ capacity; "
-                  f"{n_b} false negative(s) (class b)")
+                  f"{n_b} false negative{'' if n_b == 1 else 's'} (class b)")
         return self.item(median, median < 1.0, detail, f"median SD_max/u_B(θc) = {median:.3g}")
 
 
@@ -72,7 +72,7 @@ class LargestRotation(Criterion):
         worst = max((o.run.theta_max_over_theta_c for o in valid), default=math.inf)
         n_cap = sum(o.run.theta_max_over_theta_c >= 1.0 or o.run.overturned for o in valid)
         passed = n_cap == 0 and worst < 1.0
-        detail = "every record below capacity" if passed else f"{n_cap} record(s) reach the capacity θc"
+        detail = "every record below capacity" if passed else (f"{n_cap} record{' reaches' if n_cap == 1 else 's reach'} the capacity θc")
         return self.item(min(worst, 1e300), passed, detail, f"largest θ_max/θc = {worst:.3g}")
 
 

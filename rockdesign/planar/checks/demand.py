@@ -141,7 +141,8 @@ def superstructure_demand(system, chosen: ModelChoice, motions, runs, run_kw, up
         summary["n_overturned_2dof"] = n_ot_2dof
         summary["n_overturned_model"] = n_ot_chosen
         if n_ot_2dof != n_ot_chosen:
-            notes.append(f"The 2DOF podium overturns under {n_ot_2dof} record(s), the {chosen.label} model under "
+            notes.append(f"The 2DOF podium overturns under {n_ot_2dof} record{'' if n_ot_2dof == 1 else 's'}, the "
+                         f"{chosen.label} model under "
                          f"{n_ot_chosen}.")
     s = system.superstructure
     period = 2.0 * math.pi / s.omega_s

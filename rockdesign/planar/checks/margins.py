@@ -14,7 +14,7 @@ from types import SimpleNamespace
 from ..dynamics.model import ModelChoice
 from ...acceptance.flip import allowance
 from ...acceptance.fragility import record_intensities
-from ...acceptance.rule import acceptance_rule
+from ...acceptance.rule import acceptance_rule, count_rule
 from ...motions.grouping import ground_motion_id
 from .runner import analysis_failed
 from ...acceptance.scans import SCAN_AFTER_FIRST, SCAN_BLOCK, SCAN_RATIO, Margin, ScanNeed, scan_grid
@@ -160,3 +160,15 @@ def scan_need(a, records, runs, motions, sds, decided_fail: bool):
         ims = record_intensities(rows, a.fragility_im, a.fragility_period if a.fragility_im == "sa" else None)
     return ScanNeed(gms, [bool(r.overturned) for r in runs], allowance(acceptance_rule(a), len(set(gms))), ims,
                     incremental=not decided_fail)
+
+
+def decided_at_design_level(rule, records, runs) -> bool:
+    """True when the design-level suite alone already makes the verdict FAIL, whatever the incremental
+    analyses would add (SPEC §15): an analysis failed (never counted as safe), or the count rule of
+    the acceptance method fails (ASCE 7-22 §16.4.1.1 count, or the binomial bound at the design level).
+    The margins can only add failing criteria, never remove one, so the word cannot change."""
+    if any(analysis_failed(r.status) for r in runs):
+        return True
+    rows = [SimpleNamespace(id=rec.id, ground_motion=ground_motion_id(rec.id, rec.meta)) for rec in records]
+    holds = count_rule(rule, rows, {rec.id for rec, r in zip(records, runs) if r.overturned})[0]
+    return not holds

@@ -68,7 +68,8 @@ def select_model(system, analysis, motions, run_kw, *, progress=None) -> tuple[M
             break
         # reject the cheaper part that differs: equations first (auto), then the structure (auto)
         why = (f"{chosen.label} rejected: max |Δ(θ_max/θc)| = {selection.max_difference:.3g} "
-               f"(tolerance {a.linearization_tolerance:g}), {selection.verdict_changes} verdict change(s) "
+               f"(tolerance {a.linearization_tolerance:g}), {selection.verdict_changes} verdict "
+               f"change{'' if selection.verdict_changes == 1 else 's'} "
                f"on the governing records")
         rejected.append(why)
         if chosen.equations == "linear" and a.equations == "auto":
@@ -88,7 +89,7 @@ def select_model(system, analysis, motions, run_kw, *, progress=None) -> tuple[M
         selection.reason = (f"{chosen.label}: {s_reason}; {e_reason}. Verified against the full model "
                             f"({full.label}) on the {len(selection.verification)} governing records: "
                             f"max |Δ(θ_max/θc)| = {selection.max_difference:.3g}, "
-                            f"{selection.verdict_changes} verdict change(s).")
+                            f"{selection.verdict_changes} verdict change{'' if selection.verdict_changes == 1 else 's'}.")
     return selection, results
 
 

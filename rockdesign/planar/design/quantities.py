@@ -102,8 +102,9 @@ def design_quantities(system: RockingSystem, rigid_ratio: float = RIGID_SUPERSTR
     add("u_capacity", "u_B(θc)", "column-top displacement capacity (Polyakov's 2B)", displacement_capacity(c), "m",
         "Eqs 3.46/3.51, 3.83 at θc", "u_B = 2u_C(θc)", "",
         "2B" if ext == "none" else ("2B'" if ext == "flat" else "generalized capacity (ours, docs/model.md §6)"))
-    add("rocking_period", "T_R(α/2)", "linearized free-rocking period from θ0 = α/2", rocking_period(p, alpha, alpha / 2),
-        "s", "Eq 2.8", "T_R = (4/p) acosh(1/(1 − θ0/α))", f"(4/{_f(p)}) acosh(2)")
+    add("rocking_period", "T_R(α/2; p)", "linearized free-rocking period of one column (its p) from θ0 = α/2",
+        rocking_period(p, alpha, alpha / 2), "s", "Eq 2.8", "T_R = (4/p) acosh(1/(1 − θ0/α))", f"(4/{_f(p)}) acosh(2)",
+        "the rocking period at the design rotation θ = α/2, which bounds the ASCE 7-22 §16.2.1 period range")
     if system.kind == "podium":
         add("gamma", "γ", "cap-beam to columns mass ratio m_B/(N m_C)", system.gamma, "-", "Eq 3.77",
             "γ = m_B/(N m_C)", f"{_f(system.cap_beam_mass)} kg/({system.n_columns}·{_f(c.mass)} kg)")
@@ -118,6 +119,12 @@ def design_quantities(system: RockingSystem, rigid_ratio: float = RIGID_SUPERSTR
     p_hat, p_hat_eq, p_hat_formula, p_hat_sub = frequency_parameter_derivation(system)
     if p_hat_eq != "Eq 3.13":
         add("p_hat", "p̂", "frequency parameter of the system", p_hat, "1/s", p_hat_eq, p_hat_formula, p_hat_sub)
+        # one period, two frequency parameters: the table's T_R is one column's (p); the system rocks with p̂
+        t_system = rocking_period(p_hat, alpha, alpha / 2)
+        q["rocking_period"] = dataclasses.replace(q["rocking_period"], note=(
+            f"one column's period; the {'podium' if system.kind == 'podium' else 'frame'} rocks with p̂ = "
+            f"{p_hat:.4g} 1/s ({p_hat_eq}): T_R(α/2; p̂) = (4/p̂) acosh 2 = {t_system:.3g} s, the rocking period "
+            "that bounds the ASCE 7-22 §16.2.1 period range"))
     crit = at_critical_curvature(system)
     if g_hat > 0.0 or crit or ext == "flat":
         ratio = (slenderness_angle(c.half_width_ext, H) / alpha) if crit else 1.0

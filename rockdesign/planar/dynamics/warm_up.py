@@ -35,7 +35,7 @@ def linear_exact() -> None:
     simulate(system, pulse, model="linear-exact", t_end=0.05)
 
 
-ENGINE = Kernels("planar-engine", engine, 35.0)
+ENGINE = Kernels("planar-engine", engine, 42.0)
 """The batch kernel and the integrator it runs (every planar analysis)."""
 LINEAR_EXACT = Kernels("planar-linear-exact", linear_exact, 5.0)
 """The closed-form linear integrator."""

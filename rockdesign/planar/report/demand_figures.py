@@ -64,9 +64,9 @@ def demand_history_figure(result):
             for s in (1, -1):
                 axes[1].axhline(s * r.fixed_base_acceleration_max / g, color="C7", lw=0.6, ls="--")
         axes[1].set_ylabel("a$_T$/g [-]")
-        axes[1].text(0.01, 0.95, f"peak {fmt(peak)} (dotted); fixed base "
-                     f"{fmt((r.fixed_base_acceleration_max or 0.0) / g)} (dashed)", fontsize=7,
-                     transform=axes[1].transAxes, va="top")
+        # the peaks above the panel, beside the lines they name (on the panel the words sat on the trace)
+        axes[1].set_title(f"peak ±{fmt(peak)} (dotted); on a fixed base ±"
+                          f"{fmt((r.fixed_base_acceleration_max or 0.0) / g)} (dashed)", fontsize=7, loc="left")
         axes[2].plot(r.t, r.u_rel * 1e3, color="C1", lw=0.6)
         axes[2].set_ylabel("u$_T$ − u$_B$ [mm]")
         axes[2].set_xlabel("t [s]")

@@ -17,8 +17,8 @@ from matplotlib.collections import LineCollection  # noqa: E402
 from ..checks.polyakov import CLASS_MEANING, CLASSES  # noqa: E402
 from ..design.geometry import rocking_geometry  # noqa: E402
 from ..design.pushover import pushover_curve  # noqa: E402
-from ...report.formatting import fmt, number  # noqa: E402
-from ...plots import STYLE, time_history_figure  # noqa: E402
+from ...report.formatting import fmt, number, plural  # noqa: E402
+from ...plots import STYLE, clear_position, legend_above, time_history_figure  # noqa: E402
 
 CLASS_COLOURS = {"a1": "#2c7fb8", "a2": "#7fcdbb", "b": "#d7301f", "c": "#fdae61", "d": "#7f2704"}
 """Periods of the plotted elastic spectra (log grid over the SD_max band)."""
@@ -52,7 +52,7 @@ def pushover_figure(system):
         ax.set_ylabel(r"$F_R/(m_C\,g)$ [-]")
         ax.set_xlim(0.0, geo.theta_c * 1.08)
         ax.set_ylim(min(0.0, force.min()) - 0.05 * max(force.max(), 1e-9), force.max() * 1.15)
-        ax.legend(fontsize=7, loc="upper right")
+        legend_above(ax, ncol=2)
         fig.set_layout_engine("tight")
         return fig
 
@@ -77,9 +77,9 @@ def spectra_figure(result):
         ax.set_ylim(0.0, max(float(np.max(sds)) if sds.size else 0.0, rule.capacity) * 1.08)
         ax.set_xlabel("period T [s]")
         ax.set_ylabel("SD [m]")
-        ax.set_title(f"elastic displacement spectra, ζ = {fmt(100 * rule.damping)} %, "
-                     f"band {fmt(rule.band[0])}–{fmt(rule.band[1])} s", fontsize=8, loc="left")
-        ax.legend(fontsize=7, loc="upper left")
+        fig.suptitle(f"elastic displacement spectra, ζ = {fmt(100 * rule.damping)} %, "
+                     f"band {fmt(rule.band[0])}–{fmt(rule.band[1])} s", fontsize=8, x=0.02, ha="left")
+        legend_above(ax, ncol=2)
         fig.set_layout_engine("tight")
         return fig
 
@@ -103,11 +103,8 @@ def polyakov_scatter_figure(result):
         ax.plot([0, 1], [0, 1], color="0.4", lw=0.8, ls="--")
         ax.axvline(1.0, color="0.2", lw=0.9)
         ax.axhline(1.0, color="0.2", lw=0.9)
-        places = {"a1": (0.97, 0.97, "right", "top"), "a2": (0.03, 0.97, "left", "top"),
-                  "b": (0.5, 0.5 * (1 + y_top), "center", "center"), "c": (x_top - 0.03, 0.97, "right", "top"),
-                  "d": (x_top - 0.03, 1.03, "right", "bottom")}
-        for k, (lx, ly, ha, va) in places.items():
-            ax.text(lx, ly, k, fontsize=11, fontweight="bold", ha=ha, va=va, color=CLASS_COLOURS[k], zorder=1)
+        labels = {k: ax.text(0, 0, k, fontsize=11, fontweight="bold", color=CLASS_COLOURS[k], zorder=1)
+                  for k in CLASS_COLOURS}
         counts = {c: 0 for c in CLASSES}
         for o, (x, y) in zip(result.records, pts):
             counts[o.klass] += 1
@@ -130,7 +127,23 @@ def polyakov_scatter_figure(result):
         ax.set_ylabel("$u_{B,max}$ / $u_B$(θc)  (RHA)")
         ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, frameon=False)
         fig.set_layout_engine("tight")
+        _place_class_labels(ax, labels, x_top, y_top)
         return fig
+
+
+def _place_class_labels(ax, labels: dict, x_top: float, y_top: float) -> None:
+    """Each region's letter (thesis Fig 4.9) at the first place inside its region where no record's marker lies
+    under it: its usual corner first, then over a grid of the region."""
+    d = 0.03
+    first = {"a1": (1 - d, d, "right", "bottom"), "a2": (d, 1 - d, "left", "top"),
+             "b": (0.5, 0.5 * (1 + y_top), "center", "center"), "c": (x_top - d, 1 - d, "right", "top"),
+             "d": (x_top - d, 1 + d, "right", "bottom")}
+    inside = {"a1": lambda x, y: y < x - 0.08, "a2": lambda x, y: x < 1 and y < 1 and y > x + 0.08,
+              "b": lambda x, y: x < 1 and y > 1, "c": lambda x, y: x > 1 and y < 1, "d": lambda x, y: x > 1 and y > 1}
+    xs, ys = np.linspace(0.05, x_top - 0.05, 14), np.linspace(0.05, y_top - 0.05, 10)
+    for k, text in labels.items():
+        grid = [(x, y, "center", "center") for y in ys for x in xs if inside[k](x, y)]
+        clear_position(ax, text, [first[k]] + grid)
 
 
 def margin_figure(result):
@@ -213,15 +226,17 @@ def ecdf_figure(result):
         fs = np.concatenate([[0.0], f])
         ax.step(xs, fs, where="post", color="C0", lw=1.3, label=f"ECDF of θ$_{{max}}$/α ({len(x)} records)")
         ax.axvline(limit, color="C3", lw=1.0, ls="--", label=f"θc/α = {fmt(limit)}")
-        if beyond:
-            ax.text(limit * 1.02, 0.05, f"{beyond} record(s) with θ$_{{max}}$ ≥ θc\n(drawn at the right edge)",
-                    fontsize=7, color="C3", ha="left", va="bottom")
         ax.set_xlim(0.0, x_top)
         ax.set_ylim(0.0, 1.02)
         ax.set_xlabel("θ$_{max}$/α [-]")
         ax.set_ylabel("F [-]")
-        ax.legend(fontsize=7, loc="upper left")
+        legend_above(ax, ncol=2)
         fig.set_layout_engine("tight")
+        if beyond:
+            note = ax.text(0, 0, f"{plural(beyond, 'record')} with θ$_{{max}}$ ≥ θc\n(drawn at the right edge)",
+                           fontsize=7, color="C3", transform=ax.transAxes)
+            clear_position(ax, note, [(0.98, 0.04, "right", "bottom"), (0.98, 0.5, "right", "center"),
+                                      (0.02, 0.96, "left", "top")])
         return fig
 
 
@@ -240,8 +255,9 @@ def history_figure(result, record_id: str):
     if peak > HISTORY_CLIP * limit:
         top = HISTORY_CLIP * limit
         axes[1].set_ylim(-top, top)
-        axes[1].text(0.01, 0.96, f"clipped at ±{fmt(HISTORY_CLIP)} θc/α (peak {fmt(peak)})", fontsize=7,
-                     transform=axes[1].transAxes, ha="left", va="top", color="C3")
+        handles, _ = axes[1].get_legend_handles_labels()
+        note = plt.Line2D([], [], ls="", label=f"θ/α clipped at ±{fmt(HISTORY_CLIP)} θc/α (peak {fmt(peak)})")
+        legend_above(axes[1], handles=handles + [note], ncol=3)
         u_top = HISTORY_CLIP * response.u_capacity
         axes[2].set_ylim(-u_top, u_top)
     return fig

@@ -7,6 +7,7 @@ import jinja2
 from ...paths import templates_dir
 from ...report.formatting import DIGITS
 from ...report.render import TEMPLATE, environment, stylesheet
+from ...report.scaling_figures import has_target, scaling_figure
 from ...report.svg import ink_box, svg
 from . import figures
 from .demand_figures import demand_figure, demand_history_figure
@@ -37,6 +38,9 @@ def make_figures(result) -> dict[str, tuple]:
         "ecdf": (figures.ecdf_figure(result), "ecdf", None),
         "margins": (figures.margin_figure(result), "margins", None),
     }
+    scaling = result.as_json()["excitation"].get("scaling")
+    if has_target(scaling):
+        out["scaling"] = (scaling_figure(scaling, system.g), "scaling", None)
     if getattr(result, "fragility", None) and result.fragility.get("capacities"):
         from ...report.fragility_figures import fragility_figure
         out["fragility"] = (fragility_figure(result), "fragility", None)
