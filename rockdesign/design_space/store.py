@@ -34,7 +34,7 @@ FORMAT = 4
 VERDICTS = ("PASS", "FAIL", "INVALID", "ERROR")
 NUMBERS = ("acmr", "acmr_required", "p_collapse_design", "target_p_collapse", "superstructure_shear_p84",
            "superstructure_drift_p84", "median_theta_max_over_theta_c", "uplift_acceleration",
-           "uplift_shear_coefficient", "theta_c", "column_material")
+           "uplift_shear_coefficient", "theta_c", "column_material", "material", "demand", "flip_margin")
 COUNTS = ("n_unacceptable", "allowed_unacceptable", "n_ground_motions")
 PLACE = ("index", "values", "labels", "notes")
 """The cell's place in a grid: written by the grid that reads the variant, not stored."""

@@ -32,6 +32,7 @@ class Planar(StructureKind):
     grid = planar_grid
     experiments = planar_experiments
     design_rule = planar_grid.RULE
+    design_demand = "superstructure shear coefficient (84th percentile"
     design_skipped = planar_grid.SKIPPED
 
     def grid_batches(self, executor=None):

@@ -86,8 +86,8 @@ def test_no_cell_left_out_touches_a_cell_of_another_category():
 def _cell(i, verdict="PASS", robust=True, shear=None, mass=1000.0, failed=0, analysed=True):
     return {"index": [i], "values": {"x": float(i)}, "labels": {"x": f"{i} m"}, "verdict": verdict,
             "robust": robust if verdict == "PASS" else None, "analysed": analysed,
-            "draws": {"n": 3 if failed else 10, "failed": failed}, "superstructure_shear_p84": shear,
-            "column_material": mass, "acmr": None, "acmr_required": None, "n_unacceptable": 0,
+            "draws": {"n": 3 if failed else 10, "failed": failed}, "demand": shear,
+            "material": mass, "acmr": None, "acmr_required": None, "n_unacceptable": 0,
             "n_ground_motions": 11, "allowed_unacceptable": 1,
             "robustness": "robust: …" if robust else "not robust: fails in 1 of 3 draws"}
 
