@@ -11,17 +11,11 @@ The library API (imported on first use, so ``import rockdesign`` stays light)::
     s = rd.spectrum(project, pulse="sine", out_dir="spectrum/")
     chart = rd.design(project, ["podium.width=0.36m:0.60m:7"], out_dir="design/")
 """
-import os
-
 __version__ = "0.1.0"
 
-# numba's OpenMP threads wait for work by sleeping, not spinning: on a shared machine a spinning thread
-# burns the CPU time the analyses need (batches ran up to 2× slower; docs/engine.md, "Threads").  Read
-# by GNU OpenMP when numba first starts its threads; a value the user set is kept.
-os.environ.setdefault("OMP_WAIT_POLICY", "passive")
-
-# numba caches the kernels in a folder of the user's cache named by the digest of their sources, never in
-# the package (rockdesign.kernel_cache); set before any module with a kernel is imported.
+# numba caches rockdesign's kernels in a folder of the user's cache named by the digest of their sources, never
+# in the package, and only rockdesign's: a finder executes each module that defines kernels with numba's cache
+# folder set, restoring it after (rockdesign.kernel_cache).  os.environ is not changed; nothing is imported.
 from .kernel_cache import use_kernel_cache  # noqa: E402
 
 use_kernel_cache()

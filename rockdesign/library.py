@@ -31,11 +31,12 @@ from collections.abc import Mapping
 from pathlib import Path
 
 from .execution import compilation
-from .errors import ProjectError
-from .execution.executor import make_executor
+from .errors import ProjectError, RockdesignError
+from .execution.executor import check_executor, make_executor
 from .kinds import kind_of, kind_of_document
 from .kinds.base import SpectrumOptions
 from .outdir import OutputFolder
+from .paths import require_path
 from .progress import progress_bars
 from .project_tables import Project, read_document
 from .quantity import Quantity
@@ -51,6 +52,10 @@ def _require_project(project, function: str) -> None:
                            expected="a Project (rd.load_project or rd.parse_project)", found=type(project).__name__)
 
 
+KEYED_BY_MOTION = ("record id",)
+"""Keys of the record loader that a motion string's errors report as the parameter ``motion``."""
+
+
 # --- the project ---------------------------------------------------------------------------------
 def load_project(path: str | Path) -> Project:
     """Read and validate a project file (CONTRACT §1) of any kind of structure into a :class:`Project` (SI).
@@ -58,7 +63,14 @@ def load_project(path: str | Path) -> Project:
     Everything is validated here, once — ``[excitation]`` and ``[analysis]`` included, parsed into the
     typed ``project.excitation`` and ``project.analysis`` — so every command refuses the same input.
     """
-    raw, text = read_document(path)
+    require_path(path, "path", "a project file name")
+    try:
+        raw, text = read_document(path)
+    except ProjectError as exc:
+        if exc.key is None:          # the file itself (not found, unreadable, not TOML): the parameter path
+            exc.key = "path"
+            exc.args = (exc.format(),)
+        raise
     return kind_of_document(raw).parse(raw, file=str(path), text=text)
 
 
@@ -145,8 +157,16 @@ def simulation_request(project: Project, motion, *, model: str = "auto", t_end: 
     """Parse a CONTRACT §2 motion string (or take a motion object) and validate the whole request, analysing
     (and compiling) nothing: bad input is reported at once, also on a first run."""
     _require_project(project, "simulate")
-    return kind_of(project).simulation_request(project, motion, model=model, t_end=t_end, rtol=rtol,
-                                               records_dir=str(records_dir) if records_dir else None)
+    if records_dir is not None:
+        require_path(records_dir, "records_dir", "a folder of record files")
+    try:
+        return kind_of(project).simulation_request(project, motion, model=model, t_end=t_end, rtol=rtol,
+                                                   records_dir=str(records_dir) if records_dir else None)
+    except RockdesignError as exc:
+        if exc.key is None or exc.key in KEYED_BY_MOTION:    # the record a motion names: the caller's ``motion``
+            exc.key = "motion"
+            exc.args = (exc.format(),)
+        raise
 
 
 def run_simulation(request, *, say=None):
@@ -184,8 +204,13 @@ def simulate(project: Project, motion, *, model: str = "auto", t_end: float | No
 
 # --- the design check ----------------------------------------------------------------------------
 def check_options(project: Project, *, records_dir=None, executor=None) -> None:
-    """Refuse ``records_dir`` / ``executor`` where the project's kind has no use for them."""
-    kind_of(project).check_options(project, records_dir=records_dir, executor=executor)
+    """Refuse ``records_dir`` / ``executor`` where the project's kind has no use for them, and arguments of the
+    wrong type; a dask value (``"local:4"``, ``"tcp://host:8786"``) is checked, and a scheduler must answer."""
+    _require_project(project, "check")
+    if records_dir is not None:
+        require_path(records_dir, "records_dir", "a folder of record files")
+    kind_of(project).check_options(project, records_dir=records_dir, executor=executor)   # a kind's refusal first
+    check_executor(executor)
 
 
 def prepare_check(project: Project, *, records_dir=None, say=None) -> None:
@@ -204,6 +229,7 @@ def run_check(project: Project, *, progress: bool = False, records_dir=None, mar
     """The design check (see :func:`check`); ``executor`` may also be a ``--dask`` value ("local:N" or a
     scheduler address), started and closed here."""
     kind = kind_of(project)
+    check_executor(executor, reach=False)
     owned = None
     if isinstance(executor, str):
         owned = executor = make_executor(executor)
@@ -234,13 +260,14 @@ def check(project: Project, *, progress: bool = False, records_dir: str | Path |
         record, or per record pair of a cylinder), ``checks``, ``statistics`` and ``as_json()`` =
         results.json (the same sections for every kind; docs/model.md, docs/cylinder.md).
     """
-    _require_project(project, "check")
-    kind_of(project).check_options(project, records_dir=records_dir, executor=executor)
+    check_options(project, records_dir=records_dir, executor=executor)
     return run_check(project, progress=progress, records_dir=records_dir, margins=margins, executor=executor)
 
 
 def check_output_folder(project: Project, target, *, key: str = "out_dir") -> OutputFolder:
     """The output folder of a project's check (validated; owns the files the kind writes there)."""
+    if not isinstance(target, OutputFolder):
+        require_path(target, key, "a folder name")
     return kind_of(project).output_folder(target, key=key)
 
 
@@ -256,6 +283,8 @@ def write_report(result, out_dir, *, pdf: bool = True, html: bool = True) -> Pat
         The output folder.
     """
     kind = kind_of(result)
+    if not isinstance(out_dir, OutputFolder):
+        require_path(out_dir, "out_dir", "a folder name")
     folder = out_dir if isinstance(out_dir, OutputFolder) else kind.output_folder(out_dir, key="out_dir")
     data = result.as_json()
     with folder.staging() as tmp:
@@ -315,6 +344,9 @@ def spectrum(project: Project, *, pulse: str | None = None, record: str | None =
         KeyboardInterrupt saying how many chunks were kept: the same call resumes from them.
     """
     _require_project(project, "spectrum")
+    if out_dir is not None:
+        require_path(out_dir, "out_dir", "a folder name")
+    check_executor(executor, reach=False)       # a dask value is reached when the spectrum starts its executor
     if isinstance(relative, (str, Path)):
         relative = load_project(relative)
     elif relative is not None and not isinstance(relative, Project):

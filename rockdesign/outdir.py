@@ -26,6 +26,7 @@ import threading
 from pathlib import Path
 
 from .errors import RockdesignError
+from .paths import expand_user, user_path_errors
 
 RUN_FILES = frozenset({"report.pdf", "report.html", "results.json", "results.csv"})
 """The files a design check writes (CONTRACT §4); a folder holding only these may be replaced."""
@@ -53,7 +54,7 @@ class OutputFolder:
     """
 
     def __init__(self, target, *, key: str = "out_dir", owned=RUN_FILES):
-        self.target = Path(target).expanduser()
+        self.target = expand_user(target, key, error=OutputError)
         self.key = key
         self.owned = frozenset(owned) | OS_METADATA
         self._lock_fd: int | None = None
@@ -64,7 +65,12 @@ class OutputFolder:
         return OutputError(detail, key=self.key, expected=expected, found=found)
 
     def validate(self) -> None:
-        """Raise :class:`OutputError` unless the run can write the folder (call before analysing)."""
+        """Raise :class:`OutputError` unless the run can write the folder (call before analysing); a name too long
+        for the file system or a folder on the way that cannot be read is refused too."""
+        with user_path_errors(self.key, self.target, error=OutputError):
+            self._validate()
+
+    def _validate(self) -> None:
         t = self.target
         if t.is_symlink() and not t.exists():
             refuse_wrong_type(t, self.key, folder=True)
@@ -253,10 +259,11 @@ def created_folder(path, key: str) -> Path:
     :func:`discard_unfinished` removes it again if no file was written in it — a failed run leaves
     no empty folder (files kept on purpose, such as the chunks a spectrum resumes from, stay).
     """
-    path = Path(path).expanduser()
-    for p in [path, *path.parents]:
-        refuse_wrong_type(p, key, folder=True)
-    missing = [p for p in [path, *path.parents] if not p.exists()]
+    path = expand_user(path, key, error=OutputError)
+    with user_path_errors(key, path, error=OutputError):
+        for p in [path, *path.parents]:
+            refuse_wrong_type(p, key, folder=True)
+        missing = [p for p in [path, *path.parents] if not p.exists()]
     try:
         path.mkdir(parents=True, exist_ok=True)
     except OSError as exc:

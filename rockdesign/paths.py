@@ -10,7 +10,9 @@ and every command works from any directory.  ``ROCKDESIGN_GROUND_MOTIONS`` /
 """
 from __future__ import annotations
 
+import errno
 import os
+from contextlib import contextmanager
 from importlib import resources
 from pathlib import Path
 
@@ -58,3 +60,78 @@ def shared_dir() -> Path | None:
         if (c / "SPEC.md").exists():
             return c
     return None
+
+
+# --- paths the user gives -------------------------------------------------------------------------------
+def require_path(value, key: str, what: str = "a file name") -> None:
+    """Refuse a path argument that is not text or a path (``rd.load_project(None)``, ``out_dir=123``) or is
+    blank, naming the parameter ``key``."""
+    from .errors import ProjectError
+    if isinstance(value, bool) or not isinstance(value, (str, os.PathLike)) or \
+            (isinstance(value, str) and not value.strip()):
+        raise ProjectError("not a path", key=key, expected=f"{what} (a string or a pathlib.Path)",
+                           found=f"{value!r} ({type(value).__name__})")
+
+
+def expand_user(path, key: str | None, *, file: str | None = None, error=None) -> Path:
+    """``Path(path).expanduser()``, or an input error naming ``key`` (and ``file``) when ``~user`` names no
+    user of this machine or there is no home folder (Python raises RuntimeError "Could not determine home
+    directory").  ``error``: the error class (default :class:`~rockdesign.errors.ProjectError`)."""
+    from .errors import ProjectError
+    try:
+        return Path(path).expanduser()
+    except RuntimeError:
+        text = str(path)
+        user = text.split("/", 1)[0].split(os.sep, 1)[0]
+        raise (error or ProjectError)(
+            f"'{user}' names no home folder on this machine", file=file, key=key,
+            expected="a path whose ~user is a user of this machine (or a path without ~)",
+            found=repr(text)) from None
+
+
+def path_problem(exc: OSError) -> str:
+    """A path's OS error in words (a name too long, no permission, …), for messages."""
+    if exc.errno == errno.ENAMETOOLONG:
+        return "a file name too long for the file system (Errno 36)"
+    if exc.errno in (errno.EACCES, errno.EPERM):
+        return "no permission to read a folder on the way (Errno 13)"
+    if exc.errno == errno.ELOOP:
+        return "a loop of symbolic links (Errno 40)"
+    return exc.strerror or str(exc)
+
+
+PATH_ERRNOS = frozenset({errno.ENAMETOOLONG, errno.EACCES, errno.EPERM, errno.ELOOP})
+"""OS errors of a path the user gave, not of rockdesign: ENAMETOOLONG, EACCES, EPERM, ELOOP."""
+
+
+@contextmanager
+def user_path_errors(key: str | None, path, *, file: str | None = None, error=None):
+    """Inside, an OS error that a user's path causes (a name too long, a folder that cannot be read, a loop of
+    symbolic links) becomes an input error naming ``key`` (and ``file``) and the path."""
+    from .errors import ProjectError
+    try:
+        yield
+    except OSError as exc:
+        if exc.errno not in PATH_ERRNOS:
+            raise
+        raise (error or ProjectError)(
+            "cannot use the path", file=file, key=key,
+            expected="a path the file system accepts (names up to 255 bytes), through folders you may read",
+            found=f"{_shown(path)}: {path_problem(exc)}") from None
+
+
+def _shown(path) -> str:
+    text = str(path)
+    return repr(text if len(text) <= 120 else text[:60] + "…" + text[-40:] + f" ({len(text)} characters)")
+
+
+def user_path(text, key: str | None, *, file: str | None = None, base: Path | None = None, error=None) -> Path:
+    """A path the user gave (a project key, an option): ``~`` expanded (:func:`expand_user`), joined to ``base``
+    when relative, and probed, so that a name too long or an unreadable folder is an input error naming ``key``
+    (:func:`user_path_errors`) rather than an OSError later."""
+    path = expand_user(text, key, file=file, error=error)
+    if base is not None and not path.is_absolute():
+        path = base / path
+    with user_path_errors(key, path, file=file, error=error):
+        path.exists()
+    return path

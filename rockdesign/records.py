@@ -35,7 +35,8 @@ from .motions.spectra import motion_spectrum, period_grid, sd_max
 from .motions.warm_up import ELASTIC_SPECTRUM
 from .motions.suites import list_records
 from .motions.synth import SCALE_CHOICES, EnsembleMatch, synthesize
-from .outdir import refuse_wrong_type
+from .outdir import OutputError, refuse_wrong_type
+from .paths import expand_user, require_path, user_path_errors
 from .plots import save
 from .units import QuantityParseError, parse_quantity
 
@@ -294,9 +295,11 @@ def records_synth(seed: str, n: int, out_dir, *, seed_value: int = 1, scale_to: 
         raise MotionError("invalid number of records", key="n", expected="an integer ≥ 1", found=repr(n))
     if isinstance(seed_value, bool) or not isinstance(seed_value, int) or seed_value < 0:
         raise MotionError("invalid random seed", key="seed_value", expected="an integer ≥ 0", found=repr(seed_value))
-    out = Path(out_dir).expanduser()
-    for p in [out, *out.parents]:
-        refuse_wrong_type(p, "out_dir", folder=True)
+    require_path(out_dir, "out_dir", "a folder name")
+    out = expand_user(out_dir, "out_dir", error=OutputError)
+    with user_path_errors("out_dir", out, error=OutputError):
+        for p in [out, *out.parents]:
+            refuse_wrong_type(p, "out_dir", folder=True)
     motion, warnings = _load(seed, gravity, records_dir)
     compilation.prepare("records", (ELASTIC_SPECTRUM,), say)           # (SD_max of the seed and of every member)
     path, match = synthesize(motion, int(n), out, seed_value=seed_value, scale_to=scale_to, progress=progress)

@@ -18,10 +18,11 @@ from .timing import host_description
 
 def case_functions() -> dict[str, Callable]:
     """key → case function ``f(quick=False, methods=ALL_METHODS) -> StabilityCase``."""
-    from . import stability_cases as c, stability_long_cases as lc   # (the scipy baseline: only when run)
+    from . import stability_azimuth as az, stability_cases as c, stability_long_cases as lc   # (scipy: when run)
     return {"missed-events": c.missed_events, "zeno": c.zeno, "stiff-superstructure": c.stiff_superstructure,
             "overturning-threshold": c.overturning_threshold, "long-record-drift": lc.long_record_drift,
-            "coarse-sampling": lc.coarse_sampling, "event-location-crash": lc.event_location_crash}
+            "coarse-sampling": lc.coarse_sampling, "event-location-crash": lc.event_location_crash,
+            "planar-azimuth": az.planar_azimuth}
 
 
 def run_stability(quick: bool = False, methods=ALL_METHODS, keys=None,

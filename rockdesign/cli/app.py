@@ -82,7 +82,14 @@ def handle_errors(func=None, /, **aliases):
             if getattr(exc, "exit_code", getattr(exc, "code", 1)) not in (0, None):
                 discard_unfinished()
             raise
-    return _report_errors(wrapper, {**command_options(func), **aliases})
+    return _report_errors(wrapper, {**_project_argument(func), **command_options(func), **aliases})
+
+
+def _project_argument(func) -> dict[str, str]:
+    """``rd.load_project`` names its parameter ``path``; a command's PROJECT argument is its file, which the
+    message already names: no key is shown for it."""
+    import inspect
+    return {"path": ""} if "project" in inspect.signature(func).parameters else {}
 
 
 def command_options(func) -> dict[str, str]:

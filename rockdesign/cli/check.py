@@ -42,7 +42,7 @@ def _check(rd, project, out, as_json, no_pdf, html, no_margins, records_dir, das
                               progress=not as_json or make_console(stderr=True).is_terminal, executor=dask)
         data = result.as_json()
         if not as_json:     # the verdict first: the engineer reads it while the report is being written
-            check_summary(data, None, make_console(), hint=design_hint(proj, data))
+            check_summary(data, None, make_console(), hint=_command(design_hint(proj, data)))
         _report(rd.write_report, result, folder, no_pdf, html)
     if as_json:
         sys.stdout.write(rd.json_text(data))
@@ -65,3 +65,12 @@ def _report(write_report, result, folder, no_pdf: bool, html: bool) -> None:
     from .. import working
     with working(f"writing the {what}"):
         write_report(result, folder, pdf=not no_pdf, html=html or not no_pdf)
+
+
+def _command(hint) -> str | None:
+    """A failed check's hint as the ``rockdesign design`` command to run."""
+    if hint is None:
+        return None
+    first = "give the project an [excitation] table, then " if hint.needs_excitation else ""
+    return (f"to find a design that passes, vary what governs the rocking demand ({hint.why}): {first}"
+            f"rockdesign design {hint.file} " + " ".join(f"--vary {v}" for v in hint.vary))

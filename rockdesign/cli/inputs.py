@@ -8,6 +8,8 @@ folder or a path that is a directory fails at once.
 """
 from __future__ import annotations
 
+import contextlib
+import errno
 import math
 from pathlib import Path
 
@@ -42,11 +44,46 @@ def rtol(value: float | None, key: str = "--rtol") -> float | None:
     return value
 
 
+def _expanded(path, key: str) -> Path:
+    """``~`` expanded, or an input error naming ``key`` when ``~user`` names no user of this machine."""
+    try:
+        return Path(path).expanduser()
+    except RuntimeError:            # "Could not determine home directory"
+        raise RockdesignError(f"'{str(path).split('/', 1)[0]}' names no home folder on this machine", key=key,
+                              expected="a path whose ~user is a user of this machine (or a path without ~)",
+                              found=repr(str(path))) from None
+
+
+@contextlib.contextmanager
+def _path_errors(key: str, path: Path):
+    """A name too long (Errno 36) or a folder that cannot be read (Errno 13) is an input error naming ``key``."""
+    try:
+        yield
+    except OSError as exc:
+        if exc.errno not in (errno.ENAMETOOLONG, errno.EACCES, errno.EPERM, errno.ELOOP):
+            raise
+        text = str(path) if len(str(path)) <= 120 else f"{str(path)[:60]}…{str(path)[-40:]} ({len(str(path))} characters)"
+        raise RockdesignError("cannot use the path", key=key, expected="a path the file system accepts (names up "
+                              "to 255 bytes), through folders you may read", found=f"'{text}': {_PATH_PROBLEMS.get(exc.errno, exc.strerror)}") from None
+
+
+_PATH_PROBLEMS = {errno.ENAMETOOLONG: "a file name too long for the file system (Errno 36)",
+                  errno.EACCES: "no permission to read a folder on the way (Errno 13)",
+                  errno.EPERM: "no permission to read a folder on the way (Errno 13)",
+                  errno.ELOOP: "a loop of symbolic links (Errno 40)"}
+"""The words of rockdesign.paths.path_problem (the command line imports only the public library)."""
+
+
 def output_file(path: Path | None, key: str, suffixes: tuple[str, ...] | None = None) -> Path | None:
     """A file we can create: known suffix, not a directory, in an existing folder."""
     if path is None:
         return None
-    path = Path(path).expanduser()
+    path = _expanded(path, key)
+    with _path_errors(key, path):
+        return _output_file(path, key, suffixes)
+
+
+def _output_file(path: Path, key: str, suffixes: tuple[str, ...] | None) -> Path:
     if suffixes is not None and path.suffix.lower() not in suffixes:
         raise RockdesignError("unknown file type", key=key, expected="a file ending in " + ", ".join(suffixes),
                               found=f"'{path}'")
@@ -62,7 +99,12 @@ def output_file(path: Path | None, key: str, suffixes: tuple[str, ...] | None = 
 
 def output_folder(path: Path, key: str) -> Path:
     """A folder we can write into (created if missing): not an existing file, parent not a file."""
-    path = Path(path).expanduser()
+    path = _expanded(path, key)
+    with _path_errors(key, path):
+        return _output_folder(path, key)
+
+
+def _output_folder(path: Path, key: str) -> Path:
     if path.is_symlink():
         refuse_wrong_type(path, key, folder=True)
     if path.exists() and not path.is_dir():

@@ -16,6 +16,7 @@ import numpy as np
 
 from ..motions.pairs import MotionPair, no_pair
 from .eom import parameters
+from .motion_line import one_directional
 from .kernel import (EV_CROSSING, EV_OVERTURN, EV_QUASI_IMPACT, EV_REST, EV_THETA_MAX, EV_UPLIFT, ST_COMPLETED,
                      ST_OVERTURNED, ST_STEP_COLLAPSED, ST_STEP_LIMIT, integrate)
 from .quantities import restitution_root
@@ -228,7 +229,7 @@ def simulate_cylinder(cyl: Cylinder, pair: MotionPair | None = None, *, t_end: f
                       phidot0: float = 0.0, rtol: float = DEFAULT_RTOL, atol: float = DEFAULT_ATOL,
                       rest_velocity: float = DEFAULT_REST_VELOCITY, theta_seed: float | None = None,
                       quasi_impact_tilt: float = QUASI_IMPACT_TILT, max_steps: int = MAX_STEPS,
-                      output_dt: float = 0.0) -> CylinderResponse:
+                      output_dt: float = 0.0, planar_reduction: bool = True) -> CylinderResponse:
     """Integrate the cylinder's Eqs 5.22–5.23 (rigid contact) or 5.23, 5.36–5.37 (spring–dashpot).
 
     Args:
@@ -238,23 +239,30 @@ def simulate_cylinder(cyl: Cylinder, pair: MotionPair | None = None, *, t_end: f
         theta0, thetadot0, phi0, phidot0: initial state [rad, rad/s] (free vibration).
         rtol, atol: tolerances of the DOP853 step control (rad, rad/s, m, m/s).
         rest_velocity: v_rest [rad/s] of the rest rule, both contacts (docs/cylinder.md); 0: never rest.
-        theta_seed: tilt [rad] at which an uplift starts; default :func:`seed_tilt` (a planar motion, whose
-            equation is regular at θ = 0, starts at 0).
+        theta_seed: tilt [rad] at which the seed phase of a 3D uplift hands over to Eq 5.23; default
+            :func:`seed_tilt` (an uplift on a planar motion, whose equation is regular at θ = 0, needs none).
         quasi_impact_tilt: minima of θ below this fraction of α count as quasi-impacts.
         max_steps: bound on the number of steps (status "step limit reached").
         output_dt: > 0 adds the 7th-order dense output on the grid k·output_dt [s] to the history
             (besides every step and event).
+        planar_reduction: integrate a motion along one line, from an uplift, as the planar cylinder (φ̇ ≡ 0,
+            Eq 5.26; :mod:`.motion_line`), whatever its azimuth; False: the 3D equations throughout (what
+            the stability study shows they do on a planar motion: a step-size collapse at θ → 0).
+
+    The response is ``planar`` (model ``cylinder-…-planar``) when the whole excitation acts along one line
+    (one component, a pulse, or two proportional components) and there is no initial spin.
     """
     pair = pair if pair is not None else no_pair()
     if theta0 < 0.0:
         raise ValueError("the tilt θ0 must be ≥ 0 (tilt toward φ0)")
     end = t_end if t_end is not None else pair.duration + free_vibration
-    planar = pair.planar and phidot0 == 0.0
-    par = parameters(cyl.R, cyl.alpha, cyl.g, cyl.contact_frequency, cyl.contact_damping, cyl.damped, planar)
-    y0 = np.array([theta0, thetadot0, phi0, phidot0, 0.0, 0.0])
     sx = np.ascontiguousarray(pair.x if pair.is_record else np.zeros(0), dtype=np.float64)
     sy = np.ascontiguousarray(pair.y if pair.is_record else np.zeros(0), dtype=np.float64)
     dirx, diry = pair.direction
+    planar = (planar_reduction and phidot0 == 0.0
+              and (pair.planar or one_directional(int(pair.kind), pair.params, sx, sy, dirx, diry)))
+    par = parameters(cyl.R, cyl.alpha, cyl.g, cyl.contact_frequency, cyl.contact_damping, cyl.damped, planar)
+    y0 = np.array([theta0, thetadot0, phi0, phidot0, 0.0, 0.0])
     up = uplift_level(cyl.alpha, cyl.g)
     e_rest = rest_energy(cyl.R, cyl.alpha, rest_velocity)
     if theta_seed is None:
@@ -262,9 +270,9 @@ def simulate_cylinder(cyl: Cylinder, pair: MotionPair | None = None, *, t_end: f
     restitution = restitution_root(cyl.alpha) if cyl.damped else 1.0
     hist, events, stats = integrate(y0, 0.0, float(end), float(pair.duration), par, int(pair.kind),
                                     np.ascontiguousarray(pair.params, dtype=np.float64), sx, sy, float(dirx), float(diry),
-                                    float(rtol), float(atol), 0.0 if planar else float(theta_seed), float(cyl.theta_overturn),
+                                    float(rtol), float(atol), float(theta_seed), float(cyl.theta_overturn),
                                     float(quasi_impact_tilt * cyl.alpha), float(e_rest), float(restitution),
-                                    float(up), int(max_steps), float(output_dt))
+                                    float(up), int(max_steps), float(output_dt), bool(planar_reduction))
     t = hist[:, 0]
     ax, ay = pair.acceleration(t)
     ax = np.where(t > pair.duration, 0.0, ax)

@@ -11,9 +11,16 @@ One run (:func:`integrate`):
   hysteresis), found exactly on each linear record segment (a quadratic in t) or by a T_p/2000 scan and
   bisection for pulses; then start at θ = θ̇ = φ̇ = 0 toward φ0 = atan2(−ü_gy, −ü_gx) (Eq 5.25 with its
   quadrant);
-* the seed phase: from θ = 0 up to θ = θ_seed the body tilts toward the inertia force by Eq 5.22 alone
-  (φ̈ ≡ 0, ü_gx cosφ + ü_gy sinφ = −|ü_g|: regular at θ = 0, where Eq 5.23 is singular); at θ_seed the
-  3D equations take over with φ = the azimuth of −ü_g and φ̇ its rate of turn (:func:`_force_direction`:
+* the planar reduction (:mod:`.motion_line`, Sec 5.2.6): from an uplift the body has no angular momentum
+  about the vertical, and while every piece of the excitation lies on the line of the uplift force Eq 5.23
+  keeps it at zero: the run integrates Eq 5.22 with φ̇ ≡ 0 (Housner's cylinder, Eq 5.26 with the ground
+  term), whatever the azimuth of the line.  Checked before every step; where a piece leaves the line the
+  3D equations take over from the planar state (through the seed phase below θ_seed, tilting toward the
+  inertia force);
+* the seed phase (an uplift where the force is not on one line): from θ = 0 up to θ = θ_seed the body
+  tilts toward the inertia force by Eq 5.22 alone (φ̈ ≡ 0, ü_gx cosφ + ü_gy sinφ = −|ü_g|: regular at
+  θ = 0, where Eq 5.23 is singular); at θ_seed the 3D equations take over with φ = the azimuth of −ü_g
+  and φ̇ its rate of turn (:func:`_force_direction`:
   Eq 5.23 locks the azimuth to the force as θ → 0, its stiffness cos α |ü_g|/(R J/θ) being unbounded).
   The state at θ_seed is thus the small-tilt solution from rest, not a disturbance of size θ_seed: θ_max
   does not depend on the seed to first order (docs/cylinder.md).  A seed phase that comes back to θ = 0
@@ -24,9 +31,9 @@ One run (:func:`integrate`):
   so it is evaluated at the two ends only and interpolated at the 12 stages;
 * quasi-impacts (θ → 0 with a spike of φ̇) are resolved by the step control alone, no event;
 * on every accepted step the dense output locates: the overturning tilt θ_ot (terminal), minima of
-  θ (θ̇: − → +; a minimum below ``quasi_tilt`` is a quasi-impact), maxima of θ, and — only for an
-  exactly planar motion (φ̇ ≡ 0, a one-directional excitation) — θ = 0, where the body switches to the
-  opposite rim point: θ → −θ, θ̇ → −r θ̇, φ → φ + π (r = 1 rigid, √c_r of Eq 5.41 damped);
+  θ (θ̇: − → +; a minimum below ``quasi_tilt`` is a quasi-impact), maxima of θ, and — only under the
+  planar reduction or in the seed phase (φ̇ ≡ 0) — θ = 0, where the body switches to the opposite rim
+  point: θ → −θ, θ̇ → −r θ̇, φ → φ + π (r = 1 rigid, √c_r of Eq 5.41 damped);
 * rest rule (both contacts, the planar engine's, SPEC §3.6): at a quasi-impact (a minimum of θ below
   ``quasi_tilt``, or in 3D the end of a step below ``quasi_tilt`` on the way to one) or a planar crossing
   whose rocking energy ½ R²(M θ̇² + J φ̇²) + gR(cos(α−θ) − cos α)
@@ -46,6 +53,7 @@ from numba import njit
 from ..motions.excitation import next_breakpoint
 from .uplift import uplift_time
 from .eom import contact_force_ratio, ground_xy, rhs, rocking_energy
+from .motion_line import piece_line, piece_on_line
 from .stepper import dense_at, dense_coefficients, dense_root, dop853_step, error_norm
 
 SAFETY = 0.9
@@ -112,13 +120,16 @@ def _event(events, ne, code, t, theta, value, ev):
 
 @njit(cache=True)
 def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, rtol, atol, theta_seed,
-              theta_ot, quasi_tilt, rest_energy, planar_restitution, up, max_steps, out_dt):
+              theta_ot, quasi_tilt, rest_energy, planar_restitution, up, max_steps, out_dt, planar_reduction):
     """Integrate one cylinder from (t0, y0) to t_end (module docstring).
 
-    ``theta_seed`` [rad]: the tilt an uplift starts from (θ = 0 is the singular point of Eq 5.23; 0 for a
-    planar run); ``rest_energy`` [J/kg]: the rest rule's energy (0: no rest); ``up`` [m/s²]: the resultant
+    ``theta_seed`` [rad]: the tilt at which the seed phase of a 3D uplift hands over to Eq 5.23 (θ = 0 is its
+    singular point); ``rest_energy`` [J/kg]: the rest rule's energy (0: no rest); ``up`` [m/s²]: the resultant
     |ü_g| at which a resting cylinder uplifts (Eq 5.24 with the hysteresis, :func:`.engine.uplift_level`).
-    ``out_dt`` > 0 adds dense-output rows on the grid k·out_dt to the history.
+    ``out_dt`` > 0 adds dense-output rows on the grid k·out_dt to the history.  ``planar_reduction``: an uplift
+    runs the planar equations while the excitation stays on the line of the uplift (:mod:`.motion_line`);
+    False: the 3D equations from every uplift (the stability study shows what they do on a planar motion).
+    ``par``'s planar flag says whether a run that starts tilted starts planar (along φ0's line).
     Returns (history rows [t, θ, θ̇, φ, φ̇, w_T, ẇ_T, N/(mg)] at every accepted step and event,
     events rows [code, t, θ, value], stats [steps, rejected, rhs evaluations, dense outputs, status,
     t_stop]).
@@ -126,8 +137,14 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
     n = 6 if par[5] > 0.5 else 4
     par_seed = par.copy()
     par_seed[12] = 2.0          # the seed phase: Eq 5.22 toward the inertia force, φ̈ ≡ 0 (regular at θ = 0)
-    pc = par                    # the equations in force: par, or par_seed while seeding
+    par_3d = par.copy()
+    par_3d[12] = 0.0            # Eqs 5.22-5.23
+    par_planar = par.copy()
+    par_planar[12] = 1.0        # their planar reduction along the line (lx, ly): φ̇ ≡ 0 (Eq 5.26)
+    pc = par                    # the equations in force: par_3d, par_planar, or par_seed while seeding
     seeding = False
+    lx = math.cos(y0[2])        # the line of a planar motion (a start tilted toward φ0, or the uplift's)
+    ly = math.sin(y0[2])
     y = np.zeros(6)
     y_new = np.zeros(6)
     ytmp = np.zeros(6)
@@ -173,8 +190,15 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
                 break
             ax, ay = ground_xy(tu, True, kind, params, sx, sy, dirx, diry)
             t = tu
-            seeding = theta_seed > 0.0
-            pc = par_seed if seeding else par
+            # ℓ = 0 at an uplift: planar while the ground stays on the line of this piece (checked every step)
+            lx, ly = piece_line(tu, kind, params, sx, sy, dirx, diry)
+            if planar_reduction and piece_on_line(tu, min(t_exc_end, next_breakpoint(tu, kind, params, sx)),
+                                                  kind, params, sx, sy, dirx, diry, lx, ly):
+                seeding = False
+                pc = par_planar
+            else:
+                seeding = theta_seed > 0.0
+                pc = par_seed if seeding else par_3d
             y[0] = 0.0
             y[1] = 0.0
             y[2] = math.atan2(-ay, -ax)
@@ -204,6 +228,15 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
         t_stop = t_end
         if active:
             t_stop = min(t_stop, t_exc_end, next_breakpoint(t, kind, params, sx))
+            if 0.5 < pc[12] < 1.5 and not piece_on_line(t, t_stop, kind, params, sx, sy, dirx, diry, lx, ly):
+                # the ground leaves the tilt's line: Eq 5.23 gains a torque, the 3D equations take over from the
+                # planar state — through the seed phase if the body is still below θ_seed, tilting toward the
+                # inertia force (as just after an uplift: the seed phase's premise)
+                ax, ay = ground_xy(t, active, kind, params, sx, sy, dirx, diry)
+                seeding = y[0] < theta_seed and ax * math.cos(y[2]) + ay * math.sin(y[2]) <= 0.0
+                pc = par_seed if seeding else par_3d
+                rhs(t, y, f, pc, active, kind, params, sx, sy, dirx, diry)
+                nfev += 1
         accepted = False
         rejected_now = False
         while not accepted:
@@ -329,7 +362,7 @@ def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, r
                 break
             if stop_kind == STOP_SEEDED:
                 seeding = False
-                pc = par
+                pc = par_3d
                 y_new[0] = theta_seed
                 # while θ ≪ θ_seed the azimuth is locked to the inertia force (Eq 5.23: its stiffness
                 # cos α |ü_g|/(R J/θ) grows without bound as θ → 0): φ = its direction, φ̇ = its rate of turn

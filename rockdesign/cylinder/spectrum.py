@@ -70,7 +70,7 @@ def _grid(pars, scales, params0, sx, sy, t_end, t_exc_end, rtol, atol, seeds, th
             y0 = np.zeros(6)
             hist, events, stats = integrate(y0, 0.0, t_end, t_exc_end, pars[i], 0, params, sx, sy, 1.0, 1.0, rtol,
                                             atol, seeds[i], theta_ot, quasi_tilt, rest_energy[i],
-                                            planar_restitution, ups[i], 20_000_000, 0.0)
+                                            planar_restitution, ups[i], 20_000_000, 0.0, True)
             th = 0.0
             for r in range(hist.shape[0]):
                 th = max(th, hist[r, 1])

@@ -4,11 +4,13 @@ A FAIL of the acceptance rule (too many ground motions overturn, or the collapse
 statement about the rocking demand against the capacity.  The thesis's design recommendation is stated in
 two parameters (SPEC §15): the uplift force, through tan α — set by the contact width (a cylinder's diameter)
 — and the rotation capacity θc, set by the extension's curvature.  :func:`design_hint` names the project
-file's own key for each and a grid around its value, in the file's units, as a command to run.
+file's own key for each and a grid around its value, in the file's units (the command line writes it as the
+``rockdesign design`` command to run).
 """
 from __future__ import annotations
 
 import re
+from dataclasses import dataclass
 
 from ..kinds import kind_of
 from .variants import ALTERNATIVES
@@ -40,9 +42,26 @@ def _grid(value) -> str | None:
     return f"{number * lo:.3g}{unit}:{number * hi:.3g}{unit}:{n}"
 
 
-def design_hint(project, data: dict) -> str | None:
-    """One line after a FAIL: the parameter that governs the rocking demand and the ``rockdesign design``
-    command that varies it (None when the check passed, or the project has no such key to vary)."""
+@dataclass(frozen=True)
+class DesignHint:
+    """What a failed check points to: ``why`` (the keys that govern the rocking demand, with their equations),
+    ``vary`` (one ``TABLE.KEY=FROM:TO:N`` per key, around the project's value) and whether the project needs an
+    ``[excitation]`` table first; ``str()`` says it in the library's words (the command line writes the command)."""
+
+    why: str
+    vary: tuple[str, ...]
+    needs_excitation: bool
+    file: str
+
+    def __str__(self) -> str:
+        first = "give the project an [excitation] table, then " if self.needs_excitation else ""
+        return (f"to find a design that passes, vary what governs the rocking demand ({self.why}): {first}a design "
+                f"chart of {self.file} over " + " and ".join(self.vary))
+
+
+def design_hint(project, data: dict) -> DesignHint | None:
+    """After a FAIL: the parameters that govern the rocking demand and the design chart that varies them (None when
+    the check passed, or the project has no such key to vary)."""
     if data.get("verdict") != "FAIL" or data.get("failed_records"):
         return None
     raw = project.raw or {}
@@ -55,20 +74,17 @@ def design_hint(project, data: dict) -> str | None:
     grid = _grid(raw[table][name])
     if grid is None:
         return None
-    file = project.path
-    varies = [f"--vary {table}.{name}={grid}"]
+    varies = [f"{table}.{name}={grid}"]
     why = (f"{table}.{name} sets tan α, the uplift acceleration g·tan α (Eq 3.34) that every record must "
            "exceed to rock")
     for curve in ("curvature", "radius"):
         if curve in raw[table]:
             g2 = _grid(raw[table][curve])
             if g2 is not None:
-                varies.append(f"--vary {table}.{curve}={g2}")
+                varies.append(f"{table}.{curve}={g2}")
                 why += f"; {table}.{curve} sets the rotation capacity θc (Eq 3.56)"
             break
-    first = "" if project.excitation_raw is not None else "give the project an [excitation] table, then "
-    return (f"to find a design that passes, vary what governs the rocking demand ({why}): {first}"
-            f"rockdesign design {file} " + " ".join(varies))
+    return DesignHint(why, tuple(varies), project.excitation_raw is None, str(project.path))
 
 
-__all__ = ["design_hint"]
+__all__ = ["design_hint", "DesignHint"]

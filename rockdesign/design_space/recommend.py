@@ -85,7 +85,7 @@ def recommended(cells: list[dict], material: tuple[str, str] = ("column material
     by_shear = prefer != "material" and shear is not None
     why = (f"the {kind_of_pass} variant with the lowest {demand} {shear:.3g})" if by_shear else
            f"the {kind_of_pass} variant with the least {what}"
-           + (f" ({material[1]})" if prefer != "material" else " (the preference: material)"))
+           + (f" ({material[1]})" if prefer != "material" else " (preferred: material)"))
     if choice is not None and choice is not min(robust or passing, key=rank):
         why = why.replace(" variant with ", " variant that survives its construction tolerance with ", 1)
     reason = f"{why}; margin: " + "; ".join(margin) if margin else why

@@ -23,12 +23,15 @@ draws on the terminal: progress goes to the callbacks the caller passes.
 """
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import ProjectError, RockdesignError
+from ..execution.executor import check_executor, make_executor
 from ..kinds import kind_of
 from ..outdir import DesignFolder
+from ..paths import require_path
 from ..project_tables import Project
 from .grid import PREFER, GridRun, check_exit_code, check_off_grid, read_records, recommended, run_grid
 from .recommend import with_tolerance
@@ -98,7 +101,7 @@ class DesignResult:
 def _project(project) -> Project:
     if isinstance(project, Project):
         return project
-    if isinstance(project, (str, Path)):
+    if isinstance(project, (str, os.PathLike)):
         from ..library import load_project
         return load_project(project)
     raise ProjectError("design needs a project", key="project",
@@ -141,7 +144,10 @@ def plan_design(project, vary, *, records_dir=None, executor=None, every_cell: b
         raise RockdesignError("unknown preference", key="prefer", expected=" or ".join(PREFER), found=repr(prefer))
     specs = _vary_list(vary)
     kind = kind_of(project)
-    kind.check_options(project, records_dir=records_dir, executor=executor)
+    if records_dir is not None:
+        require_path(records_dir, "records_dir", "a folder of record files")
+    kind.check_options(project, records_dir=records_dir, executor=executor)   # a kind's refusal first
+    check_executor(executor, text=False)        # rd.design starts an address; a plan holds an executor
     raw = project.raw
     variables = [parse_vary(v, raw, alternatives=kind.key_alternatives) for v in specs]
     refuse_overlaps(variables)
@@ -256,6 +262,8 @@ def recommended_check(result: DesignResult, *, progress=None):
 def design_folder(out_dir, *, key: str = "out_dir") -> DesignFolder:
     """The output folder of a design chart, validated (a file, a read-only folder or one holding files
     rockdesign did not write is refused before any analysis)."""
+    if not isinstance(out_dir, DesignFolder):
+        require_path(out_dir, key, "a folder name")
     folder = DesignFolder(out_dir, key=key)
     folder.validate()
     return folder
@@ -293,7 +301,8 @@ def design(project, vary, *, out_dir=None, records_dir=None, executor=None, pdf:
         out_dir: the folder of design.json, design.csv, the report and the stored variants (resumable: an
             interrupted run started again re-runs only the variants not yet stored); None: no files, nothing stored.
         records_dir: folder of PEER AT2 files for suites that name them (planar structures).
-        executor: a started executor (:mod:`rockdesign.execution.executor`, e.g. a dask cluster; planar).
+        executor: a started executor (:mod:`rockdesign.execution.executor`, e.g. a dask cluster; planar), or a
+            dask value (``"local:4"``, ``"tcp://host:8786"``), started here and closed when the chart is done.
         pdf, html: write design.pdf / design.html (with ``out_dir``).
         full_check: run the full check of the recommended variant (default: when a report is written).
         progress: ``progress(done, total, cell)`` as each variant ends.
@@ -314,6 +323,14 @@ def design(project, vary, *, out_dir=None, records_dir=None, executor=None, pdf:
     """
     project = _project(project)
     folder = design_folder(out_dir) if out_dir is not None else None
+    kind_of(project).check_options(project, records_dir=records_dir, executor=executor)   # a kind's refusal first
+    check_executor(executor)                    # a dask value is checked (and its scheduler reached) here
+    if isinstance(executor, str):               # started here and closed when the chart is done
+        with make_executor(executor) as owned:
+            owned.start()
+            return design(project, vary, out_dir=out_dir, records_dir=records_dir, executor=owned, pdf=pdf,
+                          html=html, full_check=full_check, progress=progress, stage_progress=stage_progress,
+                          warn=warn, say=say, every_cell=every_cell, prefer=prefer)
     plan = plan_design(project, vary, records_dir=records_dir, executor=executor, every_cell=every_cell,
                        prefer=prefer, tolerance=tolerance)
     if full_check is None:

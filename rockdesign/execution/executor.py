@@ -32,7 +32,6 @@ from __future__ import annotations
 
 import os
 import shutil
-import socket
 import threading
 import time
 from dataclasses import dataclass, field
@@ -40,13 +39,9 @@ from typing import Callable, Iterator, Sequence
 
 import numpy as np
 
-from ..errors import RockdesignError
-
+from .address import (HANDSHAKE_TIMEOUT, PROBE_TIMEOUT, SCHEMES, ExecutorError, check_address,  # noqa: F401
+                      is_local, probe_scheduler, reach_scheduler, require_dask, tls_hint)
 from .store import ChunkResult, ChunkStore, fingerprint  # noqa: F401  (re-exported: the executor's API)
-
-
-class ExecutorError(RockdesignError):
-    """The execution backend cannot be used (bad ``--dask`` address, dask not installed...)."""
 
 
 def usable_cores() -> int:
@@ -164,62 +159,6 @@ def _noop(_):
     return None
 
 
-PROBE_TIMEOUT = 5.0
-"""Seconds to wait for a TCP connection to a remote dask scheduler before refusing ``--dask``."""
-
-
-SCHEMES = ("tcp", "tls", "ws", "wss")
-"""dask.distributed's network transports a ``--dask`` address may name (``inproc://`` exists only inside one
-process and cannot be reached from here)."""
-
-
-def check_address(address) -> str:
-    """The ``--dask`` value stripped, or :class:`ExecutorError` for one that names no cluster: empty or blank
-    (it would silently run locally), ``local:N`` with N < 1, a transport dask does not reach from another
-    process, or a scheduler address without a port.  ``localhost:8786`` is a scheduler address, not a local
-    cluster: only ``local`` and ``local:N`` start one."""
-    text = "" if address is None else str(address).strip()
-    if not text:
-        raise ExecutorError("empty dask address", key="executor",
-                            expected="local:N (a local cluster of N workers) or a scheduler address such as "
-                                     "tcp://host:8786 (or no dask executor, to run in this process)",
-                            found=repr(str(address)))
-    if text == "local" or text.startswith("local:"):
-        rest = text[len("local:"):] if text != "local" else ""
-        if rest and not (rest.isdigit() and int(rest) >= 1):
-            raise ExecutorError("invalid local cluster", key="executor", expected="local:N with N ≥ 1 workers, or a "
-                                "scheduler address (tcp://host:8786)", found=repr(str(address)))
-        return text
-    scheme, sep, target = text.rpartition("://")
-    if sep and scheme not in SCHEMES:
-        raise ExecutorError("unknown transport of the dask scheduler address", key="executor",
-                            expected="a scheduler address " + ", ".join(f"{s}://host:port" for s in SCHEMES)
-                            + " or host:port", found=repr(str(address)))
-    host, colon, port = target.rstrip("/").rpartition(":")
-    if not colon or not port.isdigit() or not host.strip("[]"):
-        raise ExecutorError("invalid dask scheduler address", key="executor",
-                            expected="local:N or a scheduler address with a host and a port, such as "
-                                     "tcp://host:8786", found=repr(str(address)))
-    return text
-
-
-def reach_scheduler(address: str, timeout: float = PROBE_TIMEOUT) -> None:
-    """Open (and close) a TCP connection to the scheduler at ``address`` (``tcp://``, ``tls://``, ``ws://``,
-    ``wss://host:port`` or ``host:port``: every transport runs over TCP), so an unreachable scheduler is
-    refused at once, before any output is created."""
-    check_address(address)
-    target = address.strip().rpartition("://")[2].rstrip("/")
-    host, _, port = target.rpartition(":")
-    number = int(port)
-    try:
-        with socket.create_connection((host.strip("[]") or "localhost", number), timeout=timeout):
-            pass
-    except (OSError, ValueError) as exc:
-        raise ExecutorError(f"cannot reach the dask scheduler ({getattr(exc, 'strerror', None) or exc})",
-                            key="executor", expected="a running scheduler (dask scheduler; dask worker ADDRESS) "
-                            "reachable within {:g} s".format(timeout), found=repr(address)) from None
-
-
 class DaskExecutor:
     """Run chunks on a dask.distributed cluster.
 
@@ -236,25 +175,22 @@ class DaskExecutor:
     name = "dask"
 
     def __init__(self, address: str, warm_up: Callable[[], object] | None = None, numba_threads: int | None = None):
-        try:
-            import distributed  # noqa: F401
-        except ImportError:
-            raise ExecutorError("dask.distributed is not installed", key="executor",
-                                expected="pip install 'rockdesign[dask]'", found="no module 'distributed'") from None
-        self.address = check_address(address)
+        self.address = check_address(address)     # a bad address is named whether or not dask is installed
+        require_dask(self.address)
         self.warm_up = warm_up
         self.numba_threads = numba_threads
         self.warm_up_seconds = 0.0
         self.client = None
         self.cluster = None
         self._n_local = None
-        if self.address == "local" or self.address.startswith("local:"):
+        if is_local(self.address):
             rest = self.address[len("local:"):]
             self._n_local = int(rest) if rest else os.cpu_count() or 1
             if self.numba_threads is None:
                 self.numba_threads = max(1, (os.cpu_count() or 1) // self._n_local)
         else:
             reach_scheduler(self.address)
+            probe_scheduler(self.address)           # accepts and never speaks, or answers junk: refused here
 
     @property
     def slots(self) -> int:
@@ -291,10 +227,9 @@ class DaskExecutor:
                 self.client = Client(self.address, timeout="20s")
             except (OSError, TimeoutError, ValueError, TypeError) as exc:
                 # TypeError: a tls:// address without dask's TLS configuration (distributed.comm.tls)
-                tls = "" if not self.address.startswith(("tls://", "wss://")) else \
-                    " with the TLS certificates of dask's configuration (distributed.comm.tls)"
                 raise ExecutorError(f"cannot connect to the dask scheduler: {exc}", key="executor",
-                                    expected="a running scheduler (dask scheduler; dask worker ADDRESS)" + tls,
+                                    expected="a running scheduler (dask scheduler; dask worker ADDRESS)"
+                                    + tls_hint(self.address),
                                     found=repr(self.address)) from None
         if self.warm_up is not None:
             workers = list(self.client.scheduler_info().get("workers", {}))
@@ -340,6 +275,38 @@ class DaskExecutor:
 
 def _noop_func():
     return None
+
+
+EXECUTOR_METHODS = ("start", "map", "close", "describe")
+"""What an executor object has (:class:`LocalExecutor`, :class:`DaskExecutor`, or one of the user's)."""
+HOW_TO_MAKE = ("None (this machine), a dask value such as 'local:4' or 'tcp://host:8786', or an executor: "
+               "rockdesign.make_executor('tcp://host:8786')")
+
+
+def is_executor(value) -> bool:
+    """Whether ``value`` is an executor object (it has :data:`EXECUTOR_METHODS`)."""
+    return all(callable(getattr(value, name, None)) for name in EXECUTOR_METHODS)
+
+
+def check_executor(executor, *, text: bool = True, reach: bool = True) -> None:
+    """Refuse an ``executor`` argument that is neither None, a dask value (when ``text``) nor an executor
+    object, naming the parameter ``executor``.  A dask value is checked (:func:`check_address`; dask installed;
+    with ``reach`` a remote scheduler must answer dask's handshake), before any work or output."""
+    if executor is None or is_executor(executor):
+        return
+    if isinstance(executor, str) and text:
+        address = check_address(executor)
+        require_dask(address)
+        if reach and not is_local(address):
+            reach_scheduler(address)
+            probe_scheduler(address)
+        return
+    if isinstance(executor, str):
+        raise ExecutorError("a dask address is not an executor here", key="executor",
+                            expected="an executor object: rockdesign.make_executor(" + repr(executor) + ") (or pass "
+                            "the address to rockdesign.design, which starts and closes it)", found=repr(executor))
+    raise ExecutorError("not an executor", key="executor", expected=HOW_TO_MAKE,
+                        found=f"{executor!r} ({type(executor).__name__})")
 
 
 def make_executor(dask: str | None = None, *, processes: int = 0, warm_up: Callable[[], object] | None = None,

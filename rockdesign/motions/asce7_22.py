@@ -271,6 +271,31 @@ def minimum_ratio(pairs: Sequence[GroundMotionPair], factors: Sequence[float], t
     return best_ratio, best_T, extra
 
 
+def refuse_unresolved_periods(period_range: PeriodRange, pairs: Sequence[GroundMotionPair]) -> None:
+    """Refuse a period range that starts below the largest time step Δt of the suite's records.
+
+    The spectrum at a period T is read at the samples, sub-stepped to Δt/m ≤ T/10 below T = 10 Δt (PEER's
+    convention, docs/records.md): a period of 0.001 ms with records at Δt = 0.01 s asks 100,000 sub-steps per
+    sample, and the check ran for minutes without a word; yet the samples carry nothing at periods shorter than
+    the time between two of them (their shortest resolved period is 2 Δt).  Δt, not 2 Δt, is the floor, so that
+    the default range of a stiff structure (0.2 × its uplifted period) stays usable with records at Δt = 0.02 s.
+
+    Raises:
+        MotionError: keyed ``excitation.scale.periods`` (the range given) or ``excitation.scale`` (the range
+            derived from the structure), saying the limit and the record that sets it.
+    """
+    if not pairs:
+        return
+    coarsest = max(pairs, key=lambda p: p.dt)
+    if period_range.lo >= coarsest.dt * (1.0 - 1e-9):
+        return
+    key = "excitation.scale.periods" if period_range.given else "excitation.scale"
+    raise MotionError("the period range starts below what the records' samples resolve", key=key,
+                      expected=f"a lower bound ≥ {coarsest.dt:g} s, the largest time step of the suite's records "
+                               f"({coarsest.ground_motion}: Δt = {coarsest.dt:g} s)",
+                      found=f"{period_range.lo:.3g} s ({period_range.basis})")
+
+
 @dataclass
 class Asce722Scaling:
     """The outcome of ASCE 7-22 §16.2.3.2 amplitude scaling of a suite (SI).
@@ -328,6 +353,7 @@ def asce7_22_scaling(pairs: Sequence[GroundMotionPair], target, period_range: Pe
     if not pairs:
         raise MotionError("ASCE 7-22 scaling needs ground-motion pairs", key="excitation.scale",
                           expected="both horizontal components of each ground motion", found="no pairs")
+    refuse_unresolved_periods(period_range, pairs)
     if not target.covers(period_range.lo, period_range.hi):
         T = np.asarray(target.corner_periods)
         raise MotionError("the target spectrum does not cover the period range", key="excitation.scale.target",

@@ -32,8 +32,9 @@ from pathlib import Path
 from typing import Mapping
 
 from ..errors import MotionError, ProjectError, RecordError
+from ..paths import user_path
 from ..units import QuantityParseError, parse_quantity
-from .grouping import ground_motion_id
+from .grouping import ground_motion_id, refuse_inconsistent_ground_motions
 from .identity import Entry, refuse_repeated_recordings
 from .library import load_record
 from .motion import GroundMotion
@@ -144,9 +145,10 @@ def _base_dir(file: str | None) -> Path:
     return Path(file).expanduser().resolve().parent if file else Path.cwd()
 
 
-def _relative(text: str, base: Path) -> str:
-    path = Path(text).expanduser()
-    return str(path if path.is_absolute() else base / path)
+def _relative(text: str, base: Path, *, file: str | None = None, key: str | None = None) -> str:
+    """A path of the project file, relative to its folder (``~`` expanded; a ``~user`` that names nobody, a name
+    too long or an unreadable folder is refused naming ``key``)."""
+    return str(user_path(text, key, file=file, base=base))
 
 
 def _looks_like_path(text: str) -> bool:
@@ -192,7 +194,7 @@ def parse_excitation(raw: dict | None, *, file: str, gravity: float = 9.81) -> E
     suites = _string_list(raw.get("suites", []), "suites", file)
     for i, name in enumerate(suites):
         if _looks_like_path(name):
-            suites[i] = _relative(name, base)
+            suites[i] = _relative(name, base, file=file, key=f"excitation.suites[{i}]")
         try:
             suite_path(suites[i])
         except MotionError as exc:
@@ -201,9 +203,9 @@ def parse_excitation(raw: dict | None, *, file: str, gravity: float = 9.81) -> E
     records = _string_list(raw.get("records", []), "records", file)
     for i, rid in enumerate(records):
         if rid.lower().startswith("file:"):
-            records[i] = "file:" + _relative(rid[5:].strip(), base)
+            records[i] = "file:" + _relative(rid[5:].strip(), base, file=file, key=f"excitation.records[{i}]")
         elif not rid.lower().startswith(("rsn:", "p695-")) and _looks_like_path(rid):
-            records[i] = _relative(rid, base)
+            records[i] = _relative(rid, base, file=file, key=f"excitation.records[{i}]")
     if not suites and not records:
         suites = [DEFAULT_SUITE]
     scale = None
@@ -216,7 +218,7 @@ def parse_excitation(raw: dict | None, *, file: str, gravity: float = 9.81) -> E
         if not isinstance(raw["records_dir"], str) or not raw["records_dir"].strip():
             raise ProjectError("invalid records folder", file=file, key="excitation.records_dir",
                                expected="a folder path string", found=repr(raw["records_dir"]))
-        records_dir = Path(_relative(raw["records_dir"].strip(), base))
+        records_dir = Path(_relative(raw["records_dir"].strip(), base, file=file, key="excitation.records_dir"))
         if not records_dir.is_dir():
             raise ProjectError("records folder not found", file=file, key="excitation.records_dir",
                                expected="an existing folder of PEER *.AT2 files", found=str(records_dir))
@@ -296,16 +298,20 @@ def resolve_motions(spec: ExcitationSpec, *, gravity: float = 9.81, uplift_accel
     groups: list[tuple[str | None, ScaleRule | None, list[tuple[str, GroundMotion, dict]]]] = []
     missing: list[tuple[str, str, str | None]] = []
     entries: list[Entry] = []
+    # (id, the acceptance's meta, the record's meta, where, file): one ground motion, one station
+    stations: list[tuple] = []
     for name in spec.suites:
         suite = load_suite(name, gravity=gravity, records_dir=folder)
         found = []
-        for entry in suite.entries:
-            entries.append(Entry(entry.id, f"suite {suite.name}", entry.motion, entry.meta,
-                                 str(suite.path) if suite.path else None))
+        for index, entry in enumerate(suite.entries):
+            manifest = str(suite.path) if suite.path else None
+            entries.append(Entry(entry.id, f"suite {suite.name}", entry.motion, entry.meta, manifest))
             if entry.motion is None:
                 missing.append((entry.id, entry.reason, suite.name))
             else:
                 found.append((entry.id, entry.motion, dict(entry.meta, suite=suite.name)))
+                stations.append((entry.id, found[-1][2], {**entry.motion.meta, **entry.meta},
+                                 f"suite {suite.name}, records[{index}]", manifest))
         groups.append((suite.name, suite.default_scale, found))
     extra = []
     for i, rid in enumerate(spec.records):
@@ -320,8 +326,10 @@ def resolve_motions(spec: ExcitationSpec, *, gravity: float = 9.81, uplift_accel
             raise
         entries.append(Entry(rid, where, motion, {}, spec.file))
         extra.append((rid, motion, dict(motion.meta)))
+        stations.append((rid, extra[-1][2], dict(motion.meta), where, spec.file))
     groups.append((None, None, extra))
     refuse_repeated_recordings(entries, file=spec.file, key="excitation")
+    refuse_inconsistent_ground_motions(stations, file=spec.file, key="excitation")
     if spec.time_scale != 1.0:
         groups = [(s, r, [(i, time_scaled(m, spec.time_scale), meta) for i, m, meta in items])
                   for s, r, items in groups]

@@ -15,7 +15,12 @@ entries of a suite are the same recording when any of these hold (checked in thi
 4. **the same samples**: equal time step and length and max |a₁/PGA₁ − s·a₂/PGA₂| ≤ 1e-4 with s = ±1 —
    the same accelerogram up to its units, a scale factor or its polarity.  1e-4 of the PGA is a
    thousand times the rounding of stored records (float32, 7-digit AT2 text: ~1e-7) and a thousand times
-   below the difference of two distinct recordings (of the order of their PGA).
+   below the difference of two distinct recordings (of the order of their PGA);
+5. **the same samples shifted in time**: equal time step and a normalised cross-correlation
+   max_k |Σ a₁[n] a₂[n+k]| / (‖a₁‖ ‖a₂‖) ≥ :data:`SHIFT_CORRELATION` (:func:`scipy.signal.correlate`) —
+   a copy delayed by 2 s under another name, with or without the first or last seconds cut.  Measured: such
+   copies of the built-in records correlate at ≥ 0.998 (2 s cut at either end); the 2,046 pairs of distinct
+   built-in records sharing a time step at most 0.52 (the two components of p695-ff/7).
 
 :func:`refuse_repeated_recordings` raises a :class:`~rockdesign.errors.ProjectError` naming both entries
 (where each was given) and the file: counting one recording twice would count one trial twice in every
@@ -34,6 +39,12 @@ from ..errors import ProjectError
 
 CONTENT_TOLERANCE = 1e-4
 """Two accelerograms are one when they differ by at most this fraction of their PGA at every sample."""
+SHIFT_CORRELATION = 0.9
+"""Two accelerograms on one time step are one, shifted, when their normalised cross-correlation reaches this
+(copies ≥ 0.998, distinct recordings ≤ 0.52: module docstring)."""
+ENERGY_GATE = 0.5
+"""Cross-correlation is computed only for records whose Σa²/PGA² (a shift leaves it as it is) differ by less
+than this fraction: a correlation of 0.9 needs most of each record's energy in the other."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -202,7 +213,51 @@ def repeated_recording(entries: list[Entry]) -> tuple[Entry, Entry, str] | None:
                 return other, entry, (f"the same samples (time step, length and accelerations within "
                                       f"{CONTENT_TOLERANCE:g} of the PGA, up to a factor)")
         buckets.setdefault(key, []).append((entry, shape))
+    return shifted_copy(entries)
+
+
+def _trimmed(entry: Entry) -> tuple[float, np.ndarray] | None:
+    """(time step [s], samples without leading and trailing zeros, scaled to unit norm) of a record, or None."""
+    motion = entry.motion
+    if motion is None or not motion.is_record or motion.samples.size < 2:
+        return None
+    a = np.asarray(motion.samples, dtype=float)
+    nonzero = np.flatnonzero(a)
+    if nonzero.size < 2:
+        return None
+    a = a[nonzero[0]: nonzero[-1] + 1]
+    return float(f"{motion.dt:.9g}"), a / np.linalg.norm(a)
+
+
+def shifted_copy(entries: list[Entry]) -> tuple[Entry, Entry, str] | None:
+    """The first two entries that are one accelerogram shifted in time (rule 5 of the module docstring), with
+    the reason; else None."""
+    from scipy import signal
+    by_step: dict[float, list[tuple[Entry, np.ndarray, float]]] = {}
+    for entry in entries:
+        found = _trimmed(entry)
+        if found is None:
+            continue
+        dt, unit = found
+        effective = 1.0 / float(np.max(unit ** 2))          # Σa²/PGA²: samples carrying the energy
+        for other, other_unit, other_effective in by_step.get(dt, []):
+            if abs(effective - other_effective) > ENERGY_GATE * max(effective, other_effective):
+                continue
+            c = signal.correlate(other_unit, unit, mode="full", method="fft")
+            k = int(np.argmax(np.abs(c)))
+            rho = float(abs(c[k]))
+            if rho >= SHIFT_CORRELATION:
+                shift = (unit.size - 1 - k) * dt + _start(entry) - _start(other)
+                return other, entry, (f"the same samples shifted by {shift:.4g} s (normalised cross-correlation "
+                                      f"{rho:.4f} ≥ {SHIFT_CORRELATION:g}; distinct recordings stay below 0.52)")
+        by_step.setdefault(dt, []).append((entry, unit, effective))
     return None
+
+
+def _start(entry: Entry) -> float:
+    """Time [s] of a record's first non-zero sample."""
+    nonzero = np.flatnonzero(np.asarray(entry.motion.samples))
+    return float(nonzero[0]) * float(entry.motion.dt) if nonzero.size else 0.0
 
 
 def refuse_repeated_recordings(entries: list[Entry], *, file: str | None = None, key: str = "excitation") -> None:

@@ -28,7 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import RecordError
-from ..paths import ground_motions_dir
+from ..paths import ground_motions_dir, user_path
 from .motion import GroundMotion, record_motion
 from .records import read_record_file
 
@@ -208,7 +208,7 @@ def find_record_file(records_dir, rsn: int, component: str) -> Path | None:
     Raises:
         RecordError: if the folder does not exist or several files match.
     """
-    folder = Path(records_dir).expanduser()
+    folder = user_path(records_dir, "records_dir", error=RecordError)
     if not folder.is_dir():
         raise RecordError("records folder not found", file=str(folder), key="records_dir",
                           expected="an existing folder of PEER *.AT2 files", found="no such folder")
@@ -268,11 +268,11 @@ def load_record(record_id: str, *, gravity: float = 9.81, records_dir=None) -> G
                           expected=f"a file RSN{rsn}_*{component}.AT2 in the records dir",
                           found="no matching file", hint="download it from the PEER NGA database")
     if text.lower().startswith("file:"):
-        path = Path(text[5:].strip()).expanduser()
+        path = user_path(text[5:].strip(), "record id", error=RecordError)
         motion = read_record_file(path, gravity=gravity, name=text)
         motion.meta.setdefault("id", text)
         return motion
-    path = Path(text).expanduser()
+    path = user_path(text, "record id", error=RecordError)
     if path.is_file() or path.suffix.lower() in _RECORD_SUFFIXES or "/" in text and not text.lower().startswith("p695"):
         motion = read_record_file(path, gravity=gravity, name=text)
         motion.meta.setdefault("id", text)

@@ -23,6 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import RecordError
+from ..paths import user_path
 from ..units import QuantityParseError, parse_quantity
 from .motion import GroundMotion, record_motion
 
@@ -86,7 +87,7 @@ def read_record_file(path, *, units: str | None = None, dt: float | None = None,
     Raises:
         RecordError: unreadable or malformed file, naming the file and the line.
     """
-    path = Path(path).expanduser()
+    path = user_path(path, None, error=RecordError)
     file = str(path)
     if not path.is_file():
         raise RecordError("record file not found", file=file, expected="an existing file",

@@ -38,6 +38,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import MotionError, ProjectError
+from ..paths import user_path
 from ..units import QuantityParseError, parse_quantity
 from .design_spectra import EC8_GROUND_TYPES, ASCE7Spectrum, EC8Spectrum
 from .targets import MCERSpectrum, TabulatedSpectrum, read_target_spectrum
@@ -115,6 +116,16 @@ class ScaleRule:
             how = f"mean PSA not below {100 * self.fraction:g} % of the target"
         return (f"one factor for all records: {how} over {band} "
                 f"({100 * self.damping:g} % damping); target: {target}")
+
+
+MCE_R_MAX_G = 10.0
+"""Largest S_MS or S_M1 accepted [g]: a bound against typing errors ("1e400 g" became infinity and the suite was
+"conformant" with factors up to 21; "60 g" for "0.60 g"), not a statement about seismicity."""
+TL_MAX = 100.0
+"""Largest T_L accepted [s] (ASCE 7-22 maps T_L from 4 s to 16 s; a study may push it out, not to infinity)."""
+_RANGE_WHY = {"SMS": "an MCE_R spectral acceleration, as \"0.60 g\"",
+              "SM1": "an MCE_R spectral acceleration at 1 s, as \"0.30 g\"",
+              "TL": "the long-period transition period, ASCE 7-22 maps 4–16 s"}
 
 
 def _error(message, *, file, key, expected=None, found=None, hint=None):
@@ -239,9 +250,8 @@ def _parse_asce7_22_rule(raw, *, file, key, gravity) -> ScaleRule:
         if not isinstance(text, str) or not text.strip():
             raise _error("invalid target spectrum", file=file, key=f"{key}.target",
                          expected='a file name like "mce_r.csv" (columns period [s], Sa [g])', found=repr(text))
-        path = Path(text.strip()).expanduser()
-        if not path.is_absolute():
-            path = (Path(file).expanduser().resolve().parent if file else Path.cwd()) / path
+        base = Path(file).expanduser().resolve().parent if file else Path.cwd()
+        path = user_path(text.strip(), f"{key}.target", file=file, base=base)
         if not path.is_file():
             raise _error("target spectrum file not found", file=file, key=f"{key}.target",
                          expected="a two-column file (period [s], Sa [g]) relative to this file's folder",
@@ -256,10 +266,13 @@ def _parse_asce7_22_rule(raw, *, file, key, gravity) -> ScaleRule:
         sms = _quantity(raw["SMS"], "SMS", "acceleration", gravity=gravity, **opts)
         sm1 = _quantity(raw["SM1"], "SM1", "acceleration", gravity=gravity, **opts)
         tl = _quantity(raw.get("TL", "8 s"), "TL", "time", gravity=gravity, **opts)
-        for name, value in (("SMS", sms), ("SM1", sm1), ("TL", tl)):
-            if not value > 0:
-                raise _error("invalid MCE_R parameter", file=file, key=f"{key}.{name}",
-                             expected=f"{name} > 0", found=repr(raw.get(name)))
+        for name, value, limit, unit in (("SMS", sms, MCE_R_MAX_G * gravity, "g"),
+                                         ("SM1", sm1, MCE_R_MAX_G * gravity, "g"), ("TL", tl, TL_MAX, "s")):
+            if not (math.isfinite(value) and 0.0 < value <= limit):
+                shown = f"{limit / gravity:g} g" if unit == "g" else f"{limit:g} s"
+                raise _error("MCE_R parameter out of its physical range", file=file, key=f"{key}.{name}",
+                             expected=f"{name} > 0 and {name} ≤ {shown} ({_RANGE_WHY[name]})",
+                             found=f"{raw.get(name, '8 s')!r}" + ("" if math.isfinite(value) else " (not finite)"))
         if not sm1 / sms < tl:
             raise _error("invalid MCE_R parameters", file=file, key=f"{key}.TL",
                          expected=f"T_L above T_S = SM1/SMS = {sm1 / sms:.3g} s",
@@ -276,7 +289,7 @@ def _periods(raw, *, file, key, gravity) -> tuple[float, float]:
         raise _error("invalid period range", file=file, key=f"{key}.periods",
                      expected='two periods like ["0.08 s", "3.0 s"]', found=repr(raw))
     lo, hi = (_quantity(v, "periods", "time", file=file, key=key, gravity=gravity) for v in raw)
-    if not 0.0 < lo < hi:
+    if not (math.isfinite(lo) and math.isfinite(hi) and 0.0 < lo < hi):
         raise _error("invalid period range", file=file, key=f"{key}.periods",
                      expected="0 < lower bound < upper bound", found=repr(raw))
     return (lo, hi)

@@ -32,7 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import MotionError, RecordError
-from ..paths import ground_motions_dir
+from ..paths import ground_motions_dir, user_path
 from .library import builtin_for_rsn, builtin_ids, builtin_info, find_record_file, load_record, record_summary
 from .motion import GroundMotion, record_motion
 from .records import acceleration_factor, read_record_file
@@ -84,7 +84,7 @@ def suite_path(name_or_path, key: str = "suites") -> Path:
         MotionError: unknown name (with the nearest built-in names).
     """
     text = str(name_or_path)
-    path = Path(text).expanduser()
+    path = user_path(text, key, error=MotionError)
     if path.suffix.lower() == ".toml" or path.is_file() or "/" in text:
         if not path.is_file():
             raise MotionError("suite file not found", file=str(path), expected="a suite manifest (*.toml)",
@@ -197,7 +197,7 @@ def _resolve_entry(raw: dict, index: int, path: Path, gravity: float, records_di
                                meta=dict(meta, source_file=str(npz_path)))
         return SuiteEntry(record_id, dict(meta, resolved_from=f"{npz_path.name}:{raw['key']}"), motion)
     if "file" in raw:
-        record_path = (path.parent / Path(str(raw["file"])).expanduser())
+        record_path = user_path(str(raw["file"]), f"{key}.file", file=file, base=path.parent, error=MotionError)
         record_id = str(raw.get("id", f"file:{raw['file']}"))
         if not record_path.is_file():
             return SuiteEntry(record_id, meta, reason=f"file not found: {record_path}")
@@ -240,8 +240,8 @@ def _resolve_entry(raw: dict, index: int, path: Path, gravity: float, records_di
             return SuiteEntry(record_id, dict(meta, resolved_from=f"built-in {builtin}"), motion)
         pattern = f"RSN{rsn}_*{component}.AT2"
         if records_dir is None:
-            reason = (f"not built in, and no records folder given (set [excitation] records_dir or "
-                      f"--records-dir to a folder holding {pattern} from the PEER NGA database)")
+            reason = (f"not built in, and no records folder given (set [excitation] records_dir, or pass "
+                      f"records_dir, to a folder holding {pattern} from the PEER NGA database)")
         else:
             reason = f"no file {pattern} in {records_dir}, and not built in"
         return SuiteEntry(record_id, meta, reason=reason)

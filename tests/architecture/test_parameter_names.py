@@ -98,6 +98,65 @@ def test_the_checker_sees_flag_keys(tmp_path):
                      ], found
 
 
+FLAG_IN_TEXT = re.compile(r"(?:^|[\s(\[\"'`])(--[a-z][a-z0-9-]*)")
+"""A command-line flag inside a text: "(--prefer material)", "or --records-dir to a folder"."""
+PENDING_FLAG_TEXTS: dict[str, set[str]] = {}
+"""Library texts still naming a flag, each owned by another item of issue 48 ("no library message names a CLI
+flag"): remove an entry when its module is fixed (the test fails on an entry that no longer applies)."""
+
+
+def flag_texts(package_dir: Path = PACKAGE) -> dict[str, set[str]]:
+    """module file → the flags named in its string constants (messages, reasons, notes; docstrings excepted),
+    for every module below the command line."""
+    known, _ = graph(package_dir)
+    found: dict[str, set[str]] = {}
+    for module, path in known.items():
+        layer = layer_of(module)
+        if layer is not None and layer >= CLI_LAYER:
+            continue
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        docstrings = {id(node.body[0].value) for node in ast.walk(tree)
+                      if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef))
+                      and node.body and isinstance(node.body[0], ast.Expr)
+                      and isinstance(node.body[0].value, ast.Constant)}
+        docstrings |= {id(node.value) for node in ast.walk(tree)     # attribute docstrings ("""…""" after a name)
+                       if isinstance(node, ast.Expr) and isinstance(node.value, ast.Constant)}
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Constant) and isinstance(node.value, str) and id(node) not in docstrings:
+                flags = set(FLAG_IN_TEXT.findall(node.value))
+                if flags:
+                    found.setdefault(str(path.relative_to(package_dir.parent)), set()).update(flags)
+    return found
+
+
+def test_no_library_text_names_a_flag():
+    """A library message speaks of the parameter (``prefer="material"``, ``records_dir``); only the command line
+    speaks of ``--prefer`` (issue 50, "library wording")."""
+    found = flag_texts()
+    new = {f: flags - PENDING_FLAG_TEXTS.get(f, set()) for f, flags in found.items()}
+    new = {f: flags for f, flags in new.items() if flags}
+    assert not new, f"library texts naming command-line flags: {new}"
+    stale = {f: flags - found.get(f, set()) for f, flags in PENDING_FLAG_TEXTS.items()}
+    assert not any(stale.values()), f"fixed: remove from PENDING_FLAG_TEXTS {stale}"
+
+
+def test_the_text_checker_sees_flags(tmp_path):
+    pkg = tmp_path / "rockdesign"
+    (pkg / "design_space").mkdir(parents=True)
+    (pkg / "__init__.py").write_text("")
+    (pkg / "design_space" / "__init__.py").write_text("")
+    (pkg / "design_space" / "grid.py").write_text(
+        '"""A docstring may say ``design --prefer material``."""\n'
+        "NOTE = 'x'\n"
+        '"""An attribute docstring: --json."""\n'
+        "def f(prefer):\n"
+        '    """--every-cell in a docstring."""\n'
+        "    return 'least material' + (' (--prefer material)' if prefer else '') + f'{prefer} or --records-dir x'\n"
+        "def g():\n"
+        "    return 'a - b, x--y, -1, ---'\n")
+    assert flag_texts(pkg) == {"rockdesign/design_space/grid.py": {"--prefer", "--records-dir"}}
+
+
 def _names_from_rockdesign(tree: ast.AST) -> list[tuple[str, int]]:
     """(name, line) of every name a command-line module takes from the package ``rockdesign`` itself:
     ``from .. import X``, ``from rockdesign import X`` and ``rd.X`` after ``import rockdesign as rd``."""

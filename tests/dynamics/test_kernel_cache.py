@@ -36,7 +36,7 @@ probe = Kernels("probe", lambda: potential_energy(0.05, 1.0, 1, sp), 1.0)
 prepare("probe", [probe])
 value = potential_energy(0.05, 1.0, 1, sp)
 print(json.dumps({"package": rockdesign.__file__, "value": value, "folder": str(kernel_cache.kernel_cache_dir()),
-                  "numba_cache_dir": os.environ["NUMBA_CACHE_DIR"], "marker": str(marker(probe)),
+                  "numba_cache_dir": os.environ.get("NUMBA_CACHE_DIR"), "marker": str(marker(probe)),
                   "cache_hits": sum(potential_energy.stats.cache_hits.values())}))
 """
 CLOSED_FORM = 9.81 * (math.cos(0.2 - 0.05) - math.cos(0.2))
@@ -71,7 +71,7 @@ def test_edited_inlined_helper_runs_and_nothing_is_written_into_the_package(tmp_
     assert first["value"] == pytest.approx(CLOSED_FORM, rel=1e-12)
     folder = Path(first["folder"])
     assert folder.parent == cache_root and folder.name.startswith("kernels-")   # named by the digest
-    assert first["numba_cache_dir"] == str(folder)
+    assert first["numba_cache_dir"] is None                    # the environment is left as it was
     numba_folder = folder / f"dynamics_{hashlib.sha1(str(dynamics).encode()).hexdigest()}"
     assert list(numba_folder.glob("eom.potential_energy-*.nbi"))   # compiled into the digest's folder
     assert Path(first["marker"]).parent == folder and Path(first["marker"]).is_file()
@@ -115,13 +115,18 @@ def test_the_folder_is_in_the_user_cache_and_named_by_the_digest(clean_environme
     assert not (tmp_path / "mine").exists()                                  # nothing is written to find it
 
 
-def test_use_kernel_cache_sets_numbas_public_configuration(clean_environment, tmp_path):
+def test_the_kernel_cache_is_numbas_configuration_only_while_rockdesign_defines_kernels(clean_environment, tmp_path):
     clean_environment.setenv("ROCKDESIGN_CACHE_DIR", str(tmp_path / "mine"))
-    folder = kernel_cache.use_kernel_cache()
-    assert folder == tmp_path / "mine" / kernel_cache.folder_name()
-    assert os.environ["NUMBA_CACHE_DIR"] == numba.config.CACHE_DIR == str(folder)
-    # a process started from this one inherits NUMBA_CACHE_DIR: the same folder, not one nested in it
+    folder = tmp_path / "mine" / kernel_cache.folder_name()
+    before, environ = numba.config.CACHE_DIR, dict(os.environ)
+    with kernel_cache.kernel_cache_in_use():
+        with kernel_cache.kernel_cache_in_use():              # nested kernel modules
+            assert numba.config.CACHE_DIR == str(folder)
+        assert numba.config.CACHE_DIR == str(folder)
+    assert numba.config.CACHE_DIR == before and dict(os.environ) == environ
+    # a process started with NUMBA_CACHE_DIR at the folder itself uses it, not one nested in it
     clean_environment.delenv("ROCKDESIGN_CACHE_DIR")
+    clean_environment.setenv("NUMBA_CACHE_DIR", str(folder))
     assert kernel_cache.kernel_cache_dir() == folder
 
 
@@ -129,18 +134,20 @@ def test_a_cache_root_that_cannot_be_written_falls_back_to_the_temporary_directo
     blocked = tmp_path / "a file"
     blocked.write_text("")
     clean_environment.setenv("ROCKDESIGN_CACHE_DIR", str(blocked / "cache"))
-    folder = kernel_cache.kernel_cache_dir()
+    with pytest.warns(kernel_cache.KernelCacheWarning, match="cannot be written"):
+        folder = kernel_cache.kernel_cache_dir()
     assert folder.name == kernel_cache.folder_name() and folder.parent.parent == Path(kernel_cache.tempfile.gettempdir())
 
 
-def test_the_package_imports_no_kernel_before_the_cache_is_set():
-    """numba picks a kernel's cache folder when the kernel is defined: ``import rockdesign`` sets it first."""
-    code = ("import os, sys, rockdesign; "
-            "print(os.environ['NUMBA_CACHE_DIR']); print('numba' in sys.modules)")
-    env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}
+def test_the_package_imports_no_kernel_and_sets_no_variable():
+    """numba picks a kernel's cache folder when the kernel is defined: ``import rockdesign`` installs the finder
+    that executes kernel modules with the folder set, imports no kernel (nor numba) and changes no variable."""
+    code = ("import os, sys; before = dict(os.environ); import rockdesign; from rockdesign import kernel_cache; "
+            "print(dict(os.environ) == before, 'numba' in sys.modules, "
+            "isinstance(sys.meta_path[0], kernel_cache.KernelModuleFinder))")
+    env = {k: v for k, v in os.environ.items() if k not in ("NUMBA_CACHE_DIR", "OMP_WAIT_POLICY")}
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env)
-    folder, numba_loaded = out.stdout.split()
-    assert Path(folder).name == kernel_cache.folder_name() and numba_loaded == "False"
+    assert out.stdout.split() == ["True", "False", "True"], out
 
 
 def test_digest_covers_modules_whose_constants_kernels_read():

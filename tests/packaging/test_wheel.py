@@ -113,3 +113,35 @@ def test_installed_wheel_runs_every_command_from_a_temporary_directory(venv, tmp
     assert (work / "out" / "report.pdf").read_bytes()[:5] == b"%PDF-"
     data = json.loads((work / "out" / "results.json").read_text(encoding="utf-8"))
     assert data["summary"]["n_records"] == 44 and not data["excitation"]["missing"]
+
+
+def test_installed_wheel_refuses_the_inputs_of_issue_49(venv, tmp_path):
+    """From the installed wheel (no dask there: the "absent" path for real): exit 2 naming the key or option,
+    and ``import rockdesign`` neither fails on a cache folder it cannot use nor changes the environment."""
+    bin_dir, env = venv
+    work = tmp_path / "work"
+    work.mkdir()
+
+    def refused(*args, **extra_env):
+        out = subprocess.run([str(bin_dir / "rockdesign"), *map(str, args)], cwd=work, env={**env, **extra_env},
+                             capture_output=True, text=True, timeout=600)
+        assert out.returncode == 2 and "Traceback" not in out.stderr, (args, out.stdout[-2000:], out.stderr[-2000:])
+        return " ".join(out.stderr.split())
+
+    probe = ("import os, json; before = dict(os.environ); import rockdesign as rd; same = dict(os.environ) == before\n"
+             "try:\n    rd.load_project(None)\nexcept rd.ProjectError as err:\n    key = err.key\n"
+             "print(json.dumps({'same': same, 'key': key}))")
+    out = subprocess.run([str(bin_dir / "python"), "-c", probe], cwd=work, capture_output=True, text=True,
+                         env={**env, "ROCKDESIGN_CACHE_DIR": "~nosuchuser/cache"}, timeout=300)
+    assert out.returncode == 0, out.stderr
+    assert json.loads(out.stdout) == {"same": True, "key": "path"}
+
+    _run([bin_dir / "rockdesign", "init", "podium", "podium.toml"], work, env)
+    assert "names no home folder" in refused("check", "podium.toml", "-o", "~nosuchuser/out")
+    assert "outside 1–65535" in refused("check", "podium.toml", "--dask", "tcp://127.0.0.1:70267")
+    assert "invalid local cluster" in refused("check", "podium.toml", "--dask", "local:0")
+    assert "dask.distributed is not installed" in refused("check", "podium.toml", "--dask", "tcp://127.0.0.1:1")
+    text = (REPO / "examples" / "podium_asce7_22.toml").read_text(encoding="utf-8")
+    (work / "asce.toml").write_text(text.replace('SMS = "0.30 g"', 'SMS = "1e400 g"'), encoding="utf-8")
+    assert "key 'excitation.scale.SMS'" in refused("check", "asce.toml", "--no-pdf")
+    assert not (work / "podium_check").exists() and not (work / "asce_check").exists()
