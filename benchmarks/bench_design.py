@@ -174,8 +174,39 @@ def design_answer(grid: dict, raw: dict, variables, folder: Path) -> dict:
             "cells_inferred": (grid.get("settings") or {}).get("cells_inferred"),
             "inference_audit": (grid.get("settings") or {}).get("inference_audit"),
             "inferred_beside_another_category": edges,
+            "inference_study": inference_study(grid),
             "neighbours_in_separate_checks": separate,
             "neighbours_pass_in_separate_checks": bool(separate) and all(r["check"] == "PASS" for r in separate)}
+
+
+def inference_study(grid: dict, thresholds=(1.0, 1.1, 1.2, 1.25, 1.3, 1.5)) -> list[dict]:
+    """How the inference rule's threshold FAR would have done on this chart: for each threshold, the analysed cells
+    whose coarser corners (all analysed) agree and are far from their flip — the cells the rule would have left
+    out — and how many of them the analysis shows to be of another category (docs/design.md "Inference only where
+    it is safe")."""
+    from rockdesign.design_space.refine import category, corners, level_strides, levels
+    cells = {tuple(c["index"]): c for c in grid["cells"]}
+    shape = tuple(len(v["values"]) for v in grid["variables"])
+    rows = []
+    for far in thresholds:
+        left, wrong = 0, []
+        for level, indexes in enumerate(levels(shape)):
+            for i in indexes if level else []:
+                around = [cells[c] for c in corners(i, shape, level_strides(shape, level - 1))]
+                found = {category(c) for c in around}
+                if not all(c.get("analysed", True) for c in around) or len(found) != 1 or not cells[i].get(
+                        "analysed", True):
+                    continue
+                (cat,) = found
+                if cat not in ("robust PASS", "FAIL") or not all(
+                        (c["flip_margin"] or 0.0) >= far if c["verdict"] == "PASS"
+                        else c["flip_margin"] is not None and c["flip_margin"] <= 1 / far for c in around):
+                    continue
+                left += 1
+                if category(cells[i]) != cat:
+                    wrong.append({"labels": cells[i]["labels"], "is": category(cells[i]), "inferred": cat})
+        rows.append({"far": far, "would_leave_out": left, "of_another_category": len(wrong), "cells": wrong})
+    return rows
 
 
 def _region(cell: dict) -> str:
