@@ -53,8 +53,8 @@ class ScanNeed:
     From the upper bounds known so far (a record's first overturning grid factor, or 1 when its design-level
     analysis overturned) each order statistic has an upper bound x; a record whose s_i is known to lie above
     every x it could matter to is irrelevant: it stops scanning once its scanned factor u_i ≥ L_i
-    (:meth:`thresholds`), and its first overturning factor is bisected only when its bracket starts below
-    L_i.  The bounds only fall as the scan goes on, so a record found irrelevant stays irrelevant, and every
+    (:meth:`thresholds`), and its first overturning factor is bisected only while its bracket overlaps the
+    interval an order statistic can still take (:meth:`to_refine`).  The bounds only fall as the scan goes on, so a record found irrelevant stays irrelevant, and every
     record that is relevant is scanned and bisected on the check's own grid: the three numbers are the
     check's.
 
@@ -100,4 +100,38 @@ class ScanNeed:
         for i in range(len(upper)):
             med = x_med / self.intensities[i] if self.intensities is not None and self.intensities[i] > 0 else 0.0
             out.append(max(1.0 if self.incremental else 0.0, x_flip, med))
+        return out
+
+    def to_refine(self, lower: list[float], upper: list[float]) -> set[int]:
+        """The records whose first overturning factor must be bisected further for the three numbers to be exact:
+        those whose bracket [``lower``, ``upper``] (a record not found overturning: [its scanned factor, ∞)) overlaps
+        the interval an order statistic can still take — [k-th smallest lower bound, k-th smallest upper bound] —
+        or straddles the design level.  A record wholly below that interval is below the statistic whatever its
+        exact value, one wholly above it above: neither changes it, so it is not bisected (the check bisects
+        every first rise; the statistics are the same)."""
+        up = self.upper_bounds([None if math.isinf(u) else u for u in upper])
+        lo = [min(a, 1.0) if over else a for a, over in zip(lower, self.design_overturned)]
+        out = {i for i, (a, b) in enumerate(zip(lo, up)) if self.incremental and a < 1.0 < b}
+
+        def overlapping(lows, highs, k):
+            if not 0 <= k - 1 < len(lows):
+                return None
+            return sorted(lows)[k - 1], sorted(highs)[k - 1]
+
+        gms: dict[str, list[int]] = {}
+        for i, g in enumerate(self.ground_motions):
+            gms.setdefault(g, []).append(i)
+        g_lo = {g: min(lo[i] for i in ix) for g, ix in gms.items()}
+        g_up = {g: min(up[i] for i in ix) for g, ix in gms.items()}
+        band = overlapping(list(g_lo.values()), list(g_up.values()), self.allowance + 1)
+        if band is not None:
+            for g, ix in gms.items():
+                if g_lo[g] <= band[1] and g_up[g] >= band[0]:
+                    out.update(i for i in ix if lo[i] <= band[1] and up[i] >= band[0])
+        if self.intensities is not None:
+            caps_lo = [a * im for a, im in zip(lo, self.intensities)]
+            caps_up = [b * im for b, im in zip(up, self.intensities)]
+            band = overlapping(caps_lo, caps_up, math.ceil(len(lo) / 2))
+            if band is not None:
+                out.update(i for i in range(len(lo)) if caps_lo[i] <= band[1] and caps_up[i] >= band[0])
         return out

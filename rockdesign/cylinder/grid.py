@@ -82,6 +82,7 @@ def grid_cell(result, analyses: int) -> dict:
         "uplift_shear_coefficient": cyl.tan_alpha,
         "theta_c": None, "alpha": cyl.alpha, "theta_overturn": cyl.theta_overturn,
         "column_material": cyl.mass,
+        "material": cyl.mass, "demand": None,      # (the neutral words the shared design code ranks by)
         "model": "cylinder-" + ("damped" if cyl.damped else "undamped"),
         "analyses": analyses, "analyses_saved": saved_by_stopping(result, decided),
     }

@@ -84,24 +84,30 @@ def pair_margins(cyl, scaled_pairs, nominal, a, run, progress=None, need: ScanNe
             still.append(i)
         active = still
     brackets = {i: s.bracket() for i, s in enumerate(scans) if s.bracket() is not None}
-    while brackets:                        # bisect the first rise between the last safe factor and it
-        limits = need.thresholds([brackets[i][1] if i in brackets else s.upper() for i, s in enumerate(scans)]) \
-            if need is not None else None
-        for i in list(brackets):
+    bisecting = set(brackets)
+    while bisecting:                       # bisect the first rise between the last safe factor and it
+        refine = None
+        if need is not None:        # only the first rises an order statistic of the cell can still fall on
+            lower = [brackets[i][0] if i in brackets else (0.0 if s.first is not None else s.grid[s.k - 1])
+                     for i, s in enumerate(scans)]
+            upper = [brackets[i][1] if i in brackets else (s.first_factor() if s.first is not None else float("inf"))
+                     for i, s in enumerate(scans)]
+            refine = need.to_refine(lower, upper)
+        for i in sorted(bisecting):
             lo, hi = brackets[i]
-            if hi / lo - 1.0 <= a.margin_precision or (limits is not None and lo >= limits[i]):
-                scans[i].settle(hi)
-                del brackets[i]
+            if hi / lo - 1.0 <= a.margin_precision or (refine is not None and i not in refine):
+                bisecting.discard(i)
                 continue
             mid = (lo * hi) ** 0.5
             r = run(scaled_pairs[i].scaled(mid), rtol)
             scans[i].margin.runs += 1
             if r.status != "completed":
                 scans[i].margin.failed_scales.append(mid)
-                scans[i].settle(hi)
-                del brackets[i]
+                bisecting.discard(i)
                 continue
             brackets[i] = (lo, mid) if r.overturned else (mid, hi)
+    for i, (_, hi) in brackets.items():
+        scans[i].settle(hi)
     return [s.finish() for s in scans]
 
 
@@ -133,10 +139,6 @@ class _PairScan:
         """(last safe factor below the first overturning one, that one), or None (nothing to bisect)."""
         below = [k for k in range(self.first or 0) if self.safe[k]]
         return (self.grid[below[-1]], self.grid[self.first]) if self.first is not None and below else None
-
-    def upper(self) -> float | None:
-        """The first overturning factor as known now (bisected where it was), or None."""
-        return self.lower_edge if self.lower_edge is not None else self.first_factor()
 
     def settle(self, hi: float) -> None:
         self.lower_edge = hi

@@ -87,6 +87,7 @@ EMPTY = {**dict.fromkeys(("governing", "acmr", "acmr_required", "p_collapse_desi
                           "n_unacceptable", "allowed_unacceptable", "n_ground_motions", "superstructure_shear_p84",
                           "superstructure_drift_p84", "median_theta_max_over_theta_c", "uplift_acceleration",
                           "uplift_shear_coefficient", "theta_c", "column_material", "model", "flip_margin",
+                          "material", "demand",
                           "flip_governing", "flip_note")), "flip_margin_is_lower_bound": False}
 """The check's numbers of a cell that has none (INVALID, ERROR)."""
 

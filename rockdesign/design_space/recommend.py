@@ -14,12 +14,15 @@ PREFER = ("material", "shear")
 
 
 def _rank(prefer: str | None):
+    """The order of preference over cells, by their neutral keys (each kind maps its physics into them,
+    :meth:`~rockdesign.kinds.base.StructureKind.grid_cell`): ``demand`` — the force the recommendation minimises,
+    equal to three significant digits — then ``material`` [kg]; or material first (``prefer = "material"``)."""
     def shear(c):
-        x = c.get("superstructure_shear_p84")
+        x = c.get("demand")
         return float(f"{x:.3g}") if x is not None else math.inf
 
     def mass(c):
-        x = c.get("column_material")
+        x = c.get("material")
         return x if x is not None else math.inf
     if prefer == "material":
         return lambda c: (mass(c), shear(c))
@@ -48,7 +51,8 @@ def _neighbours(best: dict, cells: list[dict], rank, what: str) -> str:
 
 
 def recommended(cells: list[dict], material: tuple[str, str] = ("column material", "no elastic superstructure demand"),
-                prefer: str | None = None, choice: dict | None = None) -> dict | None:
+                prefer: str | None = None, choice: dict | None = None,
+                demand: str = "superstructure shear coefficient (84th percentile") -> dict | None:
     """The recommended design (SPEC §15): a robust PASS whenever one exists — among the analysed passing cells
     that pass all their perturbation draws, the lowest 84th-percentile superstructure shear coefficient (equal
     to 3 significant digits: the least column material n·m_C), or with ``prefer = "material"`` (or without an
@@ -74,13 +78,12 @@ def recommended(cells: list[dict], material: tuple[str, str] = ("column material
     if best.get("acceptance") == "binomial" and best.get("p_overturn_bound") is not None:
         margin.append(f"P(overturn) ≤ {best['p_overturn_bound']:.3g} at 95 % confidence "
                       f"(limit {best['binomial_limit']:.3g})")
-    shear = best.get("superstructure_shear_p84")
-    mass = best.get("column_material")
+    shear = best.get("demand")
+    mass = best.get("material")
     what = material[0] + (f" {mass / 1000:.3g} t" if mass is not None and math.isfinite(mass) else "")
     kind_of_pass = "robust passing" if robust else "passing"
     by_shear = prefer != "material" and shear is not None
-    why = (f"the {kind_of_pass} variant with the lowest superstructure shear coefficient (84th percentile "
-           f"{shear:.3g})" if by_shear else
+    why = (f"the {kind_of_pass} variant with the lowest {demand} {shear:.3g})" if by_shear else
            f"the {kind_of_pass} variant with the least {what}"
            + (f" ({material[1]})" if prefer != "material" else " (preferred: material)"))
     if choice is not None and choice is not min(robust or passing, key=rank):
@@ -154,7 +157,8 @@ def _summary(entries: list[dict]) -> str:
 
 def with_tolerance(rec: dict | None, cells: list[dict], run_neighbours, variables, tolerances: dict, raw: dict,
                    file: str, *, material=("column material", "no elastic superstructure demand"),
-                   prefer: str | None = None, say=None) -> dict | None:
+                   prefer: str | None = None, say=None,
+                   demand: str = "superstructure shear coefficient (84th percentile") -> dict | None:
     """The recommendation that survives its construction tolerance (module docstring).
 
     Args:
@@ -200,7 +204,8 @@ def with_tolerance(rec: dict | None, cells: list[dict], run_neighbours, variable
             break
     if survivor is not None:
         best, entries = survivor
-        out = dict(rec) if best["index"] == rec["index"] else recommended(cells, material, prefer, choice=best)
+        out = dict(rec) if best["index"] == rec["index"] else recommended(cells, material, prefer, choice=best,
+                                                                          demand=demand)
         out.update(tolerance_robust=bool(best.get("robust")), neighbourhood=entries)
         out["reason"] += f"; tolerance: {_summary(entries)}" + _flip_words(best)
         skipped = [c for c, _ in tried[:[c for c, _ in tried].index(best)]]
@@ -211,7 +216,7 @@ def with_tolerance(rec: dict | None, cells: list[dict], run_neighbours, variable
     nearest = sorted(tried, key=lambda t: (sum(e["verdict"] != "PASS" for e in t[1]),
                                            -(t[0].get("flip_margin") or 0.0)))
     best, entries = nearest[0]
-    out = recommended(cells, material, prefer, choice=best)
+    out = recommended(cells, material, prefer, choice=best, demand=demand)
     out.update(tolerance_robust=False, neighbourhood=entries, no_tolerance_robust_pass=True,
                candidates=[{"values": c["values"], "labels": c["labels"], "index": c["index"],
                             "robust": bool(c.get("robust")), "flip_margin": c.get("flip_margin"),

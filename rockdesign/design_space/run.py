@@ -189,10 +189,10 @@ def run_design(plan: DesignPlan, *, store=None, progress=None, stage_progress=No
                     store=store, progress=progress, stage_progress=stage_progress, warn=warn, records=plan.records,
                     every_cell=plan.every_cell, seed=getattr(plan.project.analysis, "seed", 0))
     before = grid.analyses_run
-    rec = with_tolerance(recommended(grid.cells, kind.design_material, plan.prefer), grid.cells,
-                         lambda jobs: check_off_grid(grid, jobs, plan.records_dir), plan.variables, plan.tolerances,
-                         plan.project.raw, str(plan.project.path), material=kind.design_material, prefer=plan.prefer,
-                         say=say)
+    rec = with_tolerance(recommended(grid.cells, kind.design_material, plan.prefer, demand=kind.design_demand),
+                         grid.cells, lambda jobs: check_off_grid(grid, jobs, plan.records_dir), plan.variables,
+                         plan.tolerances, plan.project.raw, str(plan.project.path), material=kind.design_material,
+                         prefer=plan.prefer, say=say, demand=kind.design_demand)
     if grid.checker is not None and grid.checker.shared["variants"]:
         grid.shared_batches = dict(grid.checker.shared)      # the cells' and the neighbours' shared calls
     analysed = sum(1 for c in grid.cells if c.get("analysed", True))

@@ -27,6 +27,7 @@ import threading
 from pathlib import Path
 
 from .. import __version__
+from ..jsonable import json_ready
 
 FORMAT = 4
 """The layout of a stored variant (a file of another layout is analysed again)."""
@@ -34,7 +35,7 @@ FORMAT = 4
 VERDICTS = ("PASS", "FAIL", "INVALID", "ERROR")
 NUMBERS = ("acmr", "acmr_required", "p_collapse_design", "target_p_collapse", "superstructure_shear_p84",
            "superstructure_drift_p84", "median_theta_max_over_theta_c", "uplift_acceleration",
-           "uplift_shear_coefficient", "theta_c", "column_material")
+           "uplift_shear_coefficient", "theta_c", "column_material", "material", "demand", "flip_margin")
 COUNTS = ("n_unacceptable", "allowed_unacceptable", "n_ground_motions")
 PLACE = ("index", "values", "labels", "notes")
 """The cell's place in a grid: written by the grid that reads the variant, not stored."""
@@ -154,7 +155,7 @@ class VariantStore:
         """Store ``cell`` atomically (an interruption leaves no half-written file)."""
         self.folder.mkdir(parents=True, exist_ok=True)
         path = self.path(digest)
-        body = _finite({k: v for k, v in cell.items() if k not in PLACE and k != "resumed"})
+        body = json_ready({k: v for k, v in cell.items() if k not in PLACE and k != "resumed"})
         tmp = path.with_suffix(f".{threading.get_ident()}.tmp")
         tmp.write_text(json.dumps({"format": FORMAT, "digest": digest, "cell": body}, default=_json_default,
                                   allow_nan=False), encoding="utf-8")
@@ -194,17 +195,6 @@ def shape_problem(data, digest: str) -> str | None:
     if cell.get("analysed") is not True:
         return "not an analysed variant"
     return None
-
-
-def _finite(x):
-    """JSON has no ∞ or NaN: such numbers are stored as null (as design.json writes them)."""
-    if isinstance(x, float):
-        return x if math.isfinite(x) else None
-    if isinstance(x, dict):
-        return {k: _finite(v) for k, v in x.items()}
-    if isinstance(x, (list, tuple)):
-        return [_finite(v) for v in x]
-    return x
 
 
 def _json_default(x):

@@ -97,6 +97,9 @@ class StructureKind(abc.ABC):
     """What the design grid skips of a variant's check (design.json ``settings.early_stopping``)."""
     design_material: tuple[str, str] = ("column material", "no elastic superstructure demand")
     """The recommended design without a superstructure force to rank by: (what is least, why)."""
+    design_demand: str = "demand ("
+    """What a cell's ``demand`` is, in the recommendation's words ("the variant with the lowest <design_demand> 0.45)");
+    a kind whose cells have a demand (the force the building above is designed for) names it."""
     design_columns: tuple[tuple[str, str, str], ...] = ()
     """Extra columns of the design report's variants table: (cell key, heading, unit)."""
     experiments = None

@@ -94,6 +94,9 @@ def grid_cell(result, analyses: int) -> dict:
         "uplift_shear_coefficient": q["uplift_acceleration"].value / s.g,
         "theta_c": q["theta_c"].value if "theta_c" in q else None,
         "column_material": s.n_columns * s.column.mass,
+        # the neutral words the shared design code ranks by: the material [kg] and the demand (the superstructure's
+        # 84th-percentile shear coefficient, None without an elastic superstructure)
+        "material": s.n_columns * s.column.mass, "demand": shear.get("p84"),
         "model": result.selection.chosen.label,
         "analyses": analyses, "analyses_saved": saved_by_stopping(result, decided),
     }

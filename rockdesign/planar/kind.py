@@ -37,6 +37,8 @@ class Planar(StructureKind):
     def design_skipped(self):
         return self.grid.SKIPPED
 
+    design_demand = "superstructure shear coefficient (84th percentile"
+
     def grid_batches(self, executor=None):
         """Every analysis of the planar check runs through ``run_jobs``, which takes a pool member; on an
         ``executor`` the merged calls run there in chunks."""

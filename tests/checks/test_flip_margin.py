@@ -99,6 +99,20 @@ def test_a_cells_scan_thresholds():
     assert need.thresholds([0.7, 0.6, None]) == [0.7, 0.7, 0.7]
 
 
+def test_only_the_first_rises_an_order_statistic_can_fall_on_are_bisected():
+    """Six records, one component per ground motion, A = 1, Ŝ_CT the 3rd smallest capacity (IM equal)."""
+    need = ScanNeed([str(k) for k in range(6)], [False] * 6, 1, [1.0] * 6)
+    lower = [1.20, 1.30, 1.70, 2.50, 3.00, 5.0]
+    upper = [1.25, 1.40, 2.00, 2.90, 3.60, math.inf]      # the last: not found overturning up to 5
+    # the 2nd smallest lies in [1.30, 1.40]: only record 1 overlaps it (record 0 lies wholly below)
+    # the 3rd smallest lies in [1.70, 2.00]: only record 2
+    assert need.to_refine(lower, upper) == {1, 2}
+    # a bracket across the design level is bisected for the incremental count
+    assert 0 in need.to_refine([0.9] + lower[1:], [1.1] + upper[1:])
+    # two brackets overlapping the 2nd smallest: both
+    assert need.to_refine([1.20, 1.22, 1.70, 2.5, 3.0, 5.0], [1.30, 1.35, 2.0, 2.9, 3.6, math.inf]) == {0, 1, 2}
+
+
 BRUTE = stocky_podium_toml(records=[f"p695-ff/{k}a" for k in range(1, 12)], pga="0.4 g", analysis="",
                            height="2.5 m")
 """11 ground motions (one component each), the ASCE 7-22 minimum: 2B = 0.6 m fails by its collapse margin,

@@ -46,7 +46,8 @@ def fake(monkeypatch):
                 "n_unacceptable": 0 if ok else 2, "allowed_unacceptable": 1, "n_ground_motions": 2,
                 "n_failed_analyses": 0, "superstructure_shear_p84": None, "superstructure_drift_p84": None,
                 "median_theta_max_over_theta_c": 0.1, "uplift_acceleration": 1.0, "uplift_shear_coefficient": 0.1,
-                "theta_c": 0.2, "column_material": 1000.0 * width, "model": "stand-in", "analyses": 2,
+                "theta_c": 0.2, "column_material": 1000.0 * width, "material": 1000.0 * width, "demand": None,
+                "model": "stand-in", "analyses": 2,
                 "analyses_saved": 0}
     monkeypatch.setattr(Planar, "grid_check", grid_check)
     monkeypatch.setattr(Planar, "grid_cell", grid_cell)

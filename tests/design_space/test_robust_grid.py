@@ -86,8 +86,8 @@ def test_no_cell_left_out_touches_a_cell_of_another_category():
 def _cell(i, verdict="PASS", robust=True, shear=None, mass=1000.0, failed=0, analysed=True):
     return {"index": [i], "values": {"x": float(i)}, "labels": {"x": f"{i} m"}, "verdict": verdict,
             "robust": robust if verdict == "PASS" else None, "analysed": analysed,
-            "draws": {"n": 3 if failed else 10, "failed": failed}, "superstructure_shear_p84": shear,
-            "column_material": mass, "acmr": None, "acmr_required": None, "n_unacceptable": 0,
+            "draws": {"n": 3 if failed else 10, "failed": failed}, "demand": shear,
+            "material": mass, "acmr": None, "acmr_required": None, "n_unacceptable": 0,
             "n_ground_motions": 11, "allowed_unacceptable": 1,
             "robustness": "robust: …" if robust else "not robust: fails in 1 of 3 draws"}
 
@@ -138,3 +138,66 @@ def test_a_stored_cell_with_bad_robustness_is_analysed_again(change, problem):
     from rockdesign.design_space.store import FORMAT
     assert shape_problem({"format": FORMAT, "digest": "d", "cell": cell}, "d") is None
     assert problem in shape_problem({"format": FORMAT, "digest": "d", "cell": {**cell, **change}}, "d")
+
+
+def _tcell(i, mass, flip=2.0, robust=True, verdict="PASS"):
+    c = _cell(i, verdict=verdict, robust=robust, mass=mass)
+    c["values"] = {"podium.width": 0.3 + 0.1 * i}
+    c["labels"] = {"podium.width": f"{0.3 + 0.1 * i:.2g} m"}
+    c["flip_margin"] = flip
+    return c
+
+
+def _with_tolerance(cells, fails_at, prefer="material"):
+    """with_tolerance over a one-key chart whose neighbour checks are stand-ins: a neighbour fails when its width
+    lies in ``fails_at`` (a set of rounded widths)."""
+    import tomllib
+
+    from rockdesign.design_space.recommend import with_tolerance
+    from rockdesign.design_space.tolerance import tolerances
+    raw = tomllib.loads(open("examples/podium_flat.toml", encoding="utf-8").read())
+    from rockdesign.design_space.variants import parse_vary
+    variables = [parse_vary("podium.width=0.3m:0.6m:4", raw)]
+    tols, _ = tolerances(variables, None, raw, file="p.toml")
+    asked = []
+
+    def run(jobs):
+        out = {}
+        for name, variant in jobs:
+            w = round(variant.values["podium.width"], 4)
+            asked.append(w)
+            out[name] = {"values": variant.values, "labels": variant.labels, "reason": "stand-in", "analyses": 1,
+                         "verdict": "FAIL" if w in fails_at else "PASS", "n_unacceptable": 2 if w in fails_at else 0,
+                         "acmr": None, "flip_margin": None}
+        return out
+    rec = recommended(cells, prefer=prefer)
+    return with_tolerance(rec, cells, run, variables, tols, raw, "p.toml", prefer=prefer), asked
+
+
+def test_the_recommendation_is_the_preferred_robust_pass_that_survives_its_tolerance():
+    cells = [_tcell(0, 100.0), _tcell(1, 200.0), _tcell(2, 300.0), _tcell(3, 50.0, verdict="FAIL")]
+    rec, asked = _with_tolerance(cells, set())
+    assert rec["index"] == [0] and rec["tolerance_robust"] and asked == [0.297, 0.303]
+    assert [n["side"] for n in rec["neighbourhood"]] == ["−", "+"]
+    assert "tolerance: passes at each of its 2 tolerance neighbours" in rec["reason"]
+    # 0.3 m fails at 0.297 m: the next by material, said so; its neighbours checked one candidate at a time
+    rec, asked = _with_tolerance(cells, {0.297})
+    assert rec["index"] == [1] and rec["tolerance_robust"] and asked == [0.297, 0.303, 0.396, 0.404]
+    assert "survives its construction tolerance" in rec["reason"]
+    assert "not surviving their tolerance: podium.width = 0.3 m" in rec["reason"]
+    # a flip margin at or below 1 is tried last, whatever its material
+    cells[0]["flip_margin"] = 0.95
+    rec, asked = _with_tolerance(cells, set())
+    assert rec["index"] == [1] and asked[:2] == [0.396, 0.404]
+
+
+def test_no_robust_pass_survives_its_tolerance_is_said_with_the_nearest_candidates():
+    cells = [_tcell(0, 100.0, flip=1.1), _tcell(1, 200.0, flip=1.4), _tcell(2, 300.0, flip=1.2)]
+    rec, _ = _with_tolerance(cells, {0.297, 0.303, 0.404, 0.495, 0.505})
+    assert rec["tolerance_robust"] is False and rec["no_tolerance_robust_pass"] is True
+    # nearest: fewest failing neighbours (0.4 m: one of two), then the largest flip margin
+    assert rec["index"] == [1]
+    assert [c["index"] for c in rec["candidates"]] == [[1], [2], [0]]
+    assert [c["neighbours_failed"] for c in rec["candidates"]] == [1, 2, 2]      # (0.5 m: flip 1.2 before 1.1)
+    assert rec["no_tolerance_robust"].startswith("no robust PASS survives its construction tolerance")
+    assert "podium.width = 0.4 m (flip margin 1.4, fails at 1 of 2 neighbours)" in rec["no_tolerance_robust"]
