@@ -277,16 +277,18 @@ def _contours(ax, bar, z: np.ndarray, levels, level_labels) -> list:
     nx, ny = z.shape
     if np.isfinite(z).sum() < 4 or min(nx, ny) < CONTOUR_MIN_CELLS:
         return []
+    styles = (["-", "--", ":", "-."] * 2)[:len(levels)] if levels else "-"
     try:
         cs = ax.contour(np.arange(nx), np.arange(ny), np.ma.masked_invalid(z.T), levels=levels or 5, colors="k",
-                        linewidths=0.7)
+                        linewidths=0.7, linestyles=styles)
     except (ValueError, TypeError):     # too few distinct finite values for contour lines
         return []
     if not len(cs.levels):
         return []
     bar.add_lines(cs)
-    if level_labels:
-        return [plt.Line2D([], [], color="k", lw=0.7, label=f"contour: {text}") for text in level_labels.values()]
+    if level_labels:       # each named level its own line style (first solid, then dashed, dotted …)
+        return [plt.Line2D([], [], color="k", lw=0.7, ls=styles[k] if levels else "-", label=f"contour: {text}")
+                for k, text in enumerate(level_labels.values())]
     return [plt.Line2D([], [], color="k", lw=0.7, label="contours at the colour bar's black lines")]
 
 
@@ -405,6 +407,17 @@ def overturning_figure(data: dict):
                         title="record pairs overturning at the design level")
 
 
+def flip_figure(data: dict):
+    """The distance of each analysed cell's verdict to its flip (:mod:`rockdesign.acceptance.flip`): the factor λ
+    on the design intensity at which it changes, with the contour λ = 1 (the edge between passing and failing) and
+    λ = FAR (far from the flip: where the grid may infer a cell)."""
+    from ..acceptance.flip import FAR
+    return field_figure(data, "flip_margin", "λ at the flip [× design intensity]", "RdYlGn",
+                        levels=[1.0, FAR], reference=[(1.0, "the flip: λ = 1"), (FAR, f"far: λ = {FAR:g}")],
+                        level_labels={1.0: "the flip: λ = 1", FAR: f"far from the flip: λ = {FAR:g}"},
+                        title="distance of the verdict to its flip (> 1 passes)")
+
+
 def design_figures(data: dict) -> dict:
     """All figures of a design chart (matplotlib Figures; None where a figure has no data)."""
     capacity = "θ$_{ot}$" if any(c.get("theta_overturn") is not None for c in data["cells"]) else "θc"
@@ -414,6 +427,7 @@ def design_figures(data: dict) -> dict:
         "acmr": field_figure(data, "acmr", "ACMR [-]", "viridis",
                              reference=[(v, f"required {v:.3g}") for v in required],
                              title="adjusted collapse margin ratio (FEMA P695 Eq 7-4, adapted)"),
+        "flip": flip_figure(data),
         "overturning": overturning_figure(data),
         "shear": field_figure(data, "superstructure_shear_p84", "|f$_s$|/g, 84th pct [-]", "magma_r",
                               title="superstructure shear coefficient, 84th percentile"),

@@ -25,6 +25,13 @@ CAPTIONS = {
     "shear": "Superstructure shear coefficient |f_s|/g, 84th percentile over the records that did not overturn "
              "(the two-degree-of-freedom podium of thesis Ch. 4: the superstructure on the rocking storey) — the force "
              "the building above is designed for.",
+    "flip": "Distance of each analysed variant's verdict to its flip: the factor λ on the design intensity at which "
+            "the verdict changes — the smaller of the factor at which more ground motions than allowed are "
+            "unacceptable at or below λ × the design intensity (from each ground motion's first overturning factor) "
+            "and ACMR / ACMR required. Above 1 the variant passes, at or below 1 it fails; the line λ = 1 is the "
+            "edge between them, and the grid infers a cell only between neighbours beyond λ = 1.25 (or below 0.8). "
+            "The values are as fine as the incremental scans (first overturning factors bisected to 1 %, bands "
+            "narrower than the scan's ratio 1.2 can be missed).",
     "overturning": "Overturning of the record pairs at the design level (θ reaching θ_ot, thesis Sec 5.5.1): under "
                    "acceptance = \"binomial\" the one-sided 95 % bound of P(overturn) (Clopper–Pearson) with the "
                    "limit (its contour is the design level's pass/fail boundary), otherwise the pairs that overturn "
@@ -38,7 +45,7 @@ CAPTIONS = {
 
 
 COLUMNS = (
-    ("ACMR (required)", "acmr", ""), ("P(collapse)", "p_collapse_design", ""),
+    ("ACMR (required)", "acmr", ""), ("P(collapse)", "p_collapse_design", ""), ("flip λ", "flip_margin", ""),
     ("P(overturn) bound (limit)", "p_overturn_bound", ""), ("incremental unacceptable", "n_incremental_unacceptable", ""),
     ("shear coeff. p84", "superstructure_shear_p84", ""), ("drift p84", "superstructure_drift_p84", "m"),
     ("median θ_max/θc", "median_theta_max_over_theta_c", ""), ("tan α", "uplift_shear_coefficient", ""),

@@ -6,7 +6,10 @@ import json
 import math
 from pathlib import Path
 
-CSV_COLUMNS = ("analysed", "verdict", "robust", "draws_n", "draws_failed", "acmr", "acmr_required", "p_collapse_design", "n_unacceptable", "allowed_unacceptable",
+from ..jsonable import json_ready
+
+CSV_COLUMNS = ("analysed", "verdict", "robust", "draws_n", "draws_failed", "acmr", "acmr_required", "p_collapse_design",
+               "flip_margin", "flip_margin_is_lower_bound", "flip_governing", "n_unacceptable", "allowed_unacceptable",
                "n_ground_motions", "superstructure_shear_p84", "superstructure_drift_p84",
                "median_theta_max_over_theta_c", "uplift_acceleration", "uplift_shear_coefficient", "theta_c",
                "decided_at_design_level", "analyses", "analyses_saved", "reason")
@@ -15,7 +18,7 @@ EXTRA_COLUMNS = ("acceptance", "n_incremental_unacceptable", "p_overturn", "p_ov
 """Columns after :data:`CSV_COLUMNS` (before ``reason``) when some cell has the number: a cylinder's record-pair
 numbers (design.json documents them in docs/design.md)."""
 CSV_UNITS = {"superstructure_drift_p84": "m", "uplift_acceleration": "m/s^2", "theta_c": "rad", "p_collapse_design": "-",
-             "acmr": "-", "acmr_required": "-", "superstructure_shear_p84": "-", "uplift_shear_coefficient": "-",
+             "acmr": "-", "acmr_required": "-", "flip_margin": "-", "superstructure_shear_p84": "-", "uplift_shear_coefficient": "-",
              "median_theta_max_over_theta_c": "-", "p_overturn": "-", "p_overturn_bound": "-", "binomial_limit": "-",
              "median_theta_max_over_alpha": "-", "alpha": "rad", "theta_overturn": "rad", "column_material": "kg"}
 
@@ -23,7 +26,7 @@ CSV_UNITS = {"superstructure_drift_p84": "m", "uplift_acceleration": "m/s^2", "t
 def design_json(project, grid, recommendation, *, settings: dict | None = None) -> dict:
     """design.json: the project, the variables, one entry per cell, the recommended design, the analyses
     run and the (lower bound of the) analyses the shared work and early stopping saved."""
-    return _finite({
+    return json_ready({
         "project": {"name": project.name, "file": project.path, "sha256": project.sha256, "kind": project.system.kind},
         "variables": [v.as_json() for v in grid.variables],
         "cells": grid.cells,
@@ -36,17 +39,6 @@ def design_json(project, grid, recommendation, *, settings: dict | None = None) 
         "units": {"values": "SI (m, kg, s)", "uplift_acceleration": "m/s^2", "theta_c": "rad",
                   "superstructure_drift_p84": "m", "column_material": "kg"},
     })
-
-
-def _finite(x):
-    """JSON has no ∞ or NaN: such numbers become null."""
-    if isinstance(x, float):
-        return x if math.isfinite(x) else None
-    if isinstance(x, dict):
-        return {k: _finite(v) for k, v in x.items()}
-    if isinstance(x, (list, tuple)):
-        return [_finite(v) for v in x]
-    return x
 
 
 def write_design_json(data: dict, path: Path) -> Path:

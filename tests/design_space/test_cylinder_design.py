@@ -192,7 +192,7 @@ def test_cylinder_charts_render_for_two_variables(grid):
                                   folder / "report2", pdf=False)
     html = written["html"].read_text(encoding="utf-8")
     scanned = any(c["acmr"] is not None for c in data["cells"])
-    assert {"verdict", "overturning", "rotation"} | ({"acmr"} if scanned else set()) == set(written) - {"html"}
+    assert {"verdict", "overturning", "rotation", "flip"} | ({"acmr"} if scanned else set()) == set(written) - {"html"}
     table = html[html.index("Variants</h2>"):]
     assert "median θ<sub>max</sub>/θ<sub>ot</sub>" in table and "P(overturn) bound (limit)" in table
     assert ("ACMR (required)" in table) == scanned and "shear coeff." not in table

@@ -153,7 +153,7 @@ def test_design_report_and_files(grid, tmp_path):
     written = write_design_report(grid, data, tmp_path, pdf=False)
     html = written["html"].read_text(encoding="utf-8")
     assert "Recommended design" in html and "podium.width = 0.65 m" in html
-    assert {"verdict", "acmr", "rotation", "thesis_plane"} <= set(written)   # rigid superstructure: no shear chart
+    assert {"verdict", "acmr", "flip", "rotation", "thesis_plane"} <= set(written)   # rigid superstructure: no shear chart
     assert "FAIL" in html and "unacc." in html
 
 

@@ -37,11 +37,12 @@ def _cell(i: int, j: int, rng) -> dict:
             "superstructure_drift_p84": None if fail else 0.018, "median_theta_max_over_theta_c": 0.1 + 0.05 * rho,
             "uplift_shear_coefficient": tan_alpha, "uplift_acceleration": 9.81 * tan_alpha, "theta_c": theta_c,
             "column_material": 40000.0 * width, "robust": None, "draws": {"n": 0, "failed": 0}}
+    cell["flip_margin"] = 0.8 + 0.15 * rng.random() if fail else min(acmr / 1.96, 1.1 + 0.05 * rho + rng.random() / 4)
     if not fail:
         fragile = (i + j) % 7 == 0
         cell.update(robust=not fragile, draws={"n": 10, "failed": 1 if fragile else 0})
     if 3 <= i <= 6 and 5 <= j <= 8 and (i + j) % 2:       # left between agreeing neighbours
-        cell.update(analysed=False, verdict=None, robust=None, acmr=None, acmr_required=None)
+        cell.update(analysed=False, verdict=None, robust=None, acmr=None, acmr_required=None, flip_margin=None)
     return cell
 
 
@@ -66,7 +67,7 @@ def test_the_data_reproduce_what_the_chart_drew_wrong():
     assert len({(c["uplift_shear_coefficient"], c["theta_c"]) for c in fails}) == 1
 
 
-@pytest.mark.parametrize("name", ["verdict", "acmr", "shear", "rotation", "thesis_plane"])
+@pytest.mark.parametrize("name", ["verdict", "acmr", "flip", "shear", "rotation", "thesis_plane"])
 def test_no_text_collides_covers_the_data_or_is_cut_off(name):
     fig = design_figures(chart_data())[name]
     assert fig is not None
