@@ -226,6 +226,10 @@ def check_summary(data: dict, out_dir, console: Console, hint: str | None = None
         "yellow" if data["verdict"] in ("PASS", "NOT DECIDED") else "red")
     reason = readable_units(data.get('verdict_reason') or data['verdict'])
     console.print(f"verdict: [bold {colour}]{escape(reason)}[/]", highlight=False)
+    flip = (data.get("acceptance") or {}).get("flip") or {}
+    if flip.get("value") is not None:
+        console.print(f"distance to the flip: λ = {'≥ ' if flip.get('lower_bound') else ''}{flip['value']:.3g} × the "
+                      f"design intensity ({flip.get('governing')}; > 1 passes)", highlight=False)
     if hint:
         console.print(f"next: {escape(hint)}", highlight=False, soft_wrap=True)
     if out_dir is not None:
