@@ -34,7 +34,7 @@ from .execution import compilation
 from .errors import ProjectError, RockdesignError
 from .execution.executor import check_executor, make_executor
 from .kinds import kind_of, kind_of_document
-from .kinds.base import SpectrumOptions
+from .kinds.base import CheckResult, SimulationResult, SpectrumOptions, SpectrumResult
 from .outdir import OutputFolder
 from .paths import require_path
 from .progress import progress_bars
@@ -179,7 +179,7 @@ def run_simulation(request, *, say=None):
 
 
 def simulate(project: Project, motion, *, model: str = "auto", t_end: float | None = None,
-             rtol: float | None = None, records_dir: str | Path | None = None):
+             rtol: float | None = None, records_dir: str | Path | None = None) -> SimulationResult:
     """One nonlinear time-history analysis of a project (thesis Eq 3.12 / 3.46 / 4.13; Eqs 5.22–5.31 for
     a cylinder).
 
@@ -244,7 +244,7 @@ def run_check(project: Project, *, progress: bool = False, records_dir=None, mar
 
 
 def check(project: Project, *, progress: bool = False, records_dir: str | Path | None = None,
-          margins: bool = True, executor=None):
+          margins: bool = True, executor=None) -> CheckResult:
     """The design check of a project (the work of ``rockdesign check``), for every kind of structure.
 
     Args:
@@ -301,7 +301,7 @@ def spectrum(project: Project, *, pulse: str | None = None, record: str | None =
              t_free: float | None = None, rtol: float | None = None, tm_ratio: float | None = None,
              chunk_rows: int | None = None, resume: bool | None = None, keep_chunks: bool | None = None,
              energy_stop: bool | None = None, stop_at_capacity: bool | None = None, polyakov: bool | None = None,
-             equivalent_at=None, figures: bool | None = None, progress=False, say=None):
+             equivalent_at=None, figures: bool | None = None, progress=False, say=None) -> SpectrumResult:
     """The rocking spectrum of a project, written into ``out_dir`` (the work of ``rockdesign spectrum``;
     docs/spectra.md, docs/cylinder.md).
 

@@ -21,7 +21,7 @@ from pathlib import Path
 from ..errors import ProjectError
 from ..execution import compilation
 from ..kinds import kind_of
-from ..kinds.base import unavailable
+from ..kinds.base import EnsembleResult, unavailable
 from ..plots import save
 from .figures import calibration_figure, validation_figure
 from .free_vibration import ExperimentError, TiltHistory, read_tilt_csv
@@ -164,7 +164,7 @@ def validation(tests, analyses, *, measured=None, seed: int = 1, out_dir: str | 
 
 # --- ensemble -------------------------------------------------------------------------------------------
 def ensemble(project, suite: str | Path, *, scale: float = 1.0, restitution: float | None = None, records_dir=None,
-             progress: Callable[[str, int, int], None] | None = None, say=None):
+             progress: Callable[[str, int, int], None] | None = None, say=None) -> EnsembleResult:
     """Run ``project`` over a ground-motion ensemble (a suite name or manifest, e.g. the ensemble.toml of
     :func:`rockdesign.records.records_synth`): one analysis per motion × ``scale`` with the project's model.
 

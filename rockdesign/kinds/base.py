@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import abc
 from collections.abc import Callable, Mapping
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Protocol
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -68,6 +68,58 @@ class SpectrumOptions:
                 raise RockdesignError(f"not used by {used_by}", key=name, expected=expected,
                                       found=f"{name}={_shown(value)}")
         return dict(self.given)
+
+
+class SimulationResult(Protocol):
+    """What every kind's one analysis returns (``rd.simulate``; :meth:`StructureKind.run_simulation`)."""
+
+    warnings: list
+
+    @property
+    def failed(self) -> bool: ...
+
+    def as_json(self) -> dict: ...
+
+    def write_csv(self, path) -> None: ...
+
+    def write_figure(self, path) -> None: ...
+
+    def summary_rows(self) -> list: ...
+
+
+class CheckResult(Protocol):
+    """What every kind's design check returns (``rd.check``; :meth:`StructureKind.check`): the shared sections of
+    results.json (docs/architecture.md "Every check result has the same core sections")."""
+
+    project: object
+    verdict: str
+    verdict_reason: str
+    records: list
+    checks: list
+    acceptance: dict | None
+
+    def as_json(self) -> dict: ...
+
+
+class SpectrumResult(Protocol):
+    """What every kind's rocking spectrum returns (``rd.spectrum``; :meth:`StructureKind.spectrum`)."""
+
+    out_dir: Path
+    title: str
+
+    def as_json(self) -> dict: ...
+
+    def summary_rows(self) -> list: ...
+
+
+class EnsembleResult(Protocol):
+    """What a kind's ensemble run returns (``rd.ensemble``; the kind's ``experiments.run_ensemble``)."""
+
+    def rows(self) -> list: ...
+
+    def as_json(self) -> dict: ...
+
+    def write_csv(self, path) -> None: ...
 
 
 def unavailable(what: str, kind: str, key: str):
