@@ -32,18 +32,7 @@ class Cylinder(StructureKind):
         from .check import CSV_COLUMNS
         return tuple(CSV_COLUMNS)
 
-    @property
-    def grid(self):
-        from . import grid
-        return grid
-
-    @property
-    def design_rule(self):
-        return self.grid.RULE
-
-    @property
-    def design_skipped(self):
-        return self.grid.SKIPPED
+    grid_module = "rockdesign.cylinder.grid"
 
     def kernels(self, command):
         """The cylinder's integrator (``simulate``); with the planar engine of the planar components and the

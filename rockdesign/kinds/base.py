@@ -22,6 +22,7 @@ A kind must write:
 from __future__ import annotations
 
 import abc
+import importlib
 from collections.abc import Callable, Mapping
 from typing import TYPE_CHECKING, Protocol
 from dataclasses import dataclass
@@ -143,10 +144,6 @@ class StructureKind(abc.ABC):
     key_alternatives: dict[str, tuple[str, ...]] | None = None
     """Keys of the kind's project tables that say the same thing two ways: a ``--vary`` of one replaces the
     others (None: :data:`rockdesign.design_space.variants.ALTERNATIVES`)."""
-    design_rule: str = ""
-    """What decides the verdict of a design-grid cell (``rockdesign design``: the report's words)."""
-    design_skipped: str = ""
-    """What the design grid skips of a variant's check (design.json ``settings.early_stopping``)."""
     design_material: tuple[str, str] = ("column material", "no elastic superstructure demand")
     """The recommended design without a superstructure force to rank by: (what is least, why)."""
     design_demand: str = "demand ("
@@ -154,12 +151,35 @@ class StructureKind(abc.ABC):
     a kind whose cells have a demand (the force the building above is designed for) names it."""
     design_columns: tuple[tuple[str, str, str], ...] = ()
     """Extra columns of the design report's variants table: (cell key, heading, unit)."""
-    experiments = None
-    """The module of the kind's experiments (thesis Ch. 6–7: ``calibrate``, ``simulated_history``,
-    ``run_ensemble``), or None when the kind has none (``rd.calibration`` and ``rd.ensemble`` refuse it)."""
-    grid = None
-    """The module of the kind's design-grid hooks (``records_key``, ``grid_records``, ``grid_check``,
-    ``grid_cell``), or None when the kind has no design grid."""
+    experiments_module: str | None = None
+    """The dotted name of the module of the kind's experiments (thesis Ch. 6–7: ``calibrate``, ``simulated_history``,
+    ``run_ensemble``), imported when first used; None when the kind has none (``rd.calibration`` and ``rd.ensemble``
+    refuse it)."""
+    grid_module: str | None = None
+    """The dotted name of the module of the kind's design-grid hooks (``records_key``, ``grid_records``,
+    ``grid_check``, ``grid_cell``, ``grid_draws``, ``RULE`` and ``SKIPPED``: what decides a cell's verdict and what
+    the grid skips, in the report's words), imported when first used; None when the kind has no design grid."""
+
+    @property
+    def experiments(self):
+        """The module named by :attr:`experiments_module` (imported on first use: a typo in a project file is
+        reported before the engine loads), or None."""
+        return importlib.import_module(self.experiments_module) if self.experiments_module else None
+
+    @property
+    def grid(self):
+        """The module named by :attr:`grid_module` (imported on first use), or None."""
+        return importlib.import_module(self.grid_module) if self.grid_module else None
+
+    @property
+    def design_rule(self) -> str:
+        """What decides the verdict of a design-grid cell (``rockdesign design``: the report's words)."""
+        return getattr(self.grid, "RULE", "") if self.grid_module else ""
+
+    @property
+    def design_skipped(self) -> str:
+        """What the design grid skips of a variant's check (design.json ``settings.early_stopping``)."""
+        return getattr(self.grid, "SKIPPED", "") if self.grid_module else ""
 
     # --- the numerical kernels ---------------------------------------------------------------
     def kernels(self, command: str) -> tuple:

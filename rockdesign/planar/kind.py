@@ -19,23 +19,8 @@ class Planar(StructureKind):
     name = "planar"
     systems = ("column", "podium")
 
-    @property
-    def grid(self):
-        from . import grid
-        return grid
-
-    @property
-    def experiments(self):
-        from . import experiments
-        return experiments
-
-    @property
-    def design_rule(self):
-        return self.grid.RULE
-
-    @property
-    def design_skipped(self):
-        return self.grid.SKIPPED
+    grid_module = "rockdesign.planar.grid"
+    experiments_module = "rockdesign.planar.experiments"
 
     design_demand = "superstructure shear coefficient (84th percentile"
 
