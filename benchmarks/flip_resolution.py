@@ -26,23 +26,6 @@ sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "tests"))
 
 
-def first_factors(project, result, factors):
-    """Each record's lowest overturning factor among ``factors`` (all analysed), 1 for a design-level overturn."""
-    from rockdesign.planar.checks.runner import run_jobs
-    a = project.analysis
-    out = []
-    for o in result.records:
-        runs = run_jobs(project.system, result.selection.chosen, [o.motion] * len(factors), list(factors),
-                        rtol=max(a.rtol, a.scan_rtol), atol=a.atol, free_vibration=a.free_vibration,
-                        criterion=a.overturn, rest_velocity=a.rest_velocity, energy_stop=True,
-                        stop_at_capacity=(a.overturn == "static"))
-        hit = next((f for f, r in zip(factors, runs) if r.overturned), None)
-        if o.run.overturned and (hit is None or hit > 1.0):
-            hit = 1.0
-        out.append(hit)
-    return out
-
-
 def order(values, k):
     found = sorted(v for v in values if v is not None)
     return found[k - 1] if len(found) >= k else None
@@ -50,7 +33,7 @@ def order(values, k):
 
 def main(argv=None) -> int:
     import rockdesign as rd
-    from support import stocky_podium_toml
+    from support import brute_first_factors, stocky_podium_toml
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--widths", default="0.6,0.65")
     ap.add_argument("--out", default=str(ROOT / "benchmarks" / "results" / "flip_resolution.json"))
@@ -65,7 +48,7 @@ def main(argv=None) -> int:
         result = rd.check(project)
         check = [1.0 if o.run.overturned and (o.margin.overturn_scale is None or o.margin.overturn_scale > 1.0)
                  else o.margin.overturn_scale for o in result.records]
-        fine = first_factors(project, result, factors)
+        fine = brute_first_factors(project, result, lambda i: factors)
         acc = result.acceptance
         row = {"width_m": float(w), "verdict": result.verdict, "flip_margin": acc["flip_margin"],
                "flip_governing": acc["flip"]["governing"],

@@ -73,3 +73,25 @@ scale = {{ method = "pga", target = "{pga}" }}
 overturn = "static"
 {analysis}
 """
+
+
+def brute_first_factors(project, result, factors_of) -> list:
+    """Each record's first overturning factor of a check ``result`` by brute force: every factor of
+    ``factors_of(i)`` analysed at the scans' tolerance (no early stop, no bisection), the lowest that overturns;
+    the design-level overturn counts at 1 (as the check counts it).  The independent reference of the distance to
+    the flip (tests/checks/test_flip_margin.py, benchmarks/flip_resolution.py)."""
+    from rockdesign.planar.checks.runner import run_jobs
+    a = project.analysis
+    first = []
+    for i, o in enumerate(result.records):
+        fs = [float(f) for f in factors_of(i)]
+        runs = run_jobs(project.system, result.selection.chosen, [o.motion] * len(fs), fs,
+                        rtol=max(a.rtol, a.scan_rtol), atol=a.atol, free_vibration=a.free_vibration,
+                        criterion=a.overturn, rest_velocity=a.rest_velocity, energy_stop=True,
+                        stop_at_capacity=(a.overturn == "static"))
+        hit = next((f for f, r in zip(fs, runs) if r.overturned), None)
+        if o.run.overturned and (hit is None or hit > 1.0):
+            hit = 1.0
+        first.append(hit)
+    return first
+

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import rockdesign as rd
-from support import stocky_podium_toml
+from support import brute_first_factors, stocky_podium_toml
 from rockdesign.acceptance.flip import FAR, allowance, count_flip, far_from_flip, flip_margin
 from rockdesign.acceptance.rule import AcceptanceRule, probability_bound
 from rockdesign.acceptance.scans import Margin, ScanNeed
@@ -119,26 +119,6 @@ BRUTE = stocky_podium_toml(records=[f"p695-ff/{k}a" for k in range(1, 12)], pga=
 0.65 m passes."""
 
 
-def _first_factors(project, result, factors_of):
-    """Each record's first overturning factor by brute force: every factor of ``factors_of(i)`` analysed (no early
-    stop, no bisection), the lowest that overturns; the design-level overturn counts at 1 (as in the check)."""
-    from rockdesign.planar.checks.runner import run_jobs
-    a = project.analysis
-    outcomes = result.records
-    first = []
-    for i, o in enumerate(outcomes):
-        fs = [float(f) for f in factors_of(i)]
-        runs = run_jobs(project.system, result.selection.chosen, [o.motion] * len(fs), fs,
-                        rtol=max(a.rtol, a.scan_rtol), atol=a.atol, free_vibration=a.free_vibration,
-                        criterion=a.overturn, rest_velocity=a.rest_velocity, energy_stop=True,
-                        stop_at_capacity=(a.overturn == "static"))
-        hit = next((f for f, r in zip(fs, runs) if r.overturned), None)
-        if o.run.overturned and (hit is None or hit > 1.0):
-            hit = 1.0
-        first.append(hit)
-    return first
-
-
 def _order(first, k):
     found = sorted(x for x in first if x is not None)
     return found[k - 1] if len(found) >= k else None
@@ -171,9 +151,9 @@ def test_the_checks_flip_against_a_brute_force_scan(tmp_path, width, verdict):
     need = result.acceptance["acmr_required"]
     assert flip["value"] == pytest.approx(min(found[1], found[5] / need), rel=1e-12)
     # each first factor the check reports overturns when analysed there
-    at = _first_factors(project, result, lambda i: [check[i]] if check[i] not in (None, 1.0) else [])
+    at = brute_first_factors(project, result, lambda i: [check[i]] if check[i] not in (None, 1.0) else [])
     assert all(x == c for x, c in zip(at, check) if c not in (None, 1.0))
-    fine = _first_factors(project, result, lambda i: 0.45 * 1.01 ** np.arange(201))
+    fine = brute_first_factors(project, result, lambda i: 0.45 * 1.01 ** np.arange(201))
     tol = 1.01 * (1 + a.margin_precision)
     for k in (2, 6):
         assert _order(fine, k) <= _order(check, k) * tol, (k, fine, check)
