@@ -229,7 +229,7 @@ def check_summary(data: dict, out_dir, console: Console, hint: str | None = None
     flip = (data.get("acceptance") or {}).get("flip") or {}
     if flip.get("value") is not None:
         console.print(f"distance to the flip: λ = {'≥ ' if flip.get('lower_bound') else ''}{flip['value']:.3g} × the "
-                      f"design intensity ({flip.get('governing')}; > 1 passes)", highlight=False)
+                      f"design intensity ({flip.get('governing')}; > 1 passes)", highlight=False, soft_wrap=True)
     if hint:
         console.print(f"next: {escape(hint)}", highlight=False, soft_wrap=True)
     if out_dir is not None:

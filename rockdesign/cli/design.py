@@ -239,7 +239,7 @@ def _summary(data: dict, target: Path, console, escape) -> None:
         if cell.get("flip_margin") is not None:
             console.print(escape(f"distance to the flip: λ = {'≥ ' if cell.get('flip_margin_is_lower_bound') else ''}"
                                  f"{cell['flip_margin']:.3g} × the design intensity ({cell.get('flip_governing')}; "
-                                 "> 1 passes)"), highlight=False)
+                                 "> 1 passes)"), highlight=False, soft_wrap=True)
         for n in rec.get("neighbourhood") or []:
             console.print(escape(f"  tolerance neighbour {', '.join(f'{k} = {v}' for k, v in n['labels'].items())}: "
                                  f"{n['verdict']}" + (f", {n['n_unacceptable']} unacceptable"
