@@ -369,7 +369,9 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
         system, chosen, motions, runs, run_kw, q["uplift_acceleration"].value, stage=stage,
         names=[(r.id, ground_motion_id(r.id, r.meta)) for r in resolved.records],
         target=target) if not decided_fail else ([None] * n, [None] * n, None, None)
-    scaling = None if verdict_only else scaling_block(     # (report data: not in a design grid's cell)
+    # report data, not in a design grid's cell: a verdict-only check skips the spectra a suite scaled otherwise than
+    # per §16.2 is compared with (a §16.2.3 suite carries its block already)
+    scaling = None if verdict_only and getattr(resolved, "asce7_22", None) is None else scaling_block(
         resolved, period_range=scaling_period_range(characteristic_periods(system, q)), gravity=system.g)
     outcomes = []
     for i, (rec, (sd, t_sd), run) in enumerate(zip(resolved.records, sds, runs)):
