@@ -109,3 +109,14 @@ def test_the_command_line_refuses_a_bad_tolerance_before_any_analysis(tmp_path):
         assert res.exit_code == 2, res.output
         assert "--tolerance" in res.output and words in res.output and "Traceback" not in res.output
         assert not (tmp_path / "out").exists()
+
+
+def test_the_library_takes_a_mapping_or_options_and_writes_them_into_the_settings(tmp_path):
+    project = rd.parse_project(stocky_podium_toml())
+    plan = rd.plan_design(project, ["podium.width=0.4m:0.6m:3"], tolerance={"podium.width": "2 mm"})
+    assert plan.tolerances["podium.width"].absolute == pytest.approx(0.002)
+    plan = rd.plan_design(project, ["podium.width=0.4m:0.6m:3"], tolerance=["podium.width=0.5%"])
+    assert plan.tolerances["podium.width"].relative == pytest.approx(0.005)
+    with pytest.raises(RockdesignError) as e:
+        rd.plan_design(project, ["podium.width=0.4m:0.6m:3"], tolerance=0.01)
+    assert e.value.key == "tolerance"
