@@ -188,7 +188,7 @@ def simulate(project: Project, motion, *, model: str = "auto", t_end: float | No
         motion: a motion string (``"ricker-anti:ap=0.38g,Tp=0.95s"``, ``"record:p695-ff/11a,scale=1.5"``,
             ``"free:theta0=0.8alpha"``; for a cylinder ``"record:p695-ff/1,resultant_pga=0.3g"``...) or a
             motion object (:class:`~rockdesign.motions.motion.GroundMotion`; a
-            :class:`~rockdesign.motions.pairs.MotionPair` for a cylinder).
+            :class:`~rockdesign.cylinder.pairs.MotionPair` for a cylinder).
         model: ``auto`` | ``exact`` | ``linear`` | ``linear-exact`` (cylinder: ``auto`` | ``undamped`` | ``damped``).
         t_end: end time [s] (default: motion duration + the project's free vibration).
         rtol: relative tolerance (default: the project's).

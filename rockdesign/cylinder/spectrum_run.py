@@ -15,7 +15,7 @@ from typing import Callable
 
 from ..errors import RockdesignError
 from ..execution import compilation
-from ..motions.pairs import parse_pair
+from .pairs import parse_pair
 from ..outdir import created_folder
 from .spectrum import CylinderSpectrum, CylinderSpectrumError, cylinder_spectrum, parse_cylinder_axis
 from .spectrum_output import write_cylinder_spectrum

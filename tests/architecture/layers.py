@@ -15,7 +15,7 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
               "rockdesign.quantity", "rockdesign.project_tables", "rockdesign.dop853_tableau")),
     ("design", ("rockdesign.planar.design", "rockdesign.planar.system", "rockdesign.planar.validity",
                 "rockdesign.cylinder.system", "rockdesign.cylinder.quantities")),
-    ("motions", ("rockdesign.motions",)),
+    ("motions", ("rockdesign.motions", "rockdesign.cylinder.pairs")),
     ("project", ("rockdesign.planar.project", "rockdesign.cylinder.project")),
     ("dynamics", ("rockdesign.planar.dynamics", "rockdesign.cylinder")),
     ("analyses", ("rockdesign.acceptance", "rockdesign.planar.spectra", "rockdesign.planar.checks",
