@@ -289,7 +289,8 @@ def write_report(result, out_dir, *, pdf: bool = True, html: bool = True) -> Pat
     data = result.as_json()
     with folder.staging() as tmp:
         write_results_json(data, tmp / "results.json")
-        write_results_csv(data, tmp / "results.csv", columns=kind.csv_columns)
+        write_results_csv(data, tmp / "results.csv", columns=kind.csv_columns, units=kind.csv_units,
+                          nested=kind.csv_nested)
         write_document(kind.report(result), tmp, pdf=pdf, html=html)
     return folder.target
 

@@ -32,6 +32,11 @@ class Cylinder(StructureKind):
         from .check import CSV_COLUMNS
         return tuple(CSV_COLUMNS)
 
+    csv_units = {"scale": "-", "resultant_pga": "m/s^2", "theta_max_over_alpha": "-", "uplift_time": "s",
+                 "planar_theta_max_over_alpha": "-", "polyakov_ratio_x": "-", "polyakov_ratio_y": "-",
+                 "min_contact_force_over_weight": "-", "ensemble_overturn_fraction": "-"}
+    """The units of the results.csv columns (the others are counts, ids or words)."""
+
     grid_module = "rockdesign.cylinder.grid"
 
     def kernels(self, command):

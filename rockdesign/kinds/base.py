@@ -139,8 +139,13 @@ class StructureKind(abc.ABC):
     """``project.system.kind`` values of this kind's systems ("column", "podium"; "cylinder")."""
     report_files: frozenset[str] = frozenset()
     """Files a check writes into its output folder besides the run files (``ReportParts.files``)."""
-    csv_columns: tuple[str, ...] | None = None
-    """The columns of results.csv (None: :data:`rockdesign.report.results.CSV_COLUMNS`)."""
+    csv_columns: tuple[str, ...] = ("id", "ground_motion")
+    """The columns of results.csv, one row per record of results.json (by default the keys every check's records
+    have); :func:`rockdesign.report.results.write_results_csv` writes them."""
+    csv_units: Mapping[str, str] = {}
+    """The SI unit of each column of results.csv that has one (its header reads "pga [m/s^2]")."""
+    csv_nested: Mapping[str, tuple[str, str]] = {}
+    """Columns of results.csv read from a dict in a record's row: column → (key of the dict, key in it)."""
     key_alternatives: dict[str, tuple[str, ...]] | None = None
     """Keys of the kind's project tables that say the same thing two ways: a ``--vary`` of one replaces the
     others (None: :data:`rockdesign.design_space.variants.ALTERNATIVES`)."""

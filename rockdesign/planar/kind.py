@@ -24,6 +24,21 @@ class Planar(StructureKind):
 
     design_demand = "superstructure shear coefficient (84th percentile"
 
+    @property
+    def csv_columns(self):
+        from .checks.results_csv import CSV_COLUMNS
+        return CSV_COLUMNS
+
+    @property
+    def csv_units(self):
+        from .checks.results_csv import CSV_UNITS
+        return CSV_UNITS
+
+    @property
+    def csv_nested(self):
+        from .checks.results_csv import CSV_NESTED
+        return CSV_NESTED
+
     def grid_batches(self, executor=None):
         """Every analysis of the planar check runs through ``run_jobs``, which takes a pool member; on an
         ``executor`` the merged calls run there in chunks."""

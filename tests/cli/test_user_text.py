@@ -47,8 +47,9 @@ def test_polyakov_line_is_labelled_with_the_capacity():
 
 
 def test_results_csv_headers_carry_units():
-    from rockdesign.report.results import CSV_COLUMNS, csv_header
-    headers = [csv_header(c) for c in CSV_COLUMNS]
+    from rockdesign.planar.checks.results_csv import CSV_COLUMNS, CSV_UNITS
+    from rockdesign.report.results import csv_header
+    headers = [csv_header(c, CSV_UNITS) for c in CSV_COLUMNS]
     assert "pga [m/s^2]" in headers and "sd_max [m]" in headers and "uplift_time [s]" in headers
     assert "id" in headers and "impacts" in headers
 
