@@ -18,6 +18,7 @@ class Cylinder(StructureKind):
 
     name = "cylinder"
     systems = ("cylinder",)
+    templates = ("cylinder",)
     design_material = ("material: the cylinder's mass", "a free-standing cylinder carries no superstructure")
     key_alternatives = {"height": ("half_height",), "half_height": ("height",), "diameter": ("slenderness",),
                         "slenderness": ("diameter",), "mass": ("density",), "density": ("mass",)}

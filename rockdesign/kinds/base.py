@@ -149,6 +149,8 @@ class StructureKind(abc.ABC):
     key_alternatives: dict[str, tuple[str, ...]] | None = None
     """Keys of the kind's project tables that say the same thing two ways: a ``--vary`` of one replaces the
     others (None: :data:`rockdesign.design_space.variants.ALTERNATIVES`)."""
+    templates: tuple[str, ...] = ()
+    """The commented project templates the kind offers, by name (``rockdesign init NAME``; :meth:`template_text`)."""
     design_material: tuple[str, str] = ("column material", "no elastic superstructure demand")
     """The recommended design without a superstructure force to rank by: (what is least, why)."""
     design_demand: str = "demand ("
@@ -202,6 +204,12 @@ class StructureKind(abc.ABC):
     def parse(self, raw: dict, *, file: str, text: str):
         """The validated :class:`~rockdesign.project_tables.Project` (SI; ``[excitation]`` and ``[analysis]``
         typed) or a :class:`~rockdesign.errors.ProjectError`."""
+
+    def template_text(self, name: str) -> str:
+        """The commented template project file ``name`` (one of :attr:`templates`); by default the package data
+        ``templates/project_<name>.toml``."""
+        from ..paths import templates_dir
+        return (templates_dir() / f"project_{name}.toml").read_text(encoding="utf-8")
 
     # --- design quantities ------------------------------------------------------------------
     @abc.abstractmethod

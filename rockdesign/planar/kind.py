@@ -18,6 +18,7 @@ class Planar(StructureKind):
 
     name = "planar"
     systems = ("column", "podium")
+    templates = ("podium", "column")
 
     grid_module = "rockdesign.planar.grid"
     experiments_module = "rockdesign.planar.experiments"
