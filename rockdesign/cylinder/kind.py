@@ -19,6 +19,8 @@ class Cylinder(StructureKind):
     name = "cylinder"
     systems = ("cylinder",)
     templates = ("cylinder",)
+    spectrum_options = ("record", "x", "y", "relative", "out_dir", "figures")
+    """The parameters of :func:`~rockdesign.cylinder.spectrum_run.record_pair_spectrum` that ``rd.spectrum`` passes on."""
     design_material = ("material: the cylinder's mass", "a free-standing cylinder carries no superstructure")
     key_alternatives = {"height": ("half_height",), "half_height": ("height",), "diameter": ("slenderness",),
                         "slenderness": ("diameter",), "mass": ("density",), "density": ("mass",)}
@@ -107,7 +109,7 @@ class Cylinder(StructureKind):
         """The rocking spectrum of one record pair over R and PGA (Figs 5.16–5.17;
         :func:`~rockdesign.cylinder.spectrum_run.record_pair_spectrum`)."""
         from . import spectrum_run as cylinder_spectra
-        options = request.accepted(cylinder_spectra.OPTIONS, "the spectrum of a cylinder (a record pair on R × pga "
+        options = request.accepted(self.spectrum_options, "the spectrum of a cylinder (a record pair on R × pga "
                                    "axes)", "record, x R:…, y pga/up:…, relative, out_dir and figures")
         reference = options.get("relative")
         if reference is not None and reference.system.kind not in self.systems:
