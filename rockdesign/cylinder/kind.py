@@ -19,6 +19,9 @@ class Cylinder(StructureKind):
     name = "cylinder"
     systems = ("cylinder",)
     templates = ("cylinder",)
+    uses = ("rockdesign.planar.dynamics.simulate", "rockdesign.planar.system", "rockdesign.planar.dynamics.warm_up")
+    """The planar rocking body of the same p and α along each component (thesis Ch. 5): the check compares with it
+    through the planar engine's public simulate, whose kernels its first run compiles with the planar warm-up."""
     spectrum_options = ("record", "x", "y", "relative", "out_dir", "figures")
     """The parameters of :func:`~rockdesign.cylinder.spectrum_run.record_pair_spectrum` that ``rd.spectrum`` passes on."""
     design_material = ("material: the cylinder's mass", "a free-standing cylinder carries no superstructure")

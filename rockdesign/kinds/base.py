@@ -149,6 +149,9 @@ class StructureKind(abc.ABC):
     key_alternatives: dict[str, tuple[str, ...]] | None = None
     """Keys of the kind's project tables that say the same thing two ways: a ``--vary`` of one replaces the
     others (None: :data:`rockdesign.design_space.variants.ALTERNATIVES`)."""
+    uses: tuple[str, ...] = ()
+    """Modules of other kinds' packages this kind's package imports (a declared dependency between kinds, read by
+    tests/architecture/test_front_door.py); none by default."""
     spectrum_options: tuple[str, ...] = ()
     """The options of ``rd.spectrum`` the kind's :meth:`spectrum` takes (``pulse``, ``record``, ``x``, ``out_dir``, …);
     it refuses any other, naming it (:meth:`SpectrumOptions.accepted`)."""
