@@ -38,7 +38,7 @@ sys.path.insert(0, str(ROOT))
 
 from rockdesign.cylinder.engine import simulate_cylinder  # noqa: E402
 from rockdesign.cylinder.system import cylinder  # noqa: E402
-from rockdesign.motions.pairs import parse_pair  # noqa: E402
+from rockdesign.cylinder.pairs import parse_pair  # noqa: E402
 
 MOTION = "record:p695-ff/1,resultant_pga=0.3g"
 T_END = 30.0

@@ -37,7 +37,7 @@ import rockdesign.cylinder.engine as engine  # noqa: E402
 from rockdesign.cylinder.check import run_cylinder_check  # noqa: E402
 from rockdesign.cylinder.system import cylinder  # noqa: E402
 from rockdesign.kinds import parse_document  # noqa: E402
-from rockdesign.motions.pairs import suite_pairs  # noqa: E402
+from rockdesign.cylinder.pairs import suite_pairs  # noqa: E402
 
 THRESHOLD, YARDSTICK = 0.75, 0.675          # diameters [m], height 2.5 m
 AMPLITUDES = (1.001, 1.003, 1.01, 1.03, 1.1, 1.3)

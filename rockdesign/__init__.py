@@ -67,7 +67,7 @@ _COMPATIBLE = {
     "motion_spectrum": "rockdesign.motions.spectra", "period_grid": "rockdesign.motions.spectra",
     "synthesize": "rockdesign.motions.synth", "SCALE_CHOICES": "rockdesign.motions.synth",
     "record_history_figure": "rockdesign.motions.figures", "record_spectrum_figure": "rockdesign.motions.figures",
-    "parse_pair": "rockdesign.motions.pairs", "parse_quantity": "rockdesign.units",
+    "parse_pair": "rockdesign.cylinder.pairs", "parse_quantity": "rockdesign.units",
     "QuantityParseError": "rockdesign.units", "save_figure": "rockdesign.plots:save",
     "created_folder": "rockdesign.outdir", "json_ready": "rockdesign.jsonable",
     "check_dask_address": "rockdesign.execution.executor:check_address",

@@ -90,21 +90,6 @@ def quantities_table(quantities: dict, console: Console, units: str | None, grav
         console.print(f"[yellow]warning:[/] {escape(w)}", highlight=False)
 
 
-def model_label(model: str, system) -> str:
-    """The analysed model as a reader names it: ``block/exact`` of a column on curved feet is
-    "block/exact (column on curved extensions, exact equations)"."""
-    structure, _, equations = model.partition("/")
-    if structure == "block":
-        ext = getattr(system.column, "extension", "none")
-        what = {"curved": "column on curved extensions", "flat": "column on flat extensions"}.get(ext, "flat-based column")
-    else:
-        what = {"frame": "frame of columns under a cap beam", "rigid-superstructure": "frame with a rigid superstructure",
-                "podium-2dof": "podium with an elastic superstructure (2DOF)"}.get(structure, structure)
-    eq = {"exact": "exact equations", "linear": "linearized equations",
-          "linear-exact": "linearized equations, closed-form solution"}.get(equations, equations)
-    return f"{model} ({what}, {eq})" if equations else f"{model} ({what})"
-
-
 def response_table(result, console: Console) -> None:
     """Print the summary of one time-history analysis (``result.summary_rows()``: quantity, value, unit)."""
     table = Table(title=escape(f"{result.project.name} — {result.motion_text}"), title_justify="left")
@@ -119,24 +104,6 @@ def response_table(result, console: Console) -> None:
     console.print(table)
     for w in result.warnings:
         console.print(f"[yellow]warning:[/] {escape(w)}", highlight=False)
-
-
-def demand_rows(r, g: float) -> list[tuple[str, str, str]]:
-    """Rows of the superstructure demand of a simulate response (2DOF podium: peak absolute acceleration of
-    the superstructure, the fixed-base reference and their ratio; rigid masses: the cap beam), SPEC §13."""
-    rows = []
-    until = " (until overturning)" if r.overturned else ""
-    if r.superstructure_acceleration_max is not None:
-        a = r.superstructure_acceleration_max
-        rows.append(("superstructure max |a_T| (abs.)" + until, f"{format_value(a)} ({a / g:.4g} g)", "m/s²"))
-        if r.fixed_base_acceleration_max:
-            f = r.fixed_base_acceleration_max
-            rows.append(("same on a fixed base", f"{format_value(f)} ({f / g:.4g} g)", "m/s²"))
-            rows.append(("force ratio rocking / fixed base", format_value(a / f), "-"))
-    elif r.cap_acceleration_max is not None:
-        rows.append(("cap beam max |a| between impacts" + until, format_value(r.cap_acceleration_max), "m/s²"))
-        rows.append(("cap beam max velocity jump (impact)", format_value(r.cap_velocity_jump_max), "m/s"))
-    return rows
 
 
 _POWER = re.compile(r"(?<=[A-Za-z])\^([23])\b")

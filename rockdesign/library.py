@@ -188,7 +188,7 @@ def simulate(project: Project, motion, *, model: str = "auto", t_end: float | No
         motion: a motion string (``"ricker-anti:ap=0.38g,Tp=0.95s"``, ``"record:p695-ff/11a,scale=1.5"``,
             ``"free:theta0=0.8alpha"``; for a cylinder ``"record:p695-ff/1,resultant_pga=0.3g"``...) or a
             motion object (:class:`~rockdesign.motions.motion.GroundMotion`; a
-            :class:`~rockdesign.motions.pairs.MotionPair` for a cylinder).
+            :class:`~rockdesign.cylinder.pairs.MotionPair` for a cylinder).
         model: ``auto`` | ``exact`` | ``linear`` | ``linear-exact`` (cylinder: ``auto`` | ``undamped`` | ``damped``).
         t_end: end time [s] (default: motion duration + the project's free vibration).
         rtol: relative tolerance (default: the project's).
@@ -289,54 +289,34 @@ def write_report(result, out_dir, *, pdf: bool = True, html: bool = True) -> Pat
     data = result.as_json()
     with folder.staging() as tmp:
         write_results_json(data, tmp / "results.json")
-        write_results_csv(data, tmp / "results.csv", columns=kind.csv_columns)
+        write_results_csv(data, tmp / "results.csv", columns=kind.csv_columns, units=kind.csv_units,
+                          nested=kind.csv_nested)
         write_document(kind.report(result), tmp, pdf=pdf, html=html)
     return folder.target
 
 
 # --- rocking spectra ------------------------------------------------------------------------------
-def spectrum(project: Project, *, pulse: str | None = None, record: str | None = None, x=None, y=None,
-             relative: Project | str | Path | None = None, out_dir: str | Path | None = None, executor=None,
-             model: str | None = None, structure: str | None = None, overturn: str | None = None,
-             t_free: float | None = None, rtol: float | None = None, tm_ratio: float | None = None,
-             chunk_rows: int | None = None, resume: bool | None = None, keep_chunks: bool | None = None,
-             energy_stop: bool | None = None, stop_at_capacity: bool | None = None, polyakov: bool | None = None,
-             equivalent_at=None, figures: bool | None = None, progress=False, say=None) -> SpectrumResult:
+def spectrum(project: Project, *, progress=False, say=None, **options) -> SpectrumResult:
     """The rocking spectrum of a project, written into ``out_dir`` (the work of ``rockdesign spectrum``;
     docs/spectra.md, docs/cylinder.md).
 
-    A planar structure runs over a pulse family: θ_max/α, overturning by impacts, the limit states of Table 3.5
-    and Polyakov's line over ω_p/p × a_p/(g tan α) (thesis Sec 3.3.2, Figs 3.19–3.20, 4.6–4.7).  A cylinder runs
-    one record pair over sizes R × resultant PGA/(g tan α) (Figs 5.16–5.17).  An option the project's kind does
-    not use is refused, naming it; None leaves an option at the kind's default.
+    The project's kind runs it (:meth:`~rockdesign.kinds.base.StructureKind.spectrum`) with the options given by
+    name: each kind declares the options its spectrum takes (``spectrum_options``) and refuses any other, naming
+    it (:meth:`~rockdesign.kinds.base.SpectrumOptions.accepted`); an option given as None is left at the kind's
+    default.  docs/api.md lists the options of the built-in kinds (the pulse family of a planar structure, the record
+    pair of a cylinder); ``rockdesign.kinds.kind_of(project).spectrum_options`` names those of a project's kind.
 
     Args:
         project: a :class:`Project`.
-        pulse: planar: ``ricker-anti`` | ``ricker-sym`` | ``sine`` | ``cycloidal-a`` | ``cycloidal-b`` |
-            ``cycloidal-c`` (required).
-        record: cylinder: the record pair, ``p695-ff/11`` or a ``record:``/``files:`` motion string (required).
-        x, y: axes ``AXIS:lo:hi:n`` — planar ``omega_p/p`` | ``omega_p/p_hat`` | ``Tp`` [s] (default
-            ``omega_p/p:0.5:12:801``) and ``ap/up`` | ``ap/g`` (default ``ap/up:0:12:401``); cylinder ``R`` [m]
-            (default ``R:0.5:30:60``) and ``pga/up`` (default ``pga/up:1:6:51``).
-        relative: a reference project of the same kind (a :class:`Project` or its file): the relative spectrum
-            (Δθ_max/α, Eq 3.64; the equivalent size, Eq 3.65).
-        out_dir: the output folder (default ``<project file stem>-spectrum-<pulse or pair>``).
-        executor: planar: a dask value ``"local:N"`` or a scheduler address (started and closed here), or a
-            started executor of :mod:`rockdesign.execution.executor`; default this machine's cores.
-        model, structure, overturn, t_free, rtol: planar: the equations (``auto`` | ``exact`` | ``linear``), the
-            structural model, the overturning criterion (``static`` | ``dynamic``), the free vibration [s] after
-            the pulse and the relative tolerance (default: the project's ``[analysis]``).
-        tm_ratio: planar: Ricker wavelet centre t_m/T_p (default 1.5, thesis Table 3.4).
-        chunk_rows, resume, keep_chunks: planar: grid rows per chunk; reuse the chunks of an interrupted run with
-            identical inputs (default True); keep the chunk files (default False).
-        energy_stop, stop_at_capacity: planar: stop an analysis once the energy bound proves θ_max final (default
-            True); stop at θc under the static criterion (default False).
-        polyakov: planar: Polyakov's overturning line (default True).
-        equivalent_at: planar, with ``relative``: the ordinates y of the equivalent size (Eq 3.65).
-        figures: write the figures (default True).
         progress: True draws progress bars (rich; a terminal or a notebook), or a function
             ``progress(stage, done, total)``.
         say: a print function announcing a first-run compilation.
+        **options: the kind's options.  Read here for every kind: ``relative`` — a reference project of the same
+            kind (a :class:`Project` or its file): the relative spectrum; ``out_dir`` — the output folder
+            (default ``<project file stem>-spectrum-<pulse or pair>``); ``executor`` — a dask value ``"local:N"``
+            or a scheduler address (started and closed by the spectrum), or a started executor of
+            :mod:`rockdesign.execution.executor`, for a kind whose spectrum takes one; ``figures`` — write the
+            figures (default True).
 
     Returns:
         The kind's spectrum: ``out_dir``, ``as_json()`` (= summary.json), ``spectrum`` (arrays over the grid),
@@ -344,20 +324,16 @@ def spectrum(project: Project, *, pulse: str | None = None, record: str | None =
         KeyboardInterrupt saying how many chunks were kept: the same call resumes from them.
     """
     _require_project(project, "spectrum")
-    if out_dir is not None:
-        require_path(out_dir, "out_dir", "a folder name")
-    check_executor(executor, reach=False)       # a dask value is reached when the spectrum starts its executor
+    given = {name: value for name, value in options.items() if value is not None}
+    if "out_dir" in given:
+        require_path(given["out_dir"], "out_dir", "a folder name")
+    check_executor(given.get("executor"), reach=False)   # a dask value is reached when the spectrum starts it
+    relative = given.get("relative")
     if isinstance(relative, (str, Path)):
-        relative = load_project(relative)
+        given["relative"] = load_project(relative)
     elif relative is not None and not isinstance(relative, Project):
         raise ProjectError("a relative spectrum needs a reference project", key="relative",
                            expected="a Project or a project file", found=type(relative).__name__)
-    given = {name: value for name, value in (
-        ("pulse", pulse), ("record", record), ("x", x), ("y", y), ("relative", relative), ("out_dir", out_dir),
-        ("executor", executor), ("model", model), ("structure", structure), ("overturn", overturn),
-        ("t_free", t_free), ("rtol", rtol), ("tm_ratio", tm_ratio), ("chunk_rows", chunk_rows), ("resume", resume),
-        ("keep_chunks", keep_chunks), ("energy_stop", energy_stop), ("stop_at_capacity", stop_at_capacity),
-        ("polyakov", polyakov), ("equivalent_at", equivalent_at), ("figures", figures)) if value is not None}
     kind = kind_of(project)
     if progress is True:
         with progress_bars() as tick:

@@ -25,9 +25,6 @@ ANALYSIS_KEYS = ("model", "equations", "rtol", "atol", "overturn", "g", "rest_ve
                  "risk_category", "acceptance")
 
 
-MODELS = ("auto", "rigid-superstructure", "podium-2dof", "block", "frame")
-
-
 EQUATIONS = ("auto", "exact", "linear")
 
 
@@ -237,7 +234,9 @@ def _toml_error(path: str, exc: tomllib.TOMLDecodeError) -> ProjectError:
                         expected="valid TOML (strings with units in quotes, e.g. height = \"3.0 m\")")
 
 
-def _parse_analysis(data: dict, file: str) -> AnalysisSettings:
+def _parse_analysis(data: dict, file: str, models: tuple[str, ...] | None = None) -> AnalysisSettings:
+    """The ``[analysis]`` table in SI.  ``models``: the structural models of the kind's ``model`` key (the planar
+    kind's ``auto``, ``block``, …); None reads any string, for the kind to use or refuse."""
     t = _Table(data, "analysis", ANALYSIS_KEYS, file, G_DEFAULT)
     g = DEFAULTS.g
     if t.has("g"):
@@ -263,7 +262,7 @@ def _parse_analysis(data: dict, file: str) -> AnalysisSettings:
     if not 0.0 < damping < 1.0:
         raise t.error("sdmax_damping", "out of range", expected="0 < ζ < 1 (e.g. \"2 %\")", found=t.data["sdmax_damping"])
     return AnalysisSettings(
-        model=t.choice("model", MODELS, DEFAULTS.model),
+        model=t.choice("model", models, DEFAULTS.model) if models is not None else _model_name(t),
         equations=t.choice("equations", EQUATIONS, DEFAULTS.equations),
         rtol=t.number("rtol", default=DEFAULTS.rtol, low=0.0, high=1e-3),
         atol=t.number("atol", default=DEFAULTS.atol, low=0.0, high=1e-3),
@@ -289,6 +288,14 @@ def _parse_analysis(data: dict, file: str) -> AnalysisSettings:
         **_parse_fragility(t),
         **_parse_acceptance(t),
     )
+
+
+def _model_name(t: _Table) -> str:
+    """``model`` of ``[analysis]`` as written (a string), for a kind that names no structural models."""
+    raw = t.data.get("model", DEFAULTS.model)
+    if not isinstance(raw, str):
+        raise t.error("model", "wrong type", expected="a string", found=raw)
+    return raw
 
 
 RISK_CATEGORIES = ("I", "II", "III", "IV")

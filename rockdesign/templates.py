@@ -1,20 +1,33 @@
-"""``rockdesign init``: commented template project files (package data ``templates``)."""
+"""``rockdesign init``: commented template project files (package data ``templates``).
+
+Each kind of structure declares the templates it offers (:attr:`~rockdesign.kinds.base.StructureKind.templates`)
+and reads their text (:meth:`~rockdesign.kinds.base.StructureKind.template_text`); this module asks the registry.
+"""
 from __future__ import annotations
 
 from pathlib import Path
 
 from .errors import ProjectError
 from .outdir import refuse_wrong_type
-from .paths import templates_dir
 
-KINDS = ("podium", "column", "cylinder")
+
+def template_names() -> tuple[str, ...]:
+    """The templates ``rockdesign init`` offers, the built-in kinds' first (default kind first), then the kinds
+    added to the registry."""
+    from .kinds import registered
+    return tuple(name for kind in reversed(registered()) for name in kind.templates)
 
 
 def template_text(kind: str) -> str:
-    """The commented template for ``kind`` (podium | column | cylinder)."""
-    if kind not in KINDS:
-        raise ProjectError("unknown template", key="init KIND", expected="'podium', 'column' or 'cylinder'", found=f"'{kind}'")
-    return (templates_dir() / f"project_{kind}.toml").read_text(encoding="utf-8")
+    """The commented template named ``kind`` (a name of :func:`template_names`)."""
+    from .kinds import registered
+    owner = next((k for k in registered() if kind in k.templates), None)
+    if owner is None:
+        quoted = [f"'{name}'" for name in template_names()]
+        raise ProjectError("unknown template", key="init KIND",
+                           expected=" or ".join([", ".join(quoted[:-1]), quoted[-1]] if len(quoted) > 1 else quoted),
+                           found=f"'{kind}'")
+    return owner.template_text(kind)
 
 
 def write_template(kind: str, path: Path | None = None, *, force: bool = False) -> Path:

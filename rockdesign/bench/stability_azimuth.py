@@ -25,7 +25,7 @@ from ..cylinder.simulation import COMPLETED
 from ..cylinder.system import cylinder
 from ..motions.library import load_record
 from ..motions.motion import record_motion
-from ..motions.pairs import pair_of_records
+from ..cylinder.pairs import pair_of_records
 from ..plots import STYLE
 from .figures import COLORS
 from .stability_outcome import ALL_METHODS, Outcome, StabilityCase

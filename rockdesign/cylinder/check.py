@@ -39,7 +39,7 @@ from .quantities import cylinder_quantities, restitution_root
 from ..planar.dynamics.simulate import simulate
 from ..kernel_cache import sources_digest
 from ..motions.motion import record_motion
-from ..motions.pairs import suite_pairs
+from .pairs import suite_pairs
 from ..motions.scaling_report import headline_basis
 from ..motions.spectra import sd_max_of_samples
 from ..planar.system import Column, RockingSystem

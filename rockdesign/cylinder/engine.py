@@ -2,7 +2,7 @@
 
     >>> from rockdesign.cylinder.system import cylinder
     >>> from rockdesign.cylinder.engine import simulate_cylinder
-    >>> from rockdesign.motions.pairs import parse_pair
+    >>> from rockdesign.cylinder.pairs import parse_pair
     >>> spec = parse_pair("record:p695-ff/11,resultant_pga=0.3g")
     >>> r = simulate_cylinder(cylinder(3.0, 0.6), spec.pair)
     >>> r.theta_max, r.quasi_impacts, r.status
@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..motions.pairs import MotionPair, no_pair
+from .pairs import MotionPair, no_pair
 from .eom import parameters
 from .motion_line import one_directional
 from .kernel import (EV_CROSSING, EV_OVERTURN, EV_QUASI_IMPACT, EV_REST, EV_THETA_MAX, EV_UPLIFT, ST_COMPLETED,

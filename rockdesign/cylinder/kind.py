@@ -18,6 +18,12 @@ class Cylinder(StructureKind):
 
     name = "cylinder"
     systems = ("cylinder",)
+    templates = ("cylinder",)
+    uses = ("rockdesign.planar.dynamics.simulate", "rockdesign.planar.system", "rockdesign.planar.dynamics.warm_up")
+    """The planar rocking body of the same p and α along each component (thesis Ch. 5): the check compares with it
+    through the planar engine's public simulate, whose kernels its first run compiles with the planar warm-up."""
+    spectrum_options = ("record", "x", "y", "relative", "out_dir", "figures")
+    """The parameters of :func:`~rockdesign.cylinder.spectrum_run.record_pair_spectrum` that ``rd.spectrum`` passes on."""
     design_material = ("material: the cylinder's mass", "a free-standing cylinder carries no superstructure")
     key_alternatives = {"height": ("half_height",), "half_height": ("height",), "diameter": ("slenderness",),
                         "slenderness": ("diameter",), "mass": ("density",), "density": ("mass",)}
@@ -31,6 +37,11 @@ class Cylinder(StructureKind):
     def csv_columns(self):
         from .check import CSV_COLUMNS
         return tuple(CSV_COLUMNS)
+
+    csv_units = {"scale": "-", "resultant_pga": "m/s^2", "theta_max_over_alpha": "-", "uplift_time": "s",
+                 "planar_theta_max_over_alpha": "-", "polyakov_ratio_x": "-", "polyakov_ratio_y": "-",
+                 "min_contact_force_over_weight": "-", "ensemble_overturn_fraction": "-"}
+    """The units of the results.csv columns (the others are counts, ids or words)."""
 
     grid_module = "rockdesign.cylinder.grid"
 
@@ -101,7 +112,7 @@ class Cylinder(StructureKind):
         """The rocking spectrum of one record pair over R and PGA (Figs 5.16–5.17;
         :func:`~rockdesign.cylinder.spectrum_run.record_pair_spectrum`)."""
         from . import spectrum_run as cylinder_spectra
-        options = request.accepted(cylinder_spectra.OPTIONS, "the spectrum of a cylinder (a record pair on R × pga "
+        options = request.accepted(self.spectrum_options, "the spectrum of a cylinder (a record pair on R × pga "
                                    "axes)", "record, x R:…, y pga/up:…, relative, out_dir and figures")
         reference = options.get("relative")
         if reference is not None and reference.system.kind not in self.systems:

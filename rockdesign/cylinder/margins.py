@@ -32,7 +32,7 @@ def pair_margins(cyl, scaled_pairs, nominal, a, run, progress=None, need: ScanNe
     and the overturning bands the scan sees.
 
     Args:
-        scaled_pairs: the design-level pairs (:class:`~rockdesign.motions.pairs.MotionPair`).
+        scaled_pairs: the design-level pairs (:class:`~rockdesign.cylinder.pairs.MotionPair`).
         nominal: their design-level 3D runs (``overturned``, ``status``): the factor 1 is not re-analysed.
         a: the project's ``[analysis]`` (``margin_max_scale``, ``margin_precision``; the scan runs at
             rtol = max(rtol, scan_rtol)).

@@ -53,7 +53,7 @@ class CylinderExcitation:
     """The ``[excitation]`` table of a cylinder project, parsed at load (SI).
 
     Attributes:
-        suites: suites of record pairs (``rockdesign.motions.pairs.PAIR_SUITES``), in order.
+        suites: suites of record pairs (``rockdesign.cylinder.pairs.PAIR_SUITES``), in order.
         method: ``resultant_pga`` (each pair scaled to a peak resultant ground acceleration, Table 5.4)
             or ``factor`` (every pair multiplied by one factor).
         target: the resultant PGA [m/s²] (``resultant_pga``) or the factor [-] (``factor``).
@@ -104,7 +104,7 @@ def parse_cylinder_excitation(raw: dict | None, *, file: str, g: float, tan_alph
     if not isinstance(suites, list) or not all(isinstance(s, str) for s in suites) or not suites:
         raise ProjectError("wrong type", file=file, key="excitation.suites", expected="a list of suite names",
                            found=repr(suites))
-    from ..motions.pairs import PAIR_SUITES          # (numba under it: loaded once the keys above are valid)
+    from .pairs import PAIR_SUITES          # (numba under it: loaded once the keys above are valid)
     for s in suites:
         if s not in PAIR_SUITES:
             raise ProjectError("a cylinder needs suites of record pairs", file=file, key="excitation.suites",

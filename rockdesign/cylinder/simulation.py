@@ -15,7 +15,7 @@ from .figures import cylinder_history_figure
 from .quantities import frequency_parameter
 from ..display import format_value
 from ..errors import ModelError, RockdesignError
-from ..motions.pairs import MotionPair, PairSpec, parse_pair
+from .pairs import MotionPair, PairSpec, parse_pair
 from ..plots import save
 from ..project_tables import Project
 
@@ -142,7 +142,7 @@ def simulation_request(project: Project, motion, *, model: str = "auto", t_end: 
         return CylinderRequest(project, motion.name, PairSpec(motion), cyl, rtol or project.analysis.rtol, t_end)
     if not isinstance(motion, str):
         raise RockdesignError("a cylinder is driven by a pair of components", key="motion",
-                              expected="a motion string or a MotionPair (rockdesign.motions.pairs)",
+                              expected="a motion string or a MotionPair (rockdesign.cylinder.pairs)",
                               found=type(motion).__name__)
     if records_dir is None and project.excitation is not None:
         records_dir = project.excitation.records_dir

@@ -15,14 +15,12 @@ from typing import Callable
 
 from ..errors import RockdesignError
 from ..execution import compilation
-from ..motions.pairs import parse_pair
+from .pairs import parse_pair
 from ..outdir import created_folder
 from .spectrum import CylinderSpectrum, CylinderSpectrumError, cylinder_spectrum, parse_cylinder_axis
 from .spectrum_output import write_cylinder_spectrum
 from .warm_up import SPECTRUM
 
-OPTIONS = ("record", "x", "y", "relative", "out_dir", "figures")
-"""The parameters of :func:`record_pair_spectrum` that ``rd.spectrum`` passes on (the others are refused)."""
 DEFAULT_X = "R:0.5:30:60"
 """Sizes R [m] of the thesis's Fig 5.16 grid."""
 DEFAULT_Y = "pga/up:1:6:51"

@@ -9,7 +9,7 @@ def _cylinder_and_pair():
     import numpy as np
 
     from ..motions.motion import record_motion
-    from ..motions.pairs import pair_of_records
+    from .pairs import pair_of_records
     from .system import cylinder
 
     record = record_motion("warm-up", np.array([0.0, 0.3, -0.3, 0.0]) * 9.81, 0.01)

@@ -139,11 +139,24 @@ class StructureKind(abc.ABC):
     """``project.system.kind`` values of this kind's systems ("column", "podium"; "cylinder")."""
     report_files: frozenset[str] = frozenset()
     """Files a check writes into its output folder besides the run files (``ReportParts.files``)."""
-    csv_columns: tuple[str, ...] | None = None
-    """The columns of results.csv (None: :data:`rockdesign.report.results.CSV_COLUMNS`)."""
+    csv_columns: tuple[str, ...] = ("id", "ground_motion")
+    """The columns of results.csv, one row per record of results.json (by default the keys every check's records
+    have); :func:`rockdesign.report.results.write_results_csv` writes them."""
+    csv_units: Mapping[str, str] = {}
+    """The SI unit of each column of results.csv that has one (its header reads "pga [m/s^2]")."""
+    csv_nested: Mapping[str, tuple[str, str]] = {}
+    """Columns of results.csv read from a dict in a record's row: column → (key of the dict, key in it)."""
     key_alternatives: dict[str, tuple[str, ...]] | None = None
     """Keys of the kind's project tables that say the same thing two ways: a ``--vary`` of one replaces the
     others (None: :data:`rockdesign.design_space.variants.ALTERNATIVES`)."""
+    uses: tuple[str, ...] = ()
+    """Modules of other kinds' packages this kind's package imports (a declared dependency between kinds, read by
+    tests/architecture/test_front_door.py); none by default."""
+    spectrum_options: tuple[str, ...] = ()
+    """The options of ``rd.spectrum`` the kind's :meth:`spectrum` takes (``pulse``, ``record``, ``x``, ``out_dir``, …);
+    it refuses any other, naming it (:meth:`SpectrumOptions.accepted`)."""
+    templates: tuple[str, ...] = ()
+    """The commented project templates the kind offers, by name (``rockdesign init NAME``; :meth:`template_text`)."""
     design_material: tuple[str, str] = ("column material", "no elastic superstructure demand")
     """The recommended design without a superstructure force to rank by: (what is least, why)."""
     design_demand: str = "demand ("
@@ -197,6 +210,12 @@ class StructureKind(abc.ABC):
     def parse(self, raw: dict, *, file: str, text: str):
         """The validated :class:`~rockdesign.project_tables.Project` (SI; ``[excitation]`` and ``[analysis]``
         typed) or a :class:`~rockdesign.errors.ProjectError`."""
+
+    def template_text(self, name: str) -> str:
+        """The commented template project file ``name`` (one of :attr:`templates`); by default the package data
+        ``templates/project_<name>.toml``."""
+        from ..paths import templates_dir
+        return (templates_dir() / f"project_{name}.toml").read_text(encoding="utf-8")
 
     # --- design quantities ------------------------------------------------------------------
     @abc.abstractmethod

@@ -203,7 +203,7 @@ def parse_motion(text: str, scales: SystemScales, *, records_dir: str | None = N
         except ImportError as exc:  # pragma: no cover - ground-motion package missing
             raise MotionError(f"records are not available: {exc}", key="motion", found=f"'{text}'") from None
         return MotionSpec(motion.scaled(scale) if scale != 1.0 else motion, text=text)
-    if kind == "files":   # bidirectional pairs drive the 3D cylinder (rockdesign.motions.pairs)
+    if kind == "files":   # bidirectional pairs drive the 3D cylinder (rockdesign.cylinder.pairs)
         raise MotionError("a pair of records drives a [cylinder] project", key="motion",
                           expected="one component (record:…a, file:…) for a planar system", found=f"'{text}'")
     raise MotionError("unknown motion kind", key="motion",

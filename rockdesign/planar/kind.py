@@ -18,11 +18,31 @@ class Planar(StructureKind):
 
     name = "planar"
     systems = ("column", "podium")
+    templates = ("podium", "column")
+    spectrum_options = ("pulse", "x", "y", "relative", "out_dir", "executor", "model", "structure", "overturn",
+                        "t_free", "rtol", "tm_ratio", "chunk_rows", "resume", "keep_chunks", "energy_stop",
+                        "stop_at_capacity", "polyakov", "equivalent_at", "figures")
+    """The parameters of :func:`~rockdesign.planar.spectra.run.pulse_spectrum` that ``rd.spectrum`` passes on."""
 
     grid_module = "rockdesign.planar.grid"
     experiments_module = "rockdesign.planar.experiments"
 
     design_demand = "superstructure shear coefficient (84th percentile"
+
+    @property
+    def csv_columns(self):
+        from .checks.results_csv import CSV_COLUMNS
+        return CSV_COLUMNS
+
+    @property
+    def csv_units(self):
+        from .checks.results_csv import CSV_UNITS
+        return CSV_UNITS
+
+    @property
+    def csv_nested(self):
+        from .checks.results_csv import CSV_NESTED
+        return CSV_NESTED
 
     def grid_batches(self, executor=None):
         """Every analysis of the planar check runs through ``run_jobs``, which takes a pool member; on an
@@ -96,7 +116,7 @@ class Planar(StructureKind):
     def spectrum(self, project, request):
         """The rocking spectrum over a pulse family (thesis Sec 3.3.2; :func:`~rockdesign.planar.spectra.run.pulse_spectrum`)."""
         from .spectra import run as pulse_spectra
-        options = request.accepted(pulse_spectra.OPTIONS, "the spectrum of a planar system (pulses)",
+        options = request.accepted(self.spectrum_options, "the spectrum of a planar system (pulses)",
                                    "pulse and the pulse spectrum's options (record is for a [cylinder] project)")
         reference = options.get("relative")
         if reference is not None and reference.system.kind not in self.systems:

@@ -18,6 +18,9 @@ from ..project_tables import (ANALYSIS_KEYS, RESTITUTION_RULES, AnalysisSettings
                              _parse_analysis, _Table, project_info)
 from .validity import validity_warnings
 
+MODELS = ("auto", "rigid-superstructure", "podium-2dof", "block", "frame")
+"""The structural models of ``[analysis] model`` (docs/project-file.md; chosen in :mod:`rockdesign.planar.dynamics.model`)."""
+
 SECTIONS_TOP = ("project", "column", "podium", "superstructure", "excitation", "analysis", "design")
 
 COLUMN_KEYS = ("height", "half_height", "width", "slenderness", "extended_width", "radius", "curvature",
@@ -38,7 +41,7 @@ def parse_planar_project(raw: dict, *, file: str = "<project>", text: str = "") 
             raise ProjectError("unknown section", file=file, key=section,
                                expected="sections " + ", ".join(f"[{s}]" for s in SECTIONS_TOP),
                                found=f"[{section}]", hint=f"did you mean [{close[0]}]?" if close else None)
-    analysis = _parse_analysis(raw.get("analysis", {}), file)
+    analysis = _parse_analysis(raw.get("analysis", {}), file, MODELS)
     g = analysis.g
     info = project_info(raw, file, g)
     if "column" in raw and "podium" in raw:

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..display import demand_rows, format_value, model_label
+from ..display import format_value
 from ..errors import RockdesignError
 from .dynamics.layout import COMPLETED_STATUSES, STATUS_NAMES
 from .dynamics.response import Response
@@ -19,8 +19,9 @@ from ..motions.measures import plausibility_warnings
 from ..motions.motion import GroundMotion
 from .design.quantities import design_quantities
 from ..motions.parse import MotionSpec, SystemScales, parse_motion
-from ..plots import save, time_history_figure
+from ..plots import save
 from ..project_tables import Project
+from .report.history import time_history_figure
 
 COMPLETED = tuple(STATUS_NAMES[code] for code in COMPLETED_STATUSES)
 """Engine statuses of an analysis that ran to a conclusion (docs/engine.md)."""
@@ -213,3 +214,36 @@ def system_scales(system) -> SystemScales:
     q = design_quantities(system)
     p_hat = q["p_hat"].value if "p_hat" in q else q["p"].value
     return SystemScales(q["alpha"].value, q["uplift_acceleration"].value, q["p"].value, p_hat, system.g)
+
+
+def model_label(model: str, system) -> str:
+    """The analysed model as a reader names it: ``block/exact`` of a column on curved feet is
+    "block/exact (column on curved extensions, exact equations)"."""
+    structure, _, equations = model.partition("/")
+    if structure == "block":
+        ext = getattr(system.column, "extension", "none")
+        what = {"curved": "column on curved extensions", "flat": "column on flat extensions"}.get(ext, "flat-based column")
+    else:
+        what = {"frame": "frame of columns under a cap beam", "rigid-superstructure": "frame with a rigid superstructure",
+                "podium-2dof": "podium with an elastic superstructure (2DOF)"}.get(structure, structure)
+    eq = {"exact": "exact equations", "linear": "linearized equations",
+          "linear-exact": "linearized equations, closed-form solution"}.get(equations, equations)
+    return f"{model} ({what}, {eq})" if equations else f"{model} ({what})"
+
+
+def demand_rows(r, g: float) -> list[tuple[str, str, str]]:
+    """Rows of the superstructure demand of a simulate response (2DOF podium: peak absolute acceleration of
+    the superstructure, the fixed-base reference and their ratio; rigid masses: the cap beam), SPEC §13."""
+    rows = []
+    until = " (until overturning)" if r.overturned else ""
+    if r.superstructure_acceleration_max is not None:
+        a = r.superstructure_acceleration_max
+        rows.append(("superstructure max |a_T| (abs.)" + until, f"{format_value(a)} ({a / g:.4g} g)", "m/s²"))
+        if r.fixed_base_acceleration_max:
+            f = r.fixed_base_acceleration_max
+            rows.append(("same on a fixed base", f"{format_value(f)} ({f / g:.4g} g)", "m/s²"))
+            rows.append(("force ratio rocking / fixed base", format_value(a / f), "-"))
+    elif r.cap_acceleration_max is not None:
+        rows.append(("cap beam max |a| between impacts" + until, format_value(r.cap_acceleration_max), "m/s²"))
+        rows.append(("cap beam max velocity jump (impact)", format_value(r.cap_velocity_jump_max), "m/s"))
+    return rows

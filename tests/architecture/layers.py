@@ -8,35 +8,77 @@ from __future__ import annotations
 import ast
 from pathlib import Path
 
-LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
+PACKAGE = Path(__file__).resolve().parents[2] / "rockdesign"
+
+SHARED_LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
     ("base", ("rockdesign", "rockdesign.errors", "rockdesign.units", "rockdesign.paths", "rockdesign.kernel_cache",
               "rockdesign.jsonable", "rockdesign.mplfig", "rockdesign.plots", "rockdesign.progress",
               "rockdesign.console", "rockdesign.outdir", "rockdesign.display", "rockdesign.execution",
               "rockdesign.quantity", "rockdesign.project_tables", "rockdesign.dop853_tableau")),
-    ("design", ("rockdesign.planar.design", "rockdesign.planar.system", "rockdesign.planar.validity",
-                "rockdesign.cylinder.system", "rockdesign.cylinder.quantities")),
+    ("design", ()),
     ("motions", ("rockdesign.motions",)),
-    ("project", ("rockdesign.planar.project", "rockdesign.cylinder.project")),
-    ("dynamics", ("rockdesign.planar.dynamics", "rockdesign.cylinder")),
-    ("analyses", ("rockdesign.acceptance", "rockdesign.planar.spectra", "rockdesign.planar.checks",
-                  "rockdesign.cylinder.check", "rockdesign.cylinder.criteria", "rockdesign.cylinder.margins",
-                  "rockdesign.cylinder.ensemble")),
-    ("report", ("rockdesign.report", "rockdesign.planar.report", "rockdesign.cylinder.report", "rockdesign.cylinder.methods",
-                "rockdesign.cylinder.figures")),
-    ("experiments", ("rockdesign.experiments", "rockdesign.planar.experiments")),
+    ("project", ()),
+    ("dynamics", ()),
+    ("analyses", ("rockdesign.acceptance",)),
+    ("report", ("rockdesign.report",)),
+    ("experiments", ("rockdesign.experiments",)),
     ("library", ("rockdesign.library", "rockdesign.records", "rockdesign.kinds", "rockdesign.design_space",
-                 "rockdesign.experiments.run",
-                 "rockdesign.planar.kind", "rockdesign.planar.grid", "rockdesign.planar.simulation", "rockdesign.cylinder.kind",
-                 "rockdesign.cylinder.grid", "rockdesign.cylinder.grid_draws", "rockdesign.cylinder.simulation")),
+                 "rockdesign.experiments.run")),
     ("bench", ("rockdesign.bench",)),
     ("cli", ("rockdesign.cli", "rockdesign.templates")),
 )
+"""The shared modules (prefixes) of each layer, lowest first."""
+
+KIND_PARTS: dict[str, tuple[str, ...]] = {
+    "design": ("design", "system", "validity", "quantities"),
+    "motions": ("pairs",),
+    "project": ("project",),
+    "dynamics": ("", "dynamics", "warm_up"),
+    "analyses": ("checks", "check", "criteria", "margins", "ensemble", "spectra"),
+    "report": ("report", "figures", "methods"),
+    "experiments": ("experiments",),
+    "library": ("kind", "simulation", "grid", "grid_draws"),
+}
+"""Where the parts of a kind's package go, by their name in the package (a module or a subpackage): a kind's
+``project.py`` is in *project*, its ``checks/`` or ``check.py`` in *analyses*, its ``kind.py`` in *library*; any
+other part (``""``: the package itself — its engine, kernels, stepper) in *dynamics*."""
+
+
+def kind_packages() -> tuple[str, ...]:
+    """The packages of the built-in kinds of structure, from the registry (``rockdesign.kinds.BUILT_IN``:
+    ``"rockdesign.cylinder.kind:Cylinder"`` → ``rockdesign.cylinder``)."""
+    from rockdesign.kinds import BUILT_IN
+    return tuple(spec.partition(":")[0].rpartition(".")[0] for spec in BUILT_IN)
+
+
+def _kind_layers(package_dir: Path = PACKAGE) -> dict[str, tuple[str, ...]]:
+    """layer → the prefixes of the built-in kinds' parts that exist (``rockdesign.planar.project``, …)."""
+    out = {}
+    for layer, parts in KIND_PARTS.items():
+        prefixes = []
+        for kind in kind_packages():
+            base = package_dir.parent.joinpath(*kind.split("."))
+            for part in parts:
+                if not part or (base / f"{part}.py").is_file() or (base / part / "__init__.py").is_file():
+                    prefixes.append(f"{kind}.{part}" if part else kind)
+        out[layer] = tuple(prefixes)
+    return out
+
+
+def _layers() -> tuple[tuple[str, tuple[str, ...]], ...]:
+    kinds = _kind_layers()
+    return tuple((layer, prefixes + kinds.get(layer, ())) for layer, prefixes in SHARED_LAYERS)
+
+
+LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = _layers()
 """Layers, lowest first, and the modules (prefixes) in each: a module may import only from its own
-layer or a lower one.  The most specific prefix wins (``rockdesign.cylinder.project`` is in *project*
-although ``rockdesign.cylinder`` is in *dynamics*); ``rockdesign.cli`` covers every module of the command-line
-package.  ``rockdesign`` itself (the package's ``__init__``) imports only ``rockdesign.kernel_cache`` at import
-time (numba's cache folder is set before any kernel is defined): its lazy ``__getattr__`` names the library
-modules as strings, which this check does not read."""
+layer or a lower one.  The shared modules are listed in :data:`SHARED_LAYERS`; the kinds' modules are placed by
+their package (:data:`KIND_PARTS`, for every kind of the registry), so adding a kind edits no table here.  The most
+specific prefix wins (``rockdesign.cylinder.project`` is in *project* although ``rockdesign.cylinder`` is in
+*dynamics*); ``rockdesign.cli`` covers every module of the command-line package.  ``rockdesign`` itself (the
+package's ``__init__``) imports only ``rockdesign.kernel_cache`` at import time (numba's cache folder is set before
+any kernel is defined): its lazy ``__getattr__`` names the library modules as strings, which this check does not
+read."""
 
 
 def module_files(package_dir: Path) -> dict[str, Path]:

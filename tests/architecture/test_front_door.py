@@ -1,12 +1,14 @@
 """One front door per kind of structure (docs/architecture.md): the registry is the only place that
-branches on the kind of a structure, the command line imports only the public library, no module is
-over 500 lines, and no two packages import each other."""
+branches on the kind of a structure, no module outside a kind's package names the kind's words (as a value or an
+identifier), the command line imports only the public library, no module is over 500 lines, and no two packages
+import each other.  The kinds and their packages come from the registry: adding a kind edits no table here."""
 from __future__ import annotations
 
 import ast
+import re
 from pathlib import Path
 
-from layers import graph
+from layers import graph, kind_packages
 
 PACKAGE = Path(__file__).resolve().parents[2] / "rockdesign"
 
@@ -24,20 +26,32 @@ CLI_MAY_IMPORT = ("rockdesign", "rockdesign.library", "rockdesign.errors", "rock
 the errors, the console factory and formatting, its siblings and the project templates."""
 
 
+def built_in_kinds():
+    """The built-in kinds of structure (``rockdesign.kinds.BUILT_IN``), instantiated: the words and packages below
+    are theirs, whatever kinds a test has registered besides."""
+    from rockdesign.kinds import BUILT_IN, _instance
+    return tuple(_instance(spec) for spec in BUILT_IN)
+
+
 def _kind_words() -> set[str]:
-    """The names the registry gives its kinds of structure, and the system kinds of every kind but the
-    default one (planar, which claims any document): comparing with these outside the registry is a side door."""
-    from rockdesign.kinds import registered
-    kinds = registered()
-    words = {k.name for k in kinds}
-    for k in kinds[:-1]:
-        words |= set(k.systems)
+    """The words that belong to a kind: the names the registry gives its kinds of structure and their systems'
+    kinds ("planar", "cylinder", "column", "podium")."""
+    words = set()
+    for k in built_in_kinds():
+        words |= {k.name, *k.systems}
     return words
 
 
-def _own_modules(module: str, words: set[str]) -> bool:
-    """A kind's own modules (``rockdesign.cylinder.*``, ``checks/cylinder_check``...) read their own input."""
-    return module.startswith(REGISTRY) or any(w in part for part in module.split(".")[1:] for w in words)
+NOT_A_KIND = ("rockdesign", "rockdesign.bench")
+"""Modules outside the kinds' packages that name the kinds by design: the package's table of public names
+(``rockdesign/__init__.py``: each kind's functions kept for earlier versions) and the tool ``bench/``, which
+measures the kinds' engines (it imports them: :data:`SHARED_EXCEPTIONS`)."""
+
+
+def _own_modules(module: str) -> bool:
+    """A kind's own modules (its package), the registry (``rockdesign.kinds``) and :data:`NOT_A_KIND`."""
+    return (any(module == p or module.startswith(p + ".") for p in (*kind_packages(), REGISTRY))
+            or module in NOT_A_KIND or module.startswith("rockdesign.bench."))
 
 
 def kind_branches(package_dir: Path = PACKAGE) -> list[str]:
@@ -47,7 +61,7 @@ def kind_branches(package_dir: Path = PACKAGE) -> list[str]:
     known, _ = graph(package_dir)
     found = []
     for module, path in known.items():
-        if _own_modules(module, words):
+        if _own_modules(module):
             continue
         for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
             if isinstance(node, ast.Compare):
@@ -77,6 +91,103 @@ def test_the_checker_sees_a_side_door(tmp_path):
     assert kind_branches(pkg) == ["rockdesign/checks/check.py:2", "rockdesign/checks/check.py:5"]
 
 
+SHARED_WORDS = frozenset({"column"})
+"""Words of a kind that are also words of the shared code's own: a table's column (``Table.add_column``,
+``np.column_stack``, a CSV column).  Identifiers may hold them; string constants may not be them."""
+
+STILL_TO_MOVE: dict[str, str] = {
+    "rockdesign/design_space/cells.py": "column_material: the planar name of a design cell's material (issue 48, "
+                                        "neutral outcome types)",
+    "rockdesign/design_space/store.py": "column_material (issue 48, neutral outcome types)",
+    "rockdesign/report/design_report.py": "column_material (issue 48, neutral outcome types)",
+    "rockdesign/report/design_results.py": "column_material (issue 48, neutral outcome types)",
+}
+"""Shared modules that still name a kind's word, each with what it names: the integrator removes each entry as its
+module is made neutral (like TO_BE_SPLIT)."""
+
+_TOKEN = re.compile(r"[A-Za-z0-9]+(?:[-_][A-Za-z0-9]+)*")
+
+
+def _parts(text: str) -> set[str]:
+    return {p.lower() for p in re.split(r"[-_]", text) if p}
+
+
+def _docstrings(tree: ast.AST) -> set[int]:
+    """ids of the docstrings of a module, class or function and of the strings that document an attribute."""
+    return {id(node.value) for node in ast.walk(tree)
+            if isinstance(node, ast.Expr) and isinstance(node.value, ast.Constant) and isinstance(node.value.value, str)}
+
+
+def _identifiers(node: ast.AST):
+    if isinstance(node, ast.Name):
+        yield node.id
+    elif isinstance(node, ast.Attribute):
+        yield node.attr
+    elif isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+        yield node.name
+    elif isinstance(node, ast.arg):
+        yield node.arg
+    elif isinstance(node, ast.keyword) and node.arg:
+        yield node.arg
+    elif isinstance(node, ast.alias):
+        yield from (node.asname or node.name).split(".")
+
+
+def kind_names(package_dir: Path = PACKAGE) -> list[str]:
+    """``file:line: what`` for every name or string constant of a kind outside the kinds' packages (the rule of
+    docs/architecture.md "One front door per kind of structure"): a string constant that is a single token (letters
+    and digits joined by ``-`` or ``_``: a value, a key, a column) and has a kind's word as a part ("podium",
+    "podium-2dof", "planar_theta_max_over_alpha"); an identifier (a variable, function, class, parameter, attribute,
+    keyword or imported name) with a kind's word, other than :data:`SHARED_WORDS`, as a ``_``-part
+    (``CYLINDER_UNITS``, ``planar_ratio``, ``system.podium``).  Prose (a string with a space), docstrings and
+    comments are words to a reader and are not read."""
+    words = _kind_words()
+    name_words = words - SHARED_WORDS
+    known, _ = graph(package_dir)
+    found = []
+    for module, path in known.items():
+        if _own_modules(module):
+            continue
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        skip = _docstrings(tree)
+        where = path.relative_to(package_dir.parent)
+        for node in ast.walk(tree):
+            if (isinstance(node, ast.Constant) and isinstance(node.value, str) and id(node) not in skip
+                    and _TOKEN.fullmatch(node.value) and _parts(node.value) & words):
+                found.append(f"{where}:{node.lineno}: {node.value!r}")
+            for name in _identifiers(node):
+                if _parts(name) & name_words:
+                    found.append(f"{where}:{getattr(node, 'lineno', '?')}: {name}")
+    return sorted(set(found))
+
+
+def test_no_kind_name_outside_the_kinds():
+    found = [f for f in kind_names() if f.split(":")[0] not in STILL_TO_MOVE]
+    assert not found, ("a kind's word outside its package (move the line into the kind, or give StructureKind an "
+                       "attribute the shared module asks):\n" + "\n".join(found))
+    stale = sorted(set(STILL_TO_MOVE) - {f.split(":")[0] for f in kind_names()})
+    assert not stale, f"neutral already (remove from STILL_TO_MOVE): {', '.join(stale)}"
+
+
+def test_the_checker_sees_a_kind_name(tmp_path):
+    pkg = tmp_path / "rockdesign"
+    (pkg / "report").mkdir(parents=True)
+    (pkg / "__init__.py").write_text("")
+    (pkg / "report" / "__init__.py").write_text("")
+    (pkg / "report" / "table.py").write_text(
+        '"""The podium\'s columns (prose in a docstring is read by no one)."""\n'
+        'MODELS = ("auto", "podium-2dof")\n'
+        'UNITS = {"planar_theta_max_over_alpha": "-"}\n'
+        'def label(system, table):\n'
+        '    table.add_column("a column of a podium")\n'
+        '    return system.cylinder\n'
+        'def figure(planar_response): ...\n')
+    assert kind_names(pkg) == ["rockdesign/report/table.py:2: 'podium-2dof'",
+                               "rockdesign/report/table.py:3: 'planar_theta_max_over_alpha'",
+                               "rockdesign/report/table.py:6: cylinder",
+                               "rockdesign/report/table.py:7: planar_response"]
+
+
 def _cli_imports(package_dir: Path = PACKAGE) -> list[str]:
     known, edges = graph(package_dir)
     bad = []
@@ -104,9 +215,9 @@ def test_no_module_over_500_lines():
     assert not split, f"split already (remove from TO_BE_SPLIT): {', '.join(split)}"
 
 
-KIND_PACKAGES = ("rockdesign.planar", "rockdesign.cylinder")
-"""The packages of the built-in kinds of structure: each spans the layers (its system, project parser, engine,
-check, report and entry), so its own parts are the nodes of the package graph."""
+KIND_PACKAGES = kind_packages()
+"""The packages of the built-in kinds of structure, from the registry: each spans the layers (its system, project
+parser, engine, check, report and entry), so its own parts are the nodes of the package graph."""
 
 
 def package_of(module: str, package_dir: Path = PACKAGE) -> str:
@@ -152,19 +263,20 @@ SHARED_EXCEPTIONS: dict[str, tuple[str, ...]] = {
     "rockdesign.bench": KIND_PACKAGES,                       # measures the kinds' engines
 }
 """Modules outside the kinds' packages allowed to import from a kind's package, and what."""
-KIND_USES: dict[str, tuple[str, ...]] = {
-    "rockdesign.cylinder": ("rockdesign.planar.dynamics.simulate", "rockdesign.planar.system",
-                            "rockdesign.planar.dynamics.warm_up"),
-}
-"""What a kind may import from another kind: the cylinder's check compares with the planar rocking body of
-the same p and α along each component (thesis Ch. 5), through the planar engine's public simulate (whose
-kernels its first run compiles with the planar engine's warm-up)."""
+
+
+def kind_uses() -> dict[str, tuple[str, ...]]:
+    """What a kind's package may import from another kind's: what the kind declares
+    (:attr:`~rockdesign.kinds.base.StructureKind.uses`; the cylinder's check compares with the planar rocking body
+    of the same p and α along each component, thesis Ch. 5, through the planar engine's public simulate)."""
+    return {pkg: tuple(kind.uses) for pkg, kind in zip(KIND_PACKAGES, built_in_kinds()) if kind.uses}
 
 
 def kind_imports(package_dir: Path = PACKAGE) -> list[str]:
     """``file:line: a imports b`` for every import of a kind's package from outside it that the tables above
     do not allow."""
     known, edges = graph(package_dir)
+    uses = kind_uses()
     bad = []
     for module, targets in edges.items():
         own = next((k for k in KIND_PACKAGES if module == k or module.startswith(k + ".")), None)
@@ -172,7 +284,7 @@ def kind_imports(package_dir: Path = PACKAGE) -> list[str]:
             kind = next((k for k in KIND_PACKAGES if target == k or target.startswith(k + ".")), None)
             if kind is None or kind == own:
                 continue
-            table = KIND_USES if own else SHARED_EXCEPTIONS
+            table = uses if own else SHARED_EXCEPTIONS
             allowed = [a for prefix, names in table.items() if module == prefix or module.startswith(prefix + ".")
                        for a in names]
             if not any(target == a or target.startswith(a + ".") for a in allowed):

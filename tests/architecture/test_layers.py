@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from layers import LAYERS, cycles, graph, layer_of, unplaced, upward_imports
+from layers import KIND_PARTS, LAYERS, cycles, graph, kind_packages, layer_of, unplaced, upward_imports
 
 PACKAGE = Path(__file__).resolve().parents[2] / "rockdesign"
 
@@ -34,6 +34,21 @@ def test_the_table_has_no_dead_entries():
         for prefix in prefixes:
             assert any(m == prefix or m.startswith(prefix if prefix.endswith("_") else prefix + ".")
                        for m in modules), f"{prefix} names no module"
+
+
+def test_kind_modules_are_placed_by_package_from_the_registry():
+    """The kinds' modules are placed by their name in the kind's package, for every kind of the registry: a new
+    kind's package needs no line in the table; every part named in KIND_PARTS is a part of some kind."""
+    kinds = kind_packages()
+    assert len(kinds) == len(set(kinds)) >= 2
+    for kind in kinds:
+        assert LAYERS[layer_of(f"{kind}.kind")][0] == "library"
+        assert LAYERS[layer_of(f"{kind}.project")][0] == "project"
+    modules = set(graph(PACKAGE)[0])
+    for layer, parts in KIND_PARTS.items():
+        for part in parts:
+            assert not part or any(m == f"{k}.{part}" or m.startswith(f"{k}.{part}.") for k in kinds for m in modules), \
+                f"KIND_PARTS[{layer!r}] names {part!r}, a part of no kind"
 
 
 def _write(root: Path, files: dict[str, str]) -> Path:

@@ -47,8 +47,9 @@ def test_polyakov_line_is_labelled_with_the_capacity():
 
 
 def test_results_csv_headers_carry_units():
-    from rockdesign.report.results import CSV_COLUMNS, csv_header
-    headers = [csv_header(c) for c in CSV_COLUMNS]
+    from rockdesign.planar.checks.results_csv import CSV_COLUMNS, CSV_UNITS
+    from rockdesign.report.results import csv_header
+    headers = [csv_header(c, CSV_UNITS) for c in CSV_COLUMNS]
     assert "pga [m/s^2]" in headers and "sd_max [m]" in headers and "uplift_time [s]" in headers
     assert "id" in headers and "impacts" in headers
 
@@ -90,10 +91,10 @@ def test_templates_state_the_documented_defaults():
     import re
 
     import rockdesign as rd
-    from rockdesign.templates import KINDS, template_text
+    from rockdesign.templates import template_names, template_text
     default = rd.parse_project('[project]\nname = "x"\n[column]\nheight = "3 m"\nwidth = "0.5 m"\nmass = "1 t"\n'
                                'mass_distribution = 0.333\n', name="x").analysis.rtol
-    for kind in KINDS:
+    for kind in template_names():
         stated = [float(m.group(1)) for line in template_text(kind).splitlines() if line.startswith("rtol")
                   for m in [re.search(r"\(default ([0-9.e+-]+)[;:)]", line)] if m]
         assert stated == [default], (kind, stated)

@@ -28,7 +28,7 @@ from rockdesign.cylinder.simulation import COMPLETED
 from rockdesign.cylinder.system import cylinder
 from rockdesign.motions.library import load_record
 from rockdesign.motions.motion import record_motion
-from rockdesign.motions.pairs import pair_of_records
+from rockdesign.cylinder.pairs import pair_of_records
 
 AZIMUTHS_DEG = (0.0, 15.0, 30.0, 45.0, 60.0, 90.0, 135.0, 200.0)
 AMPLITUDES = (0.9, 1.05, 1.2, 1.5, 2.0, 3.0)

@@ -14,7 +14,7 @@ from rockdesign.cylinder.check import planar_block
 from rockdesign.cli import app
 from rockdesign.cylinder.engine import simulate_cylinder
 from rockdesign.errors import ProjectError
-from rockdesign.motions.pairs import load_pair
+from rockdesign.cylinder.pairs import load_pair
 from rockdesign.kinds import parse_document as parse_project
 
 runner = CliRunner()

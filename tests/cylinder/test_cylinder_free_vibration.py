@@ -121,7 +121,7 @@ def test_damped_contact_force_is_the_vertical_balance(quasi_rocking_damped):
 
 
 def test_uplift_seed_does_not_matter():
-    from rockdesign.motions.pairs import parse_pair
+    from rockdesign.cylinder.pairs import parse_pair
     spec = parse_pair("ricker-anti:ap=0.45g,Tp=0.8s,azimuth=0deg", gravity=RIGID.g)
     a = simulate_cylinder(RIGID, spec.pair, theta_seed=1e-7)
     b = simulate_cylinder(RIGID, spec.pair, theta_seed=1e-9)

@@ -63,7 +63,7 @@ def test_a_stocky_cylinder_passes_from_the_command_line(tmp_path):
 def test_a_cylinder_suite_below_eleven_ground_motions_is_refused_up_front(monkeypatch):
     """ASCE 7-22 needs 11 ground motions: a 3-pair suite is refused before any analysis (exit 2)."""
     from rockdesign.errors import ProjectError
-    from rockdesign.motions import pairs
+    from rockdesign.cylinder import pairs
     monkeypatch.setitem(pairs.PAIR_SUITES, "test-three-pairs-refused", ("p695-ff", range(1, 4)))
     project = rd.parse_project(SAFE.replace("[excitation]\n", '[excitation]\nsuites = ["test-three-pairs-refused"]\n'),
                                name="three.toml")

@@ -10,7 +10,7 @@ from typer.testing import CliRunner
 
 from rockdesign.cylinder import check as cylinder_check
 from rockdesign.cli import app
-from rockdesign.motions import pairs
+from rockdesign.cylinder import pairs
 from rockdesign.library import load_project
 from rockdesign.library import check_output_folder
 

@@ -1,4 +1,4 @@
-"""Bidirectional motion strings and record pairs for the cylinder (rockdesign.motions.pairs)."""
+"""Bidirectional motion strings and record pairs for the cylinder (rockdesign.cylinder.pairs)."""
 from __future__ import annotations
 
 import math
@@ -8,7 +8,7 @@ import pytest
 
 from rockdesign.errors import MotionError, RecordError
 from rockdesign.motions.library import load_record
-from rockdesign.motions.pairs import PAIR_SUITES, parse_pair, suite_pairs
+from rockdesign.cylinder.pairs import PAIR_SUITES, parse_pair, suite_pairs
 
 G = 9.81
 

@@ -13,7 +13,7 @@ from rockdesign.cylinder.quantities import frequency_parameter, restitution_root
 from rockdesign.cylinder.system import cylinder
 from rockdesign.planar.dynamics.simulate import simulate
 from rockdesign.motions.motion import pulse_motion
-from rockdesign.motions.pairs import pulse_pair
+from rockdesign.cylinder.pairs import pulse_pair
 from rockdesign.planar.system import Column, RockingSystem
 
 

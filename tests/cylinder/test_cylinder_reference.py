@@ -7,7 +7,7 @@ import pytest
 from lagrangian_reference import LagrangianCylinder, integrate_record
 from rockdesign.cylinder.engine import simulate_cylinder, uplift_level
 from rockdesign.cylinder.system import cylinder
-from rockdesign.motions.pairs import parse_pair
+from rockdesign.cylinder.pairs import parse_pair
 
 
 @pytest.mark.parametrize("contact", ["rigid", "spring-dashpot"])

@@ -15,7 +15,7 @@ from typer.testing import CliRunner
 import rockdesign as rd
 from rockdesign.cylinder.check import MAX_HISTORIES, CylinderCheckResult, governing_ids
 from rockdesign.cli import app
-from rockdesign.motions import pairs
+from rockdesign.cylinder import pairs
 from rockdesign.report.formatting import fmt
 
 runner = CliRunner()

@@ -22,7 +22,7 @@ from rockdesign.planar.dynamics.engine import _rigid_uplift_thresholds
 from rockdesign.planar.dynamics.model import ModelChoice, system_parameters
 from rockdesign.planar.dynamics.simulate import simulate
 from rockdesign.motions.motion import record_motion
-from rockdesign.motions.pairs import parse_pair, suite_pairs
+from rockdesign.cylinder.pairs import parse_pair, suite_pairs
 from rockdesign.planar.system import Column, RockingSystem
 
 V_REST = DEFAULT_REST_VELOCITY

@@ -12,7 +12,7 @@ from rockdesign.cli import app
 from rockdesign.cylinder.engine import simulate_cylinder
 from rockdesign.cylinder.spectrum import CylinderSpectrumError, cylinder_spectrum, parse_cylinder_axis
 from rockdesign.cylinder.system import Cylinder, cylinder
-from rockdesign.motions.pairs import parse_pair
+from rockdesign.cylinder.pairs import parse_pair
 
 runner = CliRunner()
 

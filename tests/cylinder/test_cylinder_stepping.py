@@ -12,7 +12,7 @@ import numpy as np
 from rockdesign.cylinder.engine import simulate_cylinder
 from rockdesign.cylinder.eom import ground_xy, parameters, rhs, rhs_ground
 from rockdesign.cylinder.system import cylinder
-from rockdesign.motions.pairs import parse_pair
+from rockdesign.cylinder.pairs import parse_pair
 
 
 def _pair():

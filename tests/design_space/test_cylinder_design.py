@@ -13,7 +13,7 @@ from typer.testing import CliRunner
 
 from rockdesign.cli import app
 from rockdesign.design_space.variants import parse_vary, variant_document, variant_toml
-from rockdesign.motions import pairs
+from rockdesign.cylinder import pairs
 
 SUITE = "test-design-two-pairs"
 TOML = f"""\

@@ -109,7 +109,7 @@ def test_the_real_calls_use_the_warm_up_machine_code():
     from rockdesign.cylinder.spectrum import cylinder_spectrum
     from rockdesign.cylinder.warm_up import SPECTRUM
     from rockdesign.library import load_project, simulate
-    from rockdesign.motions.pairs import load_pair
+    from rockdesign.cylinder.pairs import load_pair
     from rockdesign.paths import REPO_ROOT
     from rockdesign.planar.experiments.ensemble import run_ensemble
     from rockdesign.planar.spectra.axes import parse_axis

@@ -27,7 +27,7 @@ from rockdesign.cylinder.engine import simulate_cylinder
 from rockdesign.cylinder.quantities import (angle_of_turn, frequency_parameter, restitution_root, wobbling_period,
                                             wobbling_spin)
 from rockdesign.cylinder.system import cylinder
-from rockdesign.motions.pairs import parse_pair
+from rockdesign.cylinder.pairs import parse_pair
 
 G = 9.81
 THESIS_SPIN = 1e-8          # rad/s, the initial spin of the thesis's free-vibration runs (Sec 5.4.1, Fig 5.4)

@@ -18,7 +18,8 @@ from ..checks.polyakov import CLASS_MEANING, CLASSES  # noqa: E402
 from ..design.geometry import rocking_geometry  # noqa: E402
 from ..design.pushover import pushover_curve  # noqa: E402
 from ...report.formatting import fmt, number, plural  # noqa: E402
-from ...plots import STYLE, clear_position, legend_above, time_history_figure  # noqa: E402
+from ...plots import STYLE, clear_position, legend_above  # noqa: E402
+from .history import time_history_figure  # noqa: E402
 
 CLASS_COLOURS = {"a1": "#2c7fb8", "a2": "#7fcdbb", "b": "#d7301f", "c": "#fdae61", "d": "#7f2704"}
 """Periods of the plotted elastic spectra (log grid over the SD_max band)."""

@@ -29,10 +29,6 @@ from .spectrum import RockingSpectrum, SpectrumError, check_grid, check_ordinate
 PULSE_SPECTRUM = compilation.Kernels("planar-pulse-spectrum", warm_up, 30.0)
 """The integrator inside the pulse-spectrum kernel, compiled on a first run (:func:`.kernel.warm_up`)."""
 
-OPTIONS = ("pulse", "x", "y", "relative", "out_dir", "executor", "model", "structure", "overturn", "t_free", "rtol",
-           "tm_ratio", "chunk_rows", "resume", "keep_chunks", "energy_stop", "stop_at_capacity", "polyakov",
-           "equivalent_at", "figures")
-"""The parameters of :func:`pulse_spectrum` that ``rd.spectrum`` passes on (the others are refused)."""
 MODELS = ("auto", "exact", "linear")
 
 

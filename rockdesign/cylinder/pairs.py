@@ -25,9 +25,9 @@ import numpy as np
 
 from ..errors import MotionError
 from ..units import QuantityParseError, parse_quantity
-from .excitation import EXC_NONE, EXC_SAMPLES, excitation_end, ground_acceleration_array
-from .motion import PULSE_KINDS, GroundMotion, no_motion
-from .parse import finite, record_file_only, scale_factor
+from ..motions.excitation import EXC_NONE, EXC_SAMPLES, excitation_end, ground_acceleration_array
+from ..motions.motion import PULSE_KINDS, GroundMotion, no_motion
+from ..motions.parse import finite, record_file_only, scale_factor
 
 _EMPTY = np.zeros(0)
 _PAIR_ID = re.compile(r"^(p695-(?:ff|nfp|nfnp))/(\d+)$", re.I)
@@ -150,7 +150,7 @@ def _source(motion: GroundMotion) -> str:
 
 def load_pair(pair_id: str, *, gravity: float = 9.81) -> MotionPair:
     """The built-in pair ``p695-ff/11`` (component a along x, b along y) in m/s²."""
-    from .library import load_record
+    from ..motions.library import load_record
     m = _PAIR_ID.match(pair_id.strip())
     if not m:
         raise MotionError("unknown record pair", key="motion", expected="p695-ff/<1..22>, p695-nfp/<1..14>, "
@@ -208,7 +208,7 @@ def _angle(text: str, value: str, name: str = "azimuth") -> float:
 
 def _split(text: str, body: str, allowed: tuple[str, ...]) -> tuple[list[str], dict[str, str]]:
     """(positional parts, named parameters) of a pair's motion string (the planar parser's rules)."""
-    from .parse import _fields
+    from ..motions.parse import _fields
     positional: list[str] = []
     named = _fields(text, body, allowed, positional)
     return positional, named
@@ -245,7 +245,7 @@ def parse_pair(text: str, *, gravity: float = 9.81, alpha: float = 0.0, uplift_a
     ``alpha`` [rad], ``uplift_acceleration`` g tan α [m/s²] and ``p`` [1/s] give the relative units
     ``0.8alpha``, ``2up`` and ``wp=3p``.
     """
-    from .parse import SystemScales, parse_motion
+    from ..motions.parse import SystemScales, parse_motion
     if ":" not in text:
         raise MotionError("malformed motion", key="motion", expected="KIND:params, KIND one of record, files, "
                           "file, free, " + ", ".join(PULSE_KINDS), found=f"'{text}'")
