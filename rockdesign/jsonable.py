@@ -25,3 +25,18 @@ def json_ready(value):
     if isinstance(value, np.generic):
         return value.item()
     return value
+
+
+class SerialisedOnce:
+    """A finished result whose ``as_json()`` is built once: :meth:`serialise` (the subclass's) runs on the first
+    call and every later call returns the same dict, so results.json, results.csv, the report and the console
+    summary of one check read one serialisation.  The dict is shared: read it, do not change it."""
+
+    def serialise(self) -> dict:
+        raise NotImplementedError
+
+    def as_json(self) -> dict:
+        cached = self.__dict__.get("_serialised")
+        if cached is None:
+            cached = self.__dict__["_serialised"] = self.serialise()
+        return cached

@@ -33,7 +33,7 @@ from pathlib import Path
 from .execution import compilation
 from .errors import ProjectError, RockdesignError
 from .execution.executor import check_executor, make_executor
-from .kinds import kind_of, kind_of_document
+from .kinds import kind_of, parse_document
 from .kinds.base import CheckResult, SimulationResult, SpectrumOptions, SpectrumResult
 from .outdir import OutputFolder
 from .paths import require_path
@@ -71,7 +71,7 @@ def load_project(path: str | Path) -> Project:
             exc.key = "path"
             exc.args = (exc.format(),)
         raise
-    return kind_of_document(raw).parse(raw, file=str(path), text=text)
+    return parse_document(raw, file=str(path), text=text)
 
 
 def parse_project(toml_text: str, name: str = "<string>") -> Project:
@@ -92,7 +92,7 @@ def parse_project(toml_text: str, name: str = "<string>") -> Project:
         raw = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ProjectError(f"invalid TOML ({exc})", file=name) from None
-    return kind_of_document(raw).parse(raw, file=name, text=text)
+    return parse_document(raw, file=name, text=text)
 
 
 # --- design quantities ---------------------------------------------------------------------------

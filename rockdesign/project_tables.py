@@ -91,6 +91,13 @@ class Project:
     """The ``[excitation]`` table parsed at load by the project's kind (planar:
     :class:`~rockdesign.motions.config.ExcitationSpec`, None without the table; cylinder:
     :class:`~rockdesign.cylinder.project.CylinderExcitation`).  The check reads this, never the raw table."""
+    kind: object | None = field(default=None, compare=False, repr=False)
+    """The kind of structure that parsed the project (:mod:`rockdesign.kinds`): the registry is asked once, at
+    load, and every later call (``check``, ``write_report`` of its result) takes the kind from here."""
+    derived: dict = field(default_factory=dict, init=False, compare=False, repr=False)
+    """What the project's kind derived from it once and keeps for the later steps of the same command (the planar
+    check's design quantities and records, read by ``prepare_check`` and analysed by ``check``); a variant made
+    with :func:`dataclasses.replace` starts empty."""
 
 
 class _Table:

@@ -32,11 +32,11 @@ import time
 import numpy as np
 
 from .. import __version__
-from .engine import simulate_cylinder
+from .engine import STATUS, simulate_cylinder
 from .kernel import ST_COMPLETED, ST_OVERTURNED
-from .engine import STATUS
-from .quantities import cylinder_quantities, restitution_root
+from .quantities import cylinder_quantities, restitution_root, wobbling_curve
 from ..planar.dynamics.simulate import simulate
+from ..jsonable import SerialisedOnce
 from ..kernel_cache import sources_digest
 from ..motions.motion import record_motion
 from .pairs import suite_pairs
@@ -216,7 +216,7 @@ def _median(values) -> float | None:
 
 
 @dataclasses.dataclass
-class CylinderCheckResult:
+class CylinderCheckResult(SerialisedOnce):
     """The check of a cylinder project: ``as_json()`` is results.json (``check --json``), with the sections
     of a planar check (project, quantities, model, excitation, records, summary, sensitivity, verdict,
     verdict_reason, verdict_robust, failed_records, checks, settings, fragility, collapse_margin,
@@ -240,6 +240,8 @@ class CylinderCheckResult:
     collapse_margin: dict | None = None    # acceptance/collapse_margin.py
     histories: dict = dataclasses.field(default_factory=dict)
     decided_at_design_level: bool | None = None   # verdict_only (design grid): the incremental scan was not needed
+    quantities: dict = dataclasses.field(default_factory=dict)     # cylinder_quantities, computed once by the check
+    figure_data: dict = dataclasses.field(default_factory=dict)    # the report's wobbling curve (Fig 5.2), not in JSON
 
     @property
     def statistics(self) -> dict:
@@ -249,7 +251,8 @@ class CylinderCheckResult:
     def failed_records(self) -> list[PairOutcome]:
         return [o for o in self.records if o.run.status != "completed"]
 
-    def as_json(self) -> dict:
+    def serialise(self) -> dict:
+        """results.json (``as_json()``: built once, when the check is complete)."""
         p, cyl, a = self.project, self.project.system, self.project.analysis
         e = p.excitation
         cylinder = {"height": 2.0 * cyl.half_height, "diameter": 2.0 * cyl.base_radius, "slenderness": cyl.tan_alpha,
@@ -262,7 +265,7 @@ class CylinderCheckResult:
                     "margin_precision": a.margin_precision, "margin_max_scale": a.margin_max_scale,
                     "margin_scan_ratio": SCAN_RATIO, "margin_rtol": max(a.rtol, a.scan_rtol),
                     "scale_basis": "overturn_scale multiplies the design-level (scaled) record pair"}
-        quantities = {k: q.as_json() for k, q in cylinder_quantities(cyl).items()}
+        quantities = {k: q.as_json() for k, q in self.quantities.items()}
         return {"project": {"name": p.name, "file": p.path, "system": "cylinder", "contact": cyl.contact,
                             "kind": "cylinder", "sha256": p.sha256, "kernels_sha256": sources_digest(),
                             **{k: v for k, v in p.info.items() if k != "name"}, "tool_version": __version__,
@@ -398,7 +401,7 @@ def run_cylinder_check(project, progress=None, margins: bool = True, *, records:
                        key="excitation")
     block = planar_block(cyl)
     note = _slow_notes(progress)
-    records_out = []
+    records = []
     for i, ((suite, pair), factor) in enumerate(zip(pairs, sp.factors)):
         scaled = pair.scaled(factor)
         planar = {"x": None, "y": None}
@@ -406,12 +409,11 @@ def run_cylinder_check(project, progress=None, margins: bool = True, *, records:
             for comp, accel in zip(("x", "y"), sp.accel[i]):
                 planar[comp] = _planar_component(block, accel, pair.dt, a)
         ratios = [sd / (2.0 * cyl.base_radius) for sd in sp.sd_max[i]]
-        records_out.append(PairOutcome(pair.meta.get("id", pair.name), suite, pair.meta, factor, scaled.resultant_pga,
+        records.append(PairOutcome(pair.meta.get("id", pair.name), suite, pair.meta, factor, scaled.resultant_pga,
                                        _run_3d(cyl, scaled, a, note=note), planar["x"], planar["y"], ratios[0],
                                        ratios[1], cyl.damped))
         if progress is not None:
             progress("cylinder and planar analyses" if not verdict_only else "cylinder analyses", i + 1, len(pairs))
-    records = records_out
     decided = verdict_only and decided_at_design_level(rule, records)
     need = pair_need(rule, records, decided) if verdict_only and margins else None
     flip_scans = None
@@ -454,7 +456,8 @@ def run_cylinder_check(project, progress=None, margins: bool = True, *, records:
         k: ens[k] for k in ("size", "seed", "amplitude_variation", "tolerance_factor", "p_overturn", "n_not_robust")}
     return CylinderCheckResult(project, records, summary, checks, decision.verdict, decision.reason,
                                decision.robust, decision.governing, ensemble_json, acceptance, fragility,
-                               margin_fema, decided_at_design_level=decided if verdict_only else None)
+                               margin_fema, decided_at_design_level=decided if verdict_only else None,
+                               quantities=cylinder_quantities(cyl))
 
 
 MAX_HISTORIES = 8
@@ -472,10 +475,11 @@ def governing_ids(data: dict, n: int = GOVERNING_PAIRS) -> list[str]:
 def cylinder_check(project, progress=None, margins: bool = True) -> CylinderCheckResult:
     """:func:`run_cylinder_check` plus the histories of the governing pairs (re-analysed: the engine is
     deterministic, so they are the histories behind the rows of results.json)."""
-    result = run_cylinder_check(project, progress=progress, margins=margins)
+    suite = suite_pair_records(project)           # (the pairs read and scaled once, for the histories too)
+    result = run_cylinder_check(project, progress=progress, margins=margins, records=suite)
     cyl, a = project.system, project.analysis
-    by_id = {o.id: o for o in result.records}
-    pairs = {p.meta.get("id", p.name): p for s in project.excitation.suites for p in suite_pairs(s, gravity=cyl.g)}
+    by_id, pairs = {o.id: o for o in result.records}, {p.meta.get("id", p.name): p for _, p in suite.pairs}
+    result.figure_data["wobbling"] = dict(zip(("theta_over_alpha", "Tw_p", "T_housner_p"), wobbling_curve(cyl)))
     for rid in governing_ids(result.as_json()):
         pair = pairs[rid].scaled(by_id[rid].scale)
         result.histories[rid] = (simulate_cylinder(cyl, pair, free_vibration=a.free_vibration, rtol=a.rtol,

@@ -1,11 +1,11 @@
 """Figures of the cylinder: the time history with the plan-view orbit (thesis Figs 5.9–5.15), the
-wobbling period against the tilt (Fig 5.2) and the check's 3D against planar θ_max/α per record pair."""
+wobbling period against the tilt (Fig 5.2) and the check's 3D against planar θ_max/α per record pair.  They draw
+the data the check computed; they compute none (tests/report/test_renders_only.py)."""
 from __future__ import annotations
 
 import numpy as np
 
 from .engine import SPIN_TILT_MIN
-from .quantities import wobbling_curve
 from ..plots import STYLE, legend_above, plt
 
 
@@ -83,13 +83,14 @@ def cylinder_history_figure(response, g: float, title: str = "", pair=None):
         return fig
 
 
-def wobbling_figure(cyl):
-    """T_w p against θ/α (Eq 5.29) next to Housner's planar period (Eq 2.8), as thesis Fig 5.2."""
-
-    ratio, tw_p, housner_p = wobbling_curve(cyl)
+def wobbling_figure(curve: dict, tan_alpha: float):
+    """T_w p against θ/α (Eq 5.29) next to Housner's planar period (Eq 2.8), as thesis Fig 5.2: ``curve`` holds the
+    arrays ``theta_over_alpha``, ``Tw_p`` and ``T_housner_p`` the check computed (``result.figure_data["wobbling"]``,
+    :func:`~rockdesign.cylinder.quantities.wobbling_curve`) for a cylinder of slenderness ``tan_alpha``."""
+    ratio, tw_p, housner_p = (np.asarray(curve[k], float) for k in ("theta_over_alpha", "Tw_p", "T_housner_p"))
     with plt.rc_context(STYLE):
         fig, ax = plt.subplots(figsize=(5.5, 3.8))
-        ax.plot(ratio, tw_p, color="C0", label=f"wobbling cylinder, tan α = {cyl.tan_alpha:.3g} (Eq 5.29)")
+        ax.plot(ratio, tw_p, color="C0", label=f"wobbling cylinder, tan α = {tan_alpha:.3g} (Eq 5.29)")
         ax.plot(ratio, housner_p, color="0.3", ls="--", label="planar rocking, Housner (Eq 2.8)")
         ax.set_xlabel("θ/α [-]")
         ax.set_ylabel("T p [-]")

@@ -72,17 +72,18 @@ class Cylinder(StructureKind):
 
         from .quantities import wobbling_curve
         path = Path(path)
-        if path.suffix.lower() == ".csv":
-            ratio, tw, th = wobbling_curve(project.system)
-            np.savetxt(path, np.column_stack([ratio, tw, th]), delimiter=",", fmt="%.12g",
-                       header="theta_over_alpha,Tw_p,T_housner_p", comments="")
-        elif path.suffix.lower() in (".png", ".svg", ".pdf"):
-            from ..plots import save
-            from .figures import wobbling_figure
-            save(wobbling_figure(project.system), path)
-        else:
+        if path.suffix.lower() not in (".csv", ".png", ".svg", ".pdf"):
             raise RockdesignError("unknown file type", key="path", expected=".csv, .png, .svg or .pdf",
                                   found=f"'{path.name}'")
+        ratio, tw, th = wobbling_curve(project.system)
+        if path.suffix.lower() == ".csv":
+            np.savetxt(path, np.column_stack([ratio, tw, th]), delimiter=",", fmt="%.12g",
+                       header="theta_over_alpha,Tw_p,T_housner_p", comments="")
+        else:
+            from ..plots import save
+            from .figures import wobbling_figure
+            curve = {"theta_over_alpha": ratio, "Tw_p": tw, "T_housner_p": th}
+            save(wobbling_figure(curve, project.system.tan_alpha), path)
 
     def simulation_request(self, project, motion, *, model, t_end, rtol, records_dir):
         from . import simulation as cylinder_simulation

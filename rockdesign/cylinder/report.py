@@ -20,7 +20,6 @@ import jinja2
 from .. import __version__
 from .check import CSV_COLUMNS, governing_ids
 from .engine import SPIN_TILT_MIN
-from .quantities import cylinder_quantities
 from ..paths import templates_dir
 from ..plots import save
 from ..report.context import given_value, quality_note, report_date, software_versions
@@ -47,13 +46,18 @@ def render_cylinder_figures(result) -> dict[str, str]:
     """Inline SVG of the report's figures: ``wobbling``, ``comparison``, ``fragility`` (when the pairs were
     scanned) and ``history:<pair id>``."""
     cyl = result.project.system
-    out = {"wobbling": svg(wobbling_figure(cyl), "wobbling"),
+    out = {"wobbling": svg(_wobbling(result), "wobbling"),
            "comparison": svg(comparison_figure(result.as_json()), "comparison")}
     if result.fragility and result.fragility.get("capacities"):
         out["fragility"] = svg(fragility_figure(result), "fragility")
     for k, (rid, (response, pair)) in enumerate(result.histories.items()):
         out[f"history:{rid}"] = svg(cylinder_history_figure(response, cyl.g, title=rid, pair=pair), f"history{k}")
     return out
+
+
+def _wobbling(result):
+    """Fig 5.2 for the checked cylinder, from the curve the check computed."""
+    return wobbling_figure(result.figure_data["wobbling"], result.project.system.tan_alpha)
 
 
 def planar_answer(data: dict) -> str:
@@ -100,7 +104,6 @@ def build_cylinder_context(result, *, figures: dict, date: str | None = None) ->
     text = SCALING_TEXT[scaling["method"]]
     scaling_text = text.format(target=fmt(scaling.get("target"), "m/s^2"), value=fmt(scaling.get("value")))
     governing = [dict(c, ratio=utilisation_text(c["utilisation"])) for c in data["checks"] if c["governs_verdict"]]
-    quantities = cylinder_quantities(project.system)
     rows = {r["id"]: r for r in data["records"]}
     return {
         "data": data, "summary": data["summary"], "checks": data["checks"], "verdict": data["verdict"],
@@ -111,7 +114,7 @@ def build_cylinder_context(result, *, figures: dict, date: str | None = None) ->
                     "source_text": project.source_text},
         "quantities": [dict(q.as_json(), name=name, symbol=q.symbol, description=q.description,
                             formula=q.formula, substituted=q.substituted, note=q.note)
-                       for name, q in quantities.items()],
+                       for name, q in result.quantities.items()],
         "verdict_reason": data["verdict_reason"], "governing": governing[0] if governing else None,
         "polyakov_median": next((c["utilisation"] for c in data["checks"] if c["criterion"] == "polyakov_rule_2"),
                                 None),
@@ -144,4 +147,4 @@ def cylinder_report_parts(result) -> ReportParts:
     data = result.as_json()
     return ReportParts(html=lambda: render_cylinder_html(result),
                        files={"cylinder_vs_planar.png": lambda path: save(comparison_figure(data), path),
-                              "wobbling_period.png": lambda path: save(wobbling_figure(result.project.system), path)})
+                              "wobbling_period.png": lambda path: save(_wobbling(result), path)})

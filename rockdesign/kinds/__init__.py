@@ -5,7 +5,8 @@
 A kind is a :class:`~rockdesign.kinds.base.StructureKind` living in a package of its own
 (``rockdesign/planar/``, ``rockdesign/cylinder/``).  :func:`kind_of_document` chooses the parser of a TOML
 document (the first kind that claims it), :func:`kind_of` the kind of a loaded project (or of a check result,
-through its project).  The library (``rd.load_project``, ``rd.design_quantities``, ``rd.simulate``,
+through its project): the kind a project carries (``project.kind``, set by :func:`parse_document` when
+it was parsed) without asking the registry again.  The library (``rd.load_project``, ``rd.design_quantities``, ``rd.simulate``,
 ``rd.check``, ``rd.write_report``, ``rd.spectrum``, ``rd.design``) dispatches through these functions once per
 call; ``tests/architecture`` fails on any other branch on the kind of a structure.
 
@@ -15,6 +16,7 @@ The built-in kinds are imported on first use, so importing the registry loads no
 """
 from __future__ import annotations
 
+import dataclasses
 import importlib
 from importlib.metadata import entry_points
 
@@ -73,6 +75,9 @@ def kind_of(subject) -> StructureKind:
     """The kind of a :class:`~rockdesign.project_tables.Project`, or of a result that carries one
     (``result.project``)."""
     project = getattr(subject, "project", subject)
+    carried = getattr(project, "kind", None)
+    if isinstance(carried, StructureKind):      # the kind that parsed it (:func:`parse_document`): asked once
+        return carried
     system_kind = getattr(getattr(project, "system", None), "kind", None)
     for kind in registered():
         if system_kind in kind.systems:
@@ -85,4 +90,8 @@ def kind_of(subject) -> StructureKind:
 def parse_document(raw: dict, *, file: str = "<project>", text: str = ""):
     """The validated :class:`~rockdesign.project_tables.Project` of an already-parsed TOML document, by the
     parser of its kind."""
-    return kind_of_document(raw).parse(raw, file=file, text=text)
+    kind = kind_of_document(raw)
+    project = kind.parse(raw, file=file, text=text)
+    if dataclasses.is_dataclass(project) and getattr(project, "kind", "") is None:
+        project = dataclasses.replace(project, kind=kind)      # the project carries its kind (``kind_of``)
+    return project

@@ -72,23 +72,22 @@ class Planar(StructureKind):
         θ = 0 to θc: a CSV table (``theta_rad, F_R_over_mg, phase``) or, for .png/.svg/.pdf, the report's plot."""
         import numpy as np
 
-        from .design.geometry import rocking_geometry
-        from .design.pushover import pushover_curve
+        from .checks.figure_data import pushover_data
         path = Path(path)
         suffix = path.suffix.lower()
-        if suffix == ".csv":
-            geo = rocking_geometry(project.system.column)
-            theta, force = pushover_curve(geo)
-            phase = np.where((geo.radius > 0) & (theta <= geo.beta), 1, 2)
-            np.savetxt(path, np.column_stack([theta, force, phase]), delimiter=",", fmt=["%.15g", "%.15g", "%d"],
-                       header="theta_rad,F_R_over_mg,phase", comments="")
-        elif suffix in (".png", ".svg", ".pdf"):
-            from ..plots import save
-            from .report.figures import pushover_figure
-            save(pushover_figure(project.system), path)
-        else:
+        if suffix not in (".csv", ".png", ".svg", ".pdf"):
             raise RockdesignError("unknown pushover file type", key="path",
                                   expected=".csv, .png, .svg or .pdf", found=f"'{path.name}'")
+        curve = pushover_data(project.system)
+        if suffix == ".csv":
+            theta, force = curve["theta"], curve["force"]
+            phase = np.where((curve["radius"] > 0) & (theta <= curve["beta"]), 1, 2)
+            np.savetxt(path, np.column_stack([theta, force, phase]), delimiter=",", fmt=["%.15g", "%.15g", "%d"],
+                       header="theta_rad,F_R_over_mg,phase", comments="")
+        else:
+            from ..plots import save
+            from .report.figures import pushover_figure
+            save(pushover_figure(curve), path)
 
     def simulation_request(self, project, motion, *, model, t_end, rtol, records_dir):
         from . import simulation as planar_simulation

@@ -134,6 +134,7 @@ def test_no_module_switches_the_matplotlib_backend():
 def test_report_figures_are_figure_objects():
     from matplotlib.figure import Figure
 
+    from rockdesign.planar.checks.figure_data import pushover_data
     from rockdesign.planar.report.figures import pushover_figure
-    fig = pushover_figure(rd.parse_project(SMALL_PODIUM).system)
+    fig = pushover_figure(pushover_data(rd.parse_project(SMALL_PODIUM).system))
     assert isinstance(fig, Figure)

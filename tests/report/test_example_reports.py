@@ -67,7 +67,8 @@ def test_every_figure_is_laid_out_clean(which, request):
         from rockdesign.cylinder.figures import comparison_figure, cylinder_history_figure, wobbling_figure
         from rockdesign.report.fragility_figures import fragility_figure
         system = result.project.system
-        figures = {"wobbling": wobbling_figure(system), "comparison": comparison_figure(result.as_json()),
+        figures = {"wobbling": wobbling_figure(result.figure_data["wobbling"], system.tan_alpha),
+                   "comparison": comparison_figure(result.as_json()),
                    "fragility": fragility_figure(result)}
         figures.update({rid: cylinder_history_figure(r, system.g, title=rid, pair=pair)
                         for rid, (r, pair) in result.histories.items()})

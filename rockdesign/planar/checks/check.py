@@ -13,22 +13,21 @@ verdict FAIL — never counted as safe.
 from __future__ import annotations
 
 import math
-import statistics as pystats
 from dataclasses import dataclass, field
-
-import numpy as np
 
 from ... import __version__
 from ..design.quantities import at_critical_curvature, design_quantities
 from ..dynamics.accuracy import engine_accuracy
 from ..dynamics.simulate import simulate
+from ...jsonable import SerialisedOnce
 from ...kernel_cache import sources_digest
 from ...errors import ProjectError
 from ...motions.asce7_22 import rocking_structure_periods, scaling_period_range
 from ...motions.config import default_excitation, resolve_motions
 from ...motions.scaling_report import headline_basis, method_block, scaling_block, scaling_sentence, suite_target
 from ...motions.measures import plausibility_warnings
-from ...motions.spectra import motion_spectrum, period_grid, sd_max
+from ...motions.spectra import sd_max
+from .figure_data import report_figure_data
 from ..project import Project
 from ...motions.grouping import earthquake_id, ground_motion_id
 from ...acceptance.rule import acceptance_rule, minimum_records, require_suite_size
@@ -41,11 +40,11 @@ from .ensemble import ensemble_summary, record_fields, run_ensembles
 from ...acceptance.fragility import check_fragility
 from ...acceptance.scans import SCAN_AFTER_FIRST, SCAN_RATIO, Margin, scan_grid
 from .margins import decided_at_design_level, overturning_margins, scan_need
-from .polyakov import CLASS_MEANING, CLASSES, PolyakovRule, classify
+from .polyakov import PolyakovRule, classify
 from .runner import RunSummary, run_jobs
 from .selection import ModelSelection, select_model
-from ...acceptance.statistics import empirical_cdf, overturning_probability
 from .governing import history_records
+from .suite_statistics import suite_statistics
 from .demand import governing_demand_history, superstructure_demand
 
 
@@ -119,12 +118,8 @@ class RecordOutcome:
         }
 
 
-SPECTRUM_PERIODS = 160
-"""Periods of the elastic spectra drawn in the report (log-spaced over the rule's band)."""
-
-
 @dataclass
-class CheckResult:
+class CheckResult(SerialisedOnce):
     """A design check: everything the report and results.json need (SI units throughout).
 
     ``verdict`` "PASS" | "FAIL" | "NOT DECIDED" (criteria.decide); ``records`` one
@@ -153,13 +148,6 @@ class CheckResult:
     verdict_robust: bool = True
     intensity: dict = field(default_factory=dict)
 
-    def elastic_spectra(self, n_periods: int = SPECTRUM_PERIODS):
-        """(periods [s], SD [m] per record): elastic displacement spectra of the scaled records at
-        the rule's damping, on a grid over its band (what the report's spectra figure draws)."""
-        periods = period_grid(self.rule.band, n_periods)
-        sds = [motion_spectrum(o.motion, periods, self.rule.damping)[0] for o in self.records]
-        return periods, np.array(sds)
-
     @property
     def failed_records(self) -> list[RecordOutcome]:
         """Records whose analysis failed (listed loudly; never counted as safe)."""
@@ -171,8 +159,10 @@ class CheckResult:
     demand_history: tuple | None = None    # (record id, 2DOF Response) of the largest superstructure demand
     acceptance: dict | None = None         # checks/acceptance.py: the rule, its numbers and the per-ground-motion table
     scaling: dict | None = None            # excitation.scaling (CONTRACT §7.1, motions/scaling_report.py)
+    figure_data: dict = field(default_factory=dict)   # what the report draws beyond results.json (figure_data.py)
 
-    def as_json(self) -> dict:
+    def serialise(self) -> dict:
+        """results.json (``as_json()``: built once, when the check is complete)."""
         p = self.project
         s = p.system
         return {
@@ -233,8 +223,7 @@ def check_records(project: Project, records_dir: str | None = None):
     (:func:`rockdesign.motions.config.resolve_motions`); a :class:`ProjectError` when the excitation is
     invalid or none of its records can be found.  ``rockdesign check`` calls it before compiling its
     kernels on a first run, so such an input error stops the command at once."""
-    q = design_quantities(project.system, project.analysis.rigid_superstructure_ratio)
-    return _records(project, q, records_dir)[1]
+    return prepared_records(project, records_dir)[1]
 
 
 def characteristic_periods(system, q) -> dict[str, float]:
@@ -254,6 +243,22 @@ def characteristic_periods(system, q) -> dict[str, float]:
     else:
         periods["rocking period T_R(α/2; p) (Eq 2.8)"] = 4.0 / q["p"].value * math.acosh(2.0)
     return periods
+
+
+def project_quantities(project: Project) -> dict:
+    """The design quantities of a project, computed once per project (``project.derived``)."""
+    if "quantities" not in project.derived:
+        project.derived["quantities"] = design_quantities(project.system, project.analysis.rigid_superstructure_ratio)
+    return project.derived["quantities"]
+
+
+def prepared_records(project: Project, records_dir: str | None = None):
+    """(excitation spec, resolved records) of :func:`suite_records`, read and scaled once per project and records
+    folder: ``prepare_check`` reads them before a first run compiles, the check analyses the same ones."""
+    key = ("records", records_dir)
+    if key not in project.derived:
+        project.derived[key] = _records(project, project_quantities(project), records_dir)
+    return project.derived[key]
 
 
 def _records(project: Project, q, records_dir):
@@ -286,10 +291,10 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     """
     system = project.system
     a = project.analysis
-    q = design_quantities(system, a.rigid_superstructure_ratio)
+    q = project_quantities(project)
     capacity = q["u_capacity"].value
     rule = PolyakovRule(capacity, a.sdmax_damping, tuple(a.sdmax_band))
-    spec, resolved = _records(project, q, records_dir) if records is None else records
+    spec, resolved = prepared_records(project, records_dir) if records is None else records
     motions = [r.motion for r in resolved.records]
     n = len(motions)
     record_warnings = [w for r in resolved.records for w in plausibility_warnings(r.motion, system.g)]
@@ -382,7 +387,7 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
                                       flips[i], record_fields(ens, i), demand[i], caps[i],
                                       ground_motion_id(rec.id, rec.meta)))
     valid = [o for o in outcomes if not analysis_failed(o.run.status)]
-    stats = _statistics(valid, a, margins_run)
+    stats = suite_statistics(valid, a, margins_run)
     stats["n_failed"] = n - len(valid)
     acc_rule = acceptance_rule(a)
     stats["n_ground_motions"] = len({o.ground_motion for o in outcomes})
@@ -438,57 +443,11 @@ def run_check(project: Project, *, records_dir: str | None = None, margins: bool
     return CheckResult(project, q, rule, selection, outcomes, resolved.missing, resolved.scale_description,
                        resolved.default_used or spec.default_used, resolved.suites, stats, checks, verdict, histories,
                        sensitivity, settings, decision.reason, decision.robust, intensity, fragility, margin_fema,
-                       ens_json, decision.governing, demand_history, acceptance, scaling)
+                       ens_json, decision.governing, demand_history, acceptance, scaling,
+                       {} if verdict_only else report_figure_data(system, rule, motions))
 
 
 def suite_records(project: Project, records_dir: str | None = None):
     """(excitation spec, resolved records) of a project as :func:`run_check` analyses them (its
     ``records`` hook): the records read and scaled once, e.g. for every variant of a design grid."""
-    q = design_quantities(project.system, project.analysis.rigid_superstructure_ratio)
-    return _records(project, q, records_dir)
-
-
-def _statistics(outcomes: list[RecordOutcome], a, with_margins: bool) -> dict:
-    n = len(outcomes)
-    k = sum(o.run.overturned for o in outcomes)
-    k_dyn = sum(o.run.overturn_mode == "dynamic" for o in outcomes)
-    p, lo, hi = overturning_probability(k, n, 0.90)
-    classes = {c: sum(o.klass == c for o in outcomes) for c in CLASSES}
-    x, f = empirical_cdf([o.run.theta_max_over_alpha for o in outcomes])
-    out = {
-        "n_records": n,
-        "n_overturned": k,
-        "n_overturned_dynamic": k_dyn,
-        "n_exceeded_capacity": sum(o.run.overturn_mode != "none" for o in outcomes),
-        "overturn_criterion": a.overturn,
-        "n_false_negative": classes["b"],
-        "classes": classes,
-        "class_meaning": CLASS_MEANING,
-        "p_overturn": p,
-        "p_overturn_ci90": [lo, hi],
-        "theta_max_over_alpha_ecdf": {"x": [float(v) for v in x], "F": [float(v) for v in f]},
-        "median_theta_max_over_alpha": float(np.median(x)) if n else None,
-        "max_polyakov_ratio": max((o.polyakov_ratio for o in outcomes), default=None),
-        "max_theta_max_over_theta_c": max((o.run.theta_max_over_theta_c for o in outcomes), default=None),
-    }
-    if with_margins and outcomes:
-        vals = [o.margin.overturn_scale if o.margin.overturn_scale is not None else math.inf for o in outcomes]
-        finite = [v for v in vals if math.isfinite(v)]
-        censored = len(vals) - len(finite)
-        med = pystats.median(vals)
-        out.update({
-            "median_margin": None if math.isinf(med) else med,
-            "median_margin_censored": bool(math.isinf(med)),
-            "min_margin": min(finite) if finite else None,
-            "n_margin_above_scan": censored,
-            "n_margin_below_design": sum(1 for v in finite if v < 1.0),
-            "margin_scan_max": a.margin_max_scale,
-            "median_polyakov_scale": pystats.median([o.polyakov_scale for o in outcomes]),
-            "n_polyakov_unconservative_margin": sum(
-                1 for o in outcomes if o.margin.overturn_scale is not None and o.margin.overturn_scale < o.polyakov_scale),
-            "n_nonmonotonic": sum(1 for o in outcomes if len(o.margin.intervals) > 1 or (
-                o.margin.intervals and o.margin.intervals[0][1] is not None)),
-        })
-    else:
-        out["median_margin"] = None
-    return out
+    return _records(project, project_quantities(project), records_dir)

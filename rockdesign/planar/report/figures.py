@@ -1,7 +1,8 @@
 """The figures of the calculation report (matplotlib, Agg), returned as inline SVG text.
 
-Each ``*_figure`` function takes the :class:`~rockdesign.planar.checks.check.CheckResult` (or the system)
-and returns a matplotlib figure; :func:`svg` turns a figure into SVG markup that can be pasted into
+Each ``*_figure`` function takes the :class:`~rockdesign.planar.checks.check.CheckResult` (or the data of one
+figure the check computed, ``result.figure_data``) and returns a matplotlib figure: it draws, it computes no
+physics (tests/report/test_renders_only.py); :func:`svg` turns a figure into SVG markup that can be pasted into
 the HTML report (ids prefixed so several figures can share one document, no date metadata, so the
 markup is reproducible).  Numbers on the figures use :func:`rockdesign.report.formatting.fmt`.
 """
@@ -15,43 +16,42 @@ import numpy as np  # noqa: E402
 from matplotlib.collections import LineCollection  # noqa: E402
 
 from ..checks.polyakov import CLASS_MEANING, CLASSES  # noqa: E402
-from ..design.geometry import rocking_geometry  # noqa: E402
-from ..design.pushover import pushover_curve  # noqa: E402
 from ...report.formatting import fmt, number, plural  # noqa: E402
 from ...plots import STYLE, clear_position, legend_above  # noqa: E402
 from .history import time_history_figure  # noqa: E402
 
 CLASS_COLOURS = {"a1": "#2c7fb8", "a2": "#7fcdbb", "b": "#d7301f", "c": "#fdae61", "d": "#7f2704"}
-"""Periods of the plotted elastic spectra (log grid over the SD_max band)."""
+"""Colours of the Fig 4.9 classes."""
 HISTORY_CLIP = 2.0
 """Time histories of overturning records are drawn up to ±HISTORY_CLIP·θc (and ±HISTORY_CLIP·u_B(θc))."""
 SCATTER_Y_TOP = 1.6
 """Top of the Fig 4.9 scatter (overturned records are drawn at min(y, top) with their own marker)."""
 
 
-def pushover_figure(system):
-    """Static pushover curve F_R/(m_C g) against θ (Fig 3.15), with uplift, β and θc marked."""
-    c = system.column
-    geo = rocking_geometry(c)
-    theta, force = pushover_curve(geo)
+def pushover_figure(curve: dict):
+    """Static pushover curve F_R/(m_C g) against θ (Fig 3.15), with uplift, β and θc marked: ``curve`` is the
+    check's :func:`~rockdesign.planar.checks.figure_data.pushover_data` (``theta``, ``force``, ``theta_c``,
+    ``beta``, ``radius``)."""
+    theta, force = np.asarray(curve["theta"], float), np.asarray(curve["force"], float)
+    theta_c, beta, radius = curve["theta_c"], curve["beta"], curve["radius"]
     with plt.rc_context(STYLE):
         fig, ax = plt.subplots(figsize=(6.4, 3.4))
         ax.plot(theta, force, color="C0", lw=1.4, label=r"$F_R/(m_C\,g)$, exact kinematics")
         ax.plot([0.0], [force[0]], "o", color="C2", ms=5, zorder=5,
                 label=f"uplift: $F_R/(m_C\\,g)$ = {fmt(force[0])} at θ = 0")
-        ax.plot([geo.theta_c], [0.0], "s", color="C3", ms=5, zorder=5, label=f"θc = {fmt(geo.theta_c, 'rad')}")
-        ax.axvline(geo.theta_c, color="C3", lw=0.8, ls="--")
-        if geo.radius > 0.0 and 0.0 < geo.beta < geo.theta_c:
-            f_beta = float(np.interp(geo.beta, theta, force))
-            ax.axvline(geo.beta, color="C1", lw=0.8, ls=":")
-            ax.plot([geo.beta], [f_beta], "D", color="C1", ms=4, zorder=5,
-                    label=f"β = {fmt(geo.beta, 'rad')} (rolling → rocking)")
-        elif geo.radius > 0.0:
-            ax.plot([], [], " ", label=f"β = {fmt(geo.beta, 'rad')} ≥ θc: unstable while rolling")
+        ax.plot([theta_c], [0.0], "s", color="C3", ms=5, zorder=5, label=f"θc = {fmt(theta_c, 'rad')}")
+        ax.axvline(theta_c, color="C3", lw=0.8, ls="--")
+        if radius > 0.0 and 0.0 < beta < theta_c:
+            f_beta = float(np.interp(beta, theta, force))
+            ax.axvline(beta, color="C1", lw=0.8, ls=":")
+            ax.plot([beta], [f_beta], "D", color="C1", ms=4, zorder=5,
+                    label=f"β = {fmt(beta, 'rad')} (rolling → rocking)")
+        elif radius > 0.0:
+            ax.plot([], [], " ", label=f"β = {fmt(beta, 'rad')} ≥ θc: unstable while rolling")
         ax.axhline(0.0, color="0.3", lw=0.6)
         ax.set_xlabel("θ [rad]")
         ax.set_ylabel(r"$F_R/(m_C\,g)$ [-]")
-        ax.set_xlim(0.0, geo.theta_c * 1.08)
+        ax.set_xlim(0.0, theta_c * 1.08)
         ax.set_ylim(min(0.0, force.min()) - 0.05 * max(force.max(), 1e-9), force.max() * 1.15)
         legend_above(ax, ncol=2)
         fig.set_layout_engine("tight")
@@ -59,9 +59,11 @@ def pushover_figure(system):
 
 
 def spectra_figure(result):
-    """Elastic SD spectra of the scaled records (ζ, band stated) with the capacity line u_B(θc)."""
+    """Elastic SD spectra of the scaled records (ζ, band stated) with the capacity line u_B(θc), as the check
+    computed them (``result.figure_data["spectra"]``)."""
     rule = result.rule
-    periods, sds = result.elastic_spectra()
+    spectra = result.figure_data["spectra"]
+    periods, sds = np.asarray(spectra["periods"], float), np.asarray(spectra["sd"], float)
     with plt.rc_context(STYLE):
         fig, ax = plt.subplots(figsize=(6.6, 3.8))
         for k, sd in enumerate(sds):

@@ -32,13 +32,13 @@ def make_figures(result) -> dict[str, tuple]:
     drawing = structure_drawing(system, _given_inputs(result.project))
     out = {
         "drawing": (drawing, "drawing", ink_box(drawing)),
-        "pushover": (figures.pushover_figure(system), "pushover", None),
+        "pushover": (figures.pushover_figure(result.figure_data["pushover"]), "pushover", None),
         "spectra": (figures.spectra_figure(result), "spectra", None),
         "scatter": (figures.polyakov_scatter_figure(result), "scatter", None),
         "ecdf": (figures.ecdf_figure(result), "ecdf", None),
         "margins": (figures.margin_figure(result), "margins", None),
     }
-    scaling = result.as_json()["excitation"].get("scaling")
+    scaling = result.scaling
     if has_target(scaling):
         out["scaling"] = (scaling_figure(scaling, system.g), "scaling", None)
     if getattr(result, "fragility", None) and result.fragility.get("capacities"):
