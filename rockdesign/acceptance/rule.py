@@ -21,8 +21,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Iterable
 
 from ..errors import ProjectError
+from .outcome import Outcome
 from .statistics import overturning_probability
 
 RISK_CATEGORIES = ("I", "II", "III", "IV")
@@ -184,9 +186,11 @@ def count_rule(rule: AcceptanceRule, outcomes, overturned_ids) -> tuple[bool, in
     return k <= allowed, k, n, util
 
 
-def ground_motion_table(outcomes) -> list[dict]:
+def ground_motion_table(outcomes: Iterable[Outcome]) -> list[dict]:
     """Per ground motion: its records, earthquake, station, whether it is unacceptable at the design
-    level, the lowest first-overturning factor of its components and the largest θ_max/θc."""
+    level, the lowest first-overturning factor of its components and the largest response ratio
+    (:attr:`~rockdesign.acceptance.outcome.Run.response_ratio`: θ_max/θc of a planar column, Eq 3.56; results.json
+    keeps its key ``theta_max_over_theta_c``)."""
     rows: dict[str, dict] = {}
     for o in outcomes:
         g = ground_motion_of(o)
@@ -196,7 +200,7 @@ def ground_motion_table(outcomes) -> list[dict]:
                                   "theta_max_over_theta_c": 0.0})
         row["records"].append(o.id)
         row["unacceptable"] = row["unacceptable"] or bool(o.run.overturned)
-        row["theta_max_over_theta_c"] = max(row["theta_max_over_theta_c"], float(o.run.theta_max_over_theta_c))
+        row["theta_max_over_theta_c"] = max(row["theta_max_over_theta_c"], float(o.run.response_ratio))
         m = getattr(o, "margin", None)
         s = 1.0 if o.run.overturned and (m is None or m.overturn_scale is None or m.overturn_scale > 1.0) else \
             (None if m is None else m.overturn_scale)

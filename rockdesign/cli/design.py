@@ -248,8 +248,9 @@ def _summary(data: dict, target: Path, console, escape) -> None:
                                     else "")), highlight=False, soft_wrap=True)
         full = rec.get("check")
         if full:
-            console.print(escape(f"full check of the recommended design: {full['verdict']}, "
-                                 + ("robust" if full.get("robust") else "not robust")), highlight=False)
+            robust = {True: ", robust", False: ", not robust"}.get(full.get("robust"), "")   # None: a kind without
+            console.print(escape(f"full check of the recommended design: {full['verdict']}{robust}"),  # draws
+                          highlight=False)
     else:
         console.print("no variant passes", highlight=False)
     audit = (data.get("settings") or {}).get("inference_audit") or {}

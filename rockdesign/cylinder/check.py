@@ -27,13 +27,12 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import time
 
 import numpy as np
 
 from .. import __version__
-from .engine import STATUS, simulate_cylinder
-from .kernel import ST_COMPLETED, ST_OVERTURNED
+from .batch import PairRun, PairRunner
+from .engine import simulate_cylinder
 from .quantities import cylinder_quantities, restitution_root, wobbling_curve
 from ..planar.dynamics.simulate import simulate
 from ..jsonable import SerialisedOnce
@@ -58,8 +57,6 @@ from ..acceptance.statistics import overturning_probability
 GOVERNING_PAIRS = 2
 """θ(t)/orbit histories kept for the report: the pairs with the largest 3D θ_max/α."""
 
-COMPLETED = (STATUS[ST_COMPLETED], STATUS[ST_OVERTURNED])
-"""Statuses of a cylinder analysis that ran to a conclusion."""
 
 
 def planar_block(cyl) -> RockingSystem:
@@ -69,34 +66,6 @@ def planar_block(cyl) -> RockingSystem:
     system = RockingSystem(f"{cyl.name} (planar)", "column", Column(cyl.half_height, cyl.base_radius, cyl.mass, lam),
                            g=cyl.g)
     return system.with_restitution(restitution_root(cyl.alpha) ** 2)
-
-
-@dataclasses.dataclass(frozen=True)
-class PairRun:
-    """The 3D response to one pair in the terms the criteria read (:class:`~rockdesign.acceptance.criteria.CheckContext`).
-
-    ``status`` is "completed" for an analysis that ran to a conclusion (overturned or not:
-    ``overturned`` says which) and the engine's status otherwise; ``engine_status`` is the engine's own
-    word (results.json ``status``).  ``theta_max_over_theta_c`` is θ_max/θ_ot (θ_ot: the 3D overturning tilt).
-    """
-
-    theta_max_over_alpha: float
-    theta_max_over_theta_c: float
-    overturned: bool
-    overturn_mode: str
-    quasi_impacts: int
-    uplift_time: float | None
-    engine_status: str
-    min_contact_force_over_weight: float | None = None
-
-    @property
-    def status(self) -> str:
-        return "completed" if self.engine_status in COMPLETED else self.engine_status
-
-    @property
-    def failed(self) -> bool:
-        """True when the 3D analysis did not run to a conclusion (step size collapsed, step limit)."""
-        return self.engine_status not in COMPLETED
 
 
 @dataclasses.dataclass
@@ -159,7 +128,7 @@ class PairOutcome:
         row.update(polyakov_ratio_x=self.polyakov_ratio_x, planar_x=self.planar_x,
                    polyakov_ratio_y=self.polyakov_ratio_y, planar_y=self.planar_y,
                    planar_theta_max_over_alpha=self.planar_theta_max_over_alpha,
-                   planar_overturned=self.planar_overturned, theta_max_over_theta_ot=r.theta_max_over_theta_c,
+                   planar_overturned=self.planar_overturned, theta_max_over_theta_ot=r.response_ratio,
                    analysis_failed=r.status != "completed", ensemble_overturn_fraction=self.ensemble_fraction,
                    outcome_robust=self.outcome_robust)
         m = self.margin
@@ -167,10 +136,6 @@ class PairOutcome:
                    overturn_intervals=None if m is None else [list(iv) for iv in m.intervals],
                    margin_scanned_up_to=None if m is None else m.scanned_up_to)
         return row
-
-
-SLOW_RUN_SECONDS = 1.0
-"""A 3D analysis longer than this (≈ 100 × a 30-s pair's) is noted on the console with its reason."""
 
 
 def _slow_notes(progress):
@@ -186,19 +151,6 @@ def _slow_notes(progress):
             seen.add(name)
             say(f"slow 3D analysis, {name}: {text}")
     return note
-
-
-def _run_3d(cyl, pair, a, *, rtol=None, atol=None, note=None) -> PairRun:
-    t0 = time.perf_counter()
-    r = simulate_cylinder(cyl, pair, free_vibration=a.free_vibration, rtol=rtol or a.rtol, atol=atol or a.atol,
-                          rest_velocity=a.rest_velocity)
-    seconds = time.perf_counter() - t0
-    if note is not None and seconds > SLOW_RUN_SECONDS:
-        note(pair.name, f"{seconds:.1f} s, {r.cost_reason()}")
-    AnalysisCount.add(1)
-    return PairRun(r.theta_max / cyl.alpha, r.theta_max / cyl.theta_overturn, r.overturned, r.overturn_mode,
-                   r.quasi_impacts, r.uplift_time, r.status,
-                   r.min_contact_force_over_weight if cyl.damped else None)
 
 
 def _planar_component(block, samples, dt, a) -> dict:
@@ -382,7 +334,7 @@ def decided_at_design_level(rule, outcomes: list[PairOutcome]) -> bool:
 
 
 def run_cylinder_check(project, progress=None, margins: bool = True, *, records: SuitePairs | None = None,
-                       verdict_only: bool = False) -> CylinderCheckResult:
+                       verdict_only: bool = False, executor=None) -> CylinderCheckResult:
     """The cylinder check (see module docstring): typed outcomes, the criteria and the one verdict.
     ``margins``: scan each pair below the design level for overturning (the incremental criterion).
 
@@ -391,6 +343,8 @@ def run_cylinder_check(project, progress=None, margins: bool = True, *, records:
     ``verdict_only`` — compute only what the verdict's word and the design table need: no planar runs
     along the components and no perturbation ensemble (informative and robustness criteria), and no
     incremental scan when the design-level runs already decide FAIL (:func:`decided_at_design_level`).
+    ``executor``: where the 3D analyses run, a batch per stage (:class:`~rockdesign.cylinder.batch.PairRunner`;
+    None: this process); the runs, and so the verdict, are the same.
     """
     cyl, a, e = project.system, project.analysis, project.excitation
     sp = suite_pair_records(project) if records is None else records
@@ -400,36 +354,36 @@ def run_cylinder_check(project, progress=None, margins: bool = True, *, records:
     require_suite_size(rule, len(pairs), len(pairs), e.suites, file=getattr(project, "path", None),
                        key="excitation")
     block = planar_block(cyl)
-    note = _slow_notes(progress)
+    runner = PairRunner(cyl, a, executor=executor, note=_slow_notes(progress))
+    scaled = [pair.scaled(factor) for (_, pair), factor in zip(pairs, sp.factors)]
+    stage = "cylinder analyses" if verdict_only else "cylinder and planar analyses"
+    runs = runner([(p,) for p in scaled], None if progress is None else
+                  lambda k: progress(stage, k if verdict_only else k // 2, len(pairs)))
     records = []
     for i, ((suite, pair), factor) in enumerate(zip(pairs, sp.factors)):
-        scaled = pair.scaled(factor)
         planar = {"x": None, "y": None}
         if not verdict_only:
             for comp, accel in zip(("x", "y"), sp.accel[i]):
                 planar[comp] = _planar_component(block, accel, pair.dt, a)
+            if progress is not None:
+                progress(stage, (len(pairs) + i + 1) // 2, len(pairs))
         ratios = [sd / (2.0 * cyl.base_radius) for sd in sp.sd_max[i]]
-        records.append(PairOutcome(pair.meta.get("id", pair.name), suite, pair.meta, factor, scaled.resultant_pga,
-                                       _run_3d(cyl, scaled, a, note=note), planar["x"], planar["y"], ratios[0],
-                                       ratios[1], cyl.damped))
-        if progress is not None:
-            progress("cylinder and planar analyses" if not verdict_only else "cylinder analyses", i + 1, len(pairs))
+        records.append(PairOutcome(pair.meta.get("id", pair.name), suite, pair.meta, factor, scaled[i].resultant_pga,
+                                   runs[i], planar["x"], planar["y"], ratios[0], ratios[1], cyl.damped))
     decided = verdict_only and decided_at_design_level(rule, records)
     need = pair_need(rule, records, decided) if verdict_only and margins else None
     flip_scans = None
     if (margins and not decided) or need is not None:
-        found = pair_margins(cyl, [p.scaled(f) for (_, p), f in zip(pairs, sp.factors)], [o.run for o in records], a,
-                             lambda pair, rtol: _run_3d(cyl, pair, a, rtol=rtol, note=note), progress, need=need)
+        found = pair_margins(cyl, scaled, [o.run for o in records], a, runner, progress, need=need)
         if decided:         # a decided FAIL: scanned below the design level for its distance to the flip alone
             flip_scans = found
         else:
             for o, m in zip(records, found):
                 o.margin = m
     margins = margins and not decided
-    slow = _slow_notes(progress)
-    ens = None if verdict_only else suite_ensembles(
-        lambda pair, rtol, atol: _run_3d(cyl, pair, a, rtol=rtol, atol=atol, note=slow), [p for _, p in pairs],
-        sp.factors, [o.run for o in records], a, progress)
+    runner.note = _slow_notes(progress)          # (a pair slow in the scans is noted again in the ensembles)
+    ens = None if verdict_only else suite_ensembles(runner, [p for _, p in pairs], sp.factors,
+                                                    [o.run for o in records], a, progress)
     if ens is not None:
         for i, o in enumerate(records):
             o.ensemble_fraction, o.outcome_robust = float(ens["fractions"][i]), bool(ens["robust"][i])
@@ -472,11 +426,12 @@ def governing_ids(data: dict, n: int = GOVERNING_PAIRS) -> list[str]:
     return [r["id"] for r in rows[:count]]
 
 
-def cylinder_check(project, progress=None, margins: bool = True) -> CylinderCheckResult:
-    """:func:`run_cylinder_check` plus the histories of the governing pairs (re-analysed: the engine is
-    deterministic, so they are the histories behind the rows of results.json)."""
+def cylinder_check(project, progress=None, margins: bool = True, executor=None) -> CylinderCheckResult:
+    """:func:`run_cylinder_check` (its 3D analyses on ``executor``, None: this process) plus the histories of the
+    governing pairs (re-analysed here: the engine is deterministic, so they are the histories behind the rows of
+    results.json)."""
     suite = suite_pair_records(project)           # (the pairs read and scaled once, for the histories too)
-    result = run_cylinder_check(project, progress=progress, margins=margins, records=suite)
+    result = run_cylinder_check(project, progress=progress, margins=margins, records=suite, executor=executor)
     cyl, a = project.system, project.analysis
     by_id, pairs = {o.id: o for o in result.records}, {p.meta.get("id", p.name): p for _, p in suite.pairs}
     result.figure_data["wobbling"] = dict(zip(("theta_over_alpha", "Tw_p", "T_housner_p"), wobbling_curve(cyl)))

@@ -11,19 +11,18 @@ def suite_ensembles(run, pairs, factors, nominal, a, progress=None) -> dict | No
     """The perturbation ensemble (thesis Ch. 7): ``ensemble_size`` runs of the whole suite, each pair's
     amplitude × (1 ± 0.1 %) and the tolerances one decade tighter; None for ``ensemble_size = 0``.
 
-    ``run(pair, rtol, atol)`` analyses one scaled pair in 3D (``overturned``); ``nominal``: the design-level
-    runs of the pairs, as recorded (``factors``: their design scale factors)."""
+    ``run(jobs, done)`` analyses a batch of scaled pairs in 3D (``overturned``), each job ``(pair, rtol, atol)``
+    (a :class:`~rockdesign.cylinder.batch.PairRunner`: the whole ensemble is one batch); ``nominal``: the
+    design-level runs of the pairs, as recorded (``factors``: their design scale factors)."""
     size, n = a.ensemble_size, len(pairs)
     if not size:
         return None
     amplitude, _ = perturbations(n, size, a.seed)
-    overturned = np.zeros((size, n), dtype=bool)
-    for m in range(size):
-        for i, pair in enumerate(pairs):
-            r = run(pair.scaled(factors[i] * amplitude[m, i]), a.rtol * TOLERANCE_FACTOR, a.atol * TOLERANCE_FACTOR)
-            overturned[m, i] = r.overturned
-            if progress is not None:
-                progress(f"perturbation ensembles ({size} runs per pair)", m * n + i + 1, size * n)
+    jobs = [(pair.scaled(factors[i] * amplitude[m, i]), a.rtol * TOLERANCE_FACTOR, a.atol * TOLERANCE_FACTOR)
+            for m in range(size) for i, pair in enumerate(pairs)]
+    runs = run(jobs, None if progress is None else
+               lambda k: progress(f"perturbation ensembles ({size} runs per pair)", k, size * n))
+    overturned = np.array([r.overturned for r in runs], dtype=bool).reshape(size, n)
     nominal_ot = np.array([r.overturned for r in nominal], dtype=bool)
     fractions = overturned.mean(axis=0)
     robust = (overturned == nominal_ot[None, :]).all(axis=0)

@@ -31,9 +31,9 @@ def grid_records(project, records_dir):
 
 
 def grid_check(project, *, records, records_dir, executor, progress):
-    """The check of one variant with the grid's hooks (``records``, ``verdict_only``); the cylinder's pairs
-    run in this process (``records_dir`` and ``executor`` are refused up front, ``check_options``)."""
-    return run_cylinder_check(project, progress=progress, records=records, verdict_only=True)
+    """The check of one variant with the grid's hooks (``records``, ``verdict_only``), its 3D analyses on the grid's
+    ``executor`` (None: this process; ``records_dir`` is refused up front, ``check_options``)."""
+    return run_cylinder_check(project, progress=progress, records=records, verdict_only=True, executor=executor)
 
 
 def saved_by_stopping(result, decided_early: bool) -> int:
@@ -75,7 +75,7 @@ def grid_cell(result, analyses: int) -> dict:
         "p_overturn_bound": acc.get("binomial_bound"), "binomial_limit": acc.get("binomial_limit"),
         "n_failed_analyses": len(result.records) - len(valid),
         "superstructure_shear_p84": None, "superstructure_drift_p84": None,
-        "median_theta_max_over_theta_c": statistics.median(o.run.theta_max_over_theta_c for o in valid)
+        "median_theta_max_over_theta_c": statistics.median(o.run.response_ratio for o in valid)
         if valid else None,
         "median_theta_max_over_alpha": result.summary.get("median_theta_max_over_alpha"),
         "uplift_acceleration": cyl.g * cyl.tan_alpha,

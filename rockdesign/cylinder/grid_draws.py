@@ -5,7 +5,8 @@ from __future__ import annotations
 
 from ..acceptance.perturbations import TOLERANCE_FACTOR, draw_words, perturbations
 from ..acceptance.rule import count_rule
-from .check import _run_3d, cylinder_rule
+from .batch import PairRunner
+from .check import cylinder_rule
 
 
 def grid_draws(result, *, records, executor):
@@ -13,7 +14,7 @@ def grid_draws(result, *, records, executor):
     each pair's amplitude × (1 ± 0.1 %) and the tolerances ÷ 10, as the check's ensemble robustness criterion
     runs them (the cylinder has no c_r: its impacts follow from its geometry, thesis Sec 5.5.1).  A draw fails
     when the design-level rule fails in it; ``records``: the grid's :class:`~rockdesign.cylinder.check.SuitePairs`
-    (``executor`` is unused: the pairs run in this process).  Returns ``{"n", "failed", "size",
+    (its 3D analyses on ``executor``, one batch per draw; None: this process).  Returns ``{"n", "failed", "size",
     "first_failure", "what"}`` (see :meth:`rockdesign.kinds.base.StructureKind.grid_draws`)."""
     project = result.project
     cyl, a = project.system, project.analysis
@@ -24,15 +25,12 @@ def grid_draws(result, *, records, executor):
     size, n = a.ensemble_size or 0, len(records.pairs)
     amplitude, _ = perturbations(n, size, a.seed)
     what = f"the suite with {draw_words(restitution=False)}"
+    runner = PairRunner(cyl, a, executor=executor)
     for m in range(size):
-        ids = set()
-        for i, ((_, pair), factor) in enumerate(zip(records.pairs, records.factors)):
-            if not ok[i]:
-                continue
-            run = _run_3d(cyl, pair.scaled(factor * amplitude[m, i]), a, rtol=a.rtol * TOLERANCE_FACTOR,
-                          atol=a.atol * TOLERANCE_FACTOR)
-            if run.overturned:
-                ids.add(outcomes[i].id)
+        draw = [i for i in range(n) if ok[i]]
+        runs = runner([(records.pairs[i][1].scaled(records.factors[i] * amplitude[m, i]), a.rtol * TOLERANCE_FACTOR,
+                        a.atol * TOLERANCE_FACTOR) for i in draw])
+        ids = {outcomes[i].id for i, run in zip(draw, runs) if run.overturned}
         holds, k, total, _ = count_rule(rule, valid, ids)
         if not holds:
             return {"n": m + 1, "failed": 1, "size": size,

@@ -25,6 +25,15 @@ class Cylinder(StructureKind):
     spectrum_options = ("record", "x", "y", "relative", "out_dir", "figures")
     """The parameters of :func:`~rockdesign.cylinder.spectrum_run.record_pair_spectrum` that ``rd.spectrum`` passes on."""
     design_material = ("material: the cylinder's mass", "a free-standing cylinder carries no superstructure")
+    design_columns = (("n_incremental_unacceptable", "incremental unacceptable", ""), ("p_overturn", "", "-"),
+                      ("median_theta_max_over_alpha", "", "-"), ("uplift_acceleration", "", "m/s^2"),
+                      ("uplift_shear_coefficient", "tan α", "-"), ("theta_c", "", "rad"), ("alpha", "", "rad"),
+                      ("theta_overturn", "θ_ot", "rad"), ("column_material", "material", "kg"))
+    """A cylinder cell's own numbers (:func:`rockdesign.cylinder.grid.grid_cell`): the pairs overturning up to the
+    design level, the fraction overturning at it, the median θ_max/α, the uplift acceleration g·tan α, α, the
+    overturning tilt θ_ot (Sec 5.5.1) and the mass; ``theta_c`` is empty (Eq 3.56 is the planar column's)."""
+    design_response = ("θ_max/θ_ot", "the peak tilt over the tilt θ_ot = overturn_tilt·α at which the cylinder counts "
+                                     "as overturned (thesis Sec 5.5.1)")
     key_alternatives = {"height": ("half_height",), "half_height": ("height",), "diameter": ("slenderness",),
                         "slenderness": ("diameter",), "mass": ("density",), "density": ("mass",)}
 
@@ -95,15 +104,17 @@ class Cylinder(StructureKind):
         return cylinder_simulation.run_simulation(request)
 
     def check_options(self, project, *, records_dir, executor):
-        for option, value in (("records_dir", records_dir), ("executor", executor)):
-            if value is not None:
-                raise RockdesignError("not used by the check of a cylinder (built-in suites of record pairs, "
-                                      "analysed in this process)", key=option, expected="None",
-                                      found=repr(str(value)) if isinstance(value, (str, Path)) else type(value).__name__)
+        """The cylinder's suites of record pairs are built in: ``records_dir`` is refused; an ``executor`` runs its
+        3D analyses (:class:`~rockdesign.cylinder.batch.PairRunner`)."""
+        if records_dir is not None:
+            raise RockdesignError("not used by the check of a cylinder (built-in suites of record pairs)",
+                                  key="records_dir", expected="None",
+                                  found=repr(str(records_dir)) if isinstance(records_dir, (str, Path))
+                                  else type(records_dir).__name__)
 
     def check(self, project, *, progress, records_dir, margins, executor):
         from . import check as cylinder_check
-        return cylinder_check.cylinder_check(project, progress=progress, margins=margins)
+        return cylinder_check.cylinder_check(project, progress=progress, margins=margins, executor=executor)
 
     def report(self, result):
         from .report import cylinder_report_parts

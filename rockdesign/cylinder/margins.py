@@ -36,7 +36,9 @@ def pair_margins(cyl, scaled_pairs, nominal, a, run, progress=None, need: ScanNe
         nominal: their design-level 3D runs (``overturned``, ``status``): the factor 1 is not re-analysed.
         a: the project's ``[analysis]`` (``margin_max_scale``, ``margin_precision``; the scan runs at
             rtol = max(rtol, scan_rtol)).
-        run: ``run(pair, rtol) -> run summary`` (``overturned``, ``status``) of one 3D analysis.
+        run: ``run(jobs) -> run summaries`` (``overturned``, ``status``) of a batch of 3D analyses, each job
+            ``(pair, rtol)`` (a :class:`~rockdesign.cylinder.batch.PairRunner`: each round's analyses run as one
+            batch, in this process or on an executor).
         need: what a design-grid cell needs (:class:`~rockdesign.acceptance.scans.ScanNeed`): a pair then stops
             at its first overturning factor or once scanned past its threshold, and is bisected only below it
             (the cell's order statistics are the full scan's); None: the check's full scan.
@@ -58,6 +60,7 @@ def pair_margins(cyl, scaled_pairs, nominal, a, run, progress=None, need: ScanNe
     done = 0
     active = list(range(len(scans)))
     while active:
+        step = {}                              # pair → the factor of its one analysis this round
         for i in active:
             s = scans[i]
             while s.more():
@@ -66,12 +69,17 @@ def pair_margins(cyl, scaled_pairs, nominal, a, run, progress=None, need: ScanNe
                 if f < s.f_up:                 # below uplift the cylinder does not move
                     s.record(False, True)
                     continue
-                r = nominal[i] if f == 1.0 else run(scaled_pairs[i].scaled(f), rtol)
-                s.margin.runs += f != 1.0
-                if r.status != "completed":
-                    s.margin.failed_scales.append(f)
-                s.record(r.status == "completed" and bool(r.overturned), r.status == "completed" and not r.overturned)
+                step[i] = f
                 break
+        jobs = [i for i in step if step[i] != 1.0]
+        ran = dict(zip(jobs, run([(scaled_pairs[i].scaled(step[i]), rtol) for i in jobs]))) if jobs else {}
+        for i, f in step.items():
+            s = scans[i]
+            r = nominal[i] if f == 1.0 else ran[i]
+            s.margin.runs += f != 1.0
+            if r.status != "completed":
+                s.margin.failed_scales.append(f)
+            s.record(r.status == "completed" and bool(r.overturned), r.status == "completed" and not r.overturned)
         limits = need.thresholds([s.first_factor() for s in scans]) if need is not None else None
         still = []
         for i in active:
@@ -93,13 +101,16 @@ def pair_margins(cyl, scaled_pairs, nominal, a, run, progress=None, need: ScanNe
             upper = [brackets[i][1] if i in brackets else (s.first_factor() if s.first is not None else float("inf"))
                      for i, s in enumerate(scans)]
             refine = need.to_refine(lower, upper)
+        mids = {}
         for i in sorted(bisecting):
             lo, hi = brackets[i]
             if hi / lo - 1.0 <= a.margin_precision or (refine is not None and i not in refine):
                 bisecting.discard(i)
                 continue
-            mid = (lo * hi) ** 0.5
-            r = run(scaled_pairs[i].scaled(mid), rtol)
+            mids[i] = (lo * hi) ** 0.5
+        runs = run([(scaled_pairs[i].scaled(mid), rtol) for i, mid in mids.items()]) if mids else []
+        for (i, mid), r in zip(mids.items(), runs):     # one batch per round of bisection
+            lo, hi = brackets[i]
             scans[i].margin.runs += 1
             if r.status != "completed":
                 scans[i].margin.failed_scales.append(mid)

@@ -85,8 +85,7 @@ def robustness(draws: dict | None, near: str | None = None) -> dict:
 
 EMPTY = {**dict.fromkeys(("governing", "acmr", "acmr_required", "p_collapse_design", "target_p_collapse",
                           "n_unacceptable", "allowed_unacceptable", "n_ground_motions", "superstructure_shear_p84",
-                          "superstructure_drift_p84", "median_theta_max_over_theta_c", "uplift_acceleration",
-                          "uplift_shear_coefficient", "theta_c", "column_material", "model", "flip_margin",
+                          "superstructure_drift_p84", "median_theta_max_over_theta_c", "model", "flip_margin",
                           "material", "demand",
                           "flip_governing", "flip_note")), "flip_margin_is_lower_bound": False}
 """The check's numbers of a cell that has none (INVALID, ERROR)."""

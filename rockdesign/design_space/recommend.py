@@ -50,9 +50,9 @@ def _neighbours(best: dict, cells: list[dict], rank, what: str) -> str:
     return "; ".join(parts)
 
 
-def recommended(cells: list[dict], material: tuple[str, str] = ("column material", "no elastic superstructure demand"),
+def recommended(cells: list[dict], material: tuple[str, str] = ("material", "no demand to rank by"),
                 prefer: str | None = None, choice: dict | None = None,
-                demand: str = "superstructure shear coefficient (84th percentile") -> dict | None:
+                demand: str = "demand (") -> dict | None:
     """The recommended design (SPEC §15): a robust PASS whenever one exists — among the analysed passing cells
     that pass all their perturbation draws, the lowest 84th-percentile superstructure shear coefficient (equal
     to 3 significant digits: the least column material n·m_C), or with ``prefer = "material"`` (or without an
@@ -156,9 +156,9 @@ def _summary(entries: list[dict]) -> str:
 
 
 def with_tolerance(rec: dict | None, cells: list[dict], run_neighbours, variables, tolerances: dict, raw: dict,
-                   file: str, *, material=("column material", "no elastic superstructure demand"),
+                   file: str, *, material=("material", "no demand to rank by"),
                    prefer: str | None = None, say=None,
-                   demand: str = "superstructure shear coefficient (84th percentile") -> dict | None:
+                   demand: str = "demand (") -> dict | None:
     """The recommendation that survives its construction tolerance (module docstring).
 
     Args:

@@ -78,8 +78,9 @@ class DesignResult:
     plan: DesignPlan | None = None
 
     def as_json(self) -> dict:
-        from ..report.design_results import design_json
-        data = design_json(self.project, self.grid, self.recommended, settings=self.settings)
+        from ..report.design_results import design_json, presentation
+        data = design_json(self.project, self.grid, self.recommended, settings=self.settings,
+                           presentation=presentation(kind_of(self.project)))
         full = self.recommended_check
         if full is not None and data["recommended"] is not None:
             data["recommended"]["check"] = {"verdict": full.verdict, "reason": full.verdict_reason,
@@ -235,8 +236,8 @@ FLIP = ("flip_margin: the factor λ on the design intensity at which the verdict
 """What a cell's flip margin is (design.json ``settings.flip_margin``)."""
 
 
-FULL_CHECK = ("full check of the recommended design: the stages the grid skipped (c_r sensitivity, perturbation "
-              "ensembles, report histories) run as in rockdesign check")
+FULL_CHECK = ("full check of the recommended design: the stages the grid skipped (sensitivity, perturbation "
+              "ensembles, report figures) run as in rockdesign check")
 """What the full check of the recommended design does, and why it takes as long as a check."""
 
 

@@ -34,8 +34,9 @@ FORMAT = 4
 
 VERDICTS = ("PASS", "FAIL", "INVALID", "ERROR")
 NUMBERS = ("acmr", "acmr_required", "p_collapse_design", "target_p_collapse", "superstructure_shear_p84",
-           "superstructure_drift_p84", "median_theta_max_over_theta_c", "uplift_acceleration",
-           "uplift_shear_coefficient", "theta_c", "column_material", "material", "demand", "flip_margin")
+           "superstructure_drift_p84", "median_theta_max_over_theta_c", "material", "demand", "flip_margin")
+"""The shared numbers of a stored cell (finite or None); a kind's own numbers are checked as numbers too (a stored
+float must be finite)."""
 COUNTS = ("n_unacceptable", "allowed_unacceptable", "n_ground_motions")
 PLACE = ("index", "values", "labels", "notes")
 """The cell's place in a grid: written by the grid that reads the variant, not stored."""
@@ -178,6 +179,9 @@ def shape_problem(data, digest: str) -> str | None:
     for k in NUMBERS:
         v = cell.get(k, 0.0)
         if v is not None and (isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v)):
+            return f"{k} = {v!r}"
+    for k, v in cell.items():                       # the kind's own numbers (StructureKind.design_columns)
+        if isinstance(v, float) and not math.isfinite(v):
             return f"{k} = {v!r}"
     for k in COUNTS + ("analyses", "analyses_saved", "n_failed_analyses"):
         v = cell.get(k, 0)

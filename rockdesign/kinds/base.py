@@ -157,13 +157,23 @@ class StructureKind(abc.ABC):
     it refuses any other, naming it (:meth:`SpectrumOptions.accepted`)."""
     templates: tuple[str, ...] = ()
     """The commented project templates the kind offers, by name (``rockdesign init NAME``; :meth:`template_text`)."""
-    design_material: tuple[str, str] = ("column material", "no elastic superstructure demand")
+    design_material: tuple[str, str] = ("material", "no demand to rank by")
     """The recommended design without a superstructure force to rank by: (what is least, why)."""
     design_demand: str = "demand ("
     """What a cell's ``demand`` is, in the recommendation's words ("the variant with the lowest <design_demand> 0.45)");
     a kind whose cells have a demand (the force the building above is designed for) names it."""
     design_columns: tuple[tuple[str, str, str], ...] = ()
-    """Extra columns of the design report's variants table: (cell key, heading, unit)."""
+    """The kind's own numbers of a design cell (those :meth:`grid_cell` adds to the shared ones): (cell key, heading
+    of the report's variants table, SI unit).  design.json lists them (``columns``), design.csv writes them after
+    the shared columns ("theta_c [rad]"; unit "-": dimensionless, "": a count) and the report's table shows those
+    with a heading ("": the files only)."""
+    design_response: tuple[str, str] = ("response ratio", "the peak response over the capacity")
+    """The cell's median response ratio (design.json ``median_theta_max_over_theta_c``, the median of the runs'
+    :attr:`~rockdesign.acceptance.outcome.Run.response_ratio`) in the report's words: (its symbol "θ_max/θc", what it
+    is, citing the thesis)."""
+    design_plane: Mapping[str, str] | None = None
+    """Two of the kind's cell numbers the design report draws against each other, one mark per variant: ``x``,
+    ``y`` (cell keys), ``x_label``, ``y_label``, ``caption``; None: no such figure."""
     experiments_module: str | None = None
     """The dotted name of the module of the kind's experiments (thesis Ch. 6–7: ``calibrate``, ``simulated_history``,
     ``run_ensemble``), imported when first used; None when the kind has none (``rd.calibration`` and ``rd.ensemble``
@@ -307,7 +317,9 @@ class StructureKind(abc.ABC):
 
     def grid_cell(self, result, analyses: int) -> dict:
         """The check's numbers of a design-grid cell (design.json ``cells``, SI): verdict, reason, governing,
-        acceptance numbers, ``decided_at_design_level``, ``analyses`` (run) and ``analyses_saved``."""
+        acceptance numbers, ``decided_at_design_level``, ``analyses`` (run) and ``analyses_saved``, the neutral
+        ``material`` [kg] and ``demand`` the recommendation ranks by, ``median_theta_max_over_theta_c`` (the median
+        response ratio) and the kind's own numbers (:attr:`design_columns`)."""
         return self._grid().grid_cell(result, analyses)
 
     def grid_draws(self, result, *, records, executor) -> dict:

@@ -28,6 +28,19 @@ class Planar(StructureKind):
     experiments_module = "rockdesign.planar.experiments"
 
     design_demand = "superstructure shear coefficient (84th percentile"
+    design_material = ("column material", "no elastic superstructure demand")
+    design_columns = (("uplift_acceleration", "", "m/s^2"), ("uplift_shear_coefficient", "tan α", "-"),
+                      ("theta_c", "θc", "rad"), ("column_material", "material", "kg"))
+    """A planar cell's own numbers (:func:`rockdesign.planar.grid.grid_cell`): the uplift acceleration and its base
+    shear coefficient tan α (Eq 3.34), the rotation capacity θc (Eq 3.56) and the columns' mass."""
+    design_response = ("θ_max/θc", "the peak rotation over the rotation capacity θc (Eq 3.56)")
+    design_plane = {"x": "uplift_shear_coefficient", "y": "theta_c",
+                    "x_label": "uplift base-shear coefficient tan α [-] (Eq 3.34)",
+                    "y_label": "rotation capacity θc [rad] (Eq 3.56)",
+                    "caption": "The variants in the plane of the thesis's two curved-base design parameters: the uplift "
+                               "base-shear coefficient tan α (Eq 3.34) and the rotation capacity θc (Eq 3.56); one mark "
+                               "per analysed variant, and variants that fall on one point (equal tan α and θc) drawn as "
+                               "a small block of marks around it."}
 
     @property
     def csv_columns(self):

@@ -13,6 +13,8 @@ side, each with its own mark.
 """
 from __future__ import annotations
 
+import re
+
 import numpy as np
 
 from .. import mplfig as plt
@@ -293,23 +295,27 @@ def _contours(ax, bar, z: np.ndarray, levels, level_labels) -> list:
 
 
 def thesis_plane_figure(data: dict):
-    """The variants in the plane of the thesis's two curved-base design parameters: the uplift base-shear
-    coefficient tan α (Eq 3.34, the uplift force) against the rotation capacity θc (Eq 3.56), one mark per
-    analysed variant coloured by verdict (★ the recommended design) — where the passing region lies in the terms
-    of the thesis's recommendation.  Variants that fall on one point (equal tan α, θc capped) are drawn as a small
-    block of marks around it (:func:`_clustered`), each variant with a mark of its own."""
-    pts = [c for c in data["cells"] if c.get("uplift_shear_coefficient") is not None and c.get("theta_c") is not None
-           and c.get("analysed", True)]
+    """The variants in the plane of two of the kind's numbers (design.json ``plane``: for a planar kind the thesis's
+    two curved-base design parameters, the uplift base-shear coefficient tan α, Eq 3.34, against the rotation
+    capacity θc, Eq 3.56), one mark per analysed variant coloured by verdict (★ the recommended design) — where the
+    passing region lies in the terms of the thesis's recommendation.  Variants that fall on one point (equal tan α,
+    θc capped) are drawn as a small block of marks around it (:func:`_clustered`), each variant with a mark of its
+    own.  None without a plane or with fewer than two variants in it."""
+    plane = data.get("plane")
+    if not plane:
+        return None
+    x, y = plane["x"], plane["y"]
+    pts = [c for c in data["cells"] if c.get(x) is not None and c.get(y) is not None and c.get("analysed", True)]
     if len(pts) < 2:
         return None
     rec = data.get("recommended")
     best = [k for k, c in enumerate(pts) if rec and list(c["index"]) == list(rec["index"])]
     with plt.rc_context(STYLE):
         fig, ax = plt.subplots(figsize=(6.0, 3.8))
-        xy = np.array([[c["uplift_shear_coefficient"], c["theta_c"]] for c in pts])
+        xy = np.array([[c[x], c[y]] for c in pts])
         _limits(ax, xy)
-        ax.set_xlabel("uplift base-shear coefficient tan α [-] (Eq 3.34)")
-        ax.set_ylabel("rotation capacity θc [rad] (Eq 3.56)")
+        ax.set_xlabel(plane["x_label"])
+        ax.set_ylabel(plane["y_label"])
         styles = _plane_styles()
         for name in styles:                          # legend entries, in this order, for the styles drawn
             if any(_plane_style(c) == name for c in pts):
@@ -420,7 +426,7 @@ def flip_figure(data: dict):
 
 def design_figures(data: dict) -> dict:
     """All figures of a design chart (matplotlib Figures; None where a figure has no data)."""
-    capacity = "θ$_{ot}$" if any(c.get("theta_overturn") is not None for c in data["cells"]) else "θc"
+    symbol = re.sub(r"_([A-Za-z0-9]+)", r"$_{\1}$", (data.get("response") or {}).get("symbol") or "response ratio")
     required = sorted({c["acmr_required"] for c in data["cells"] if c.get("acmr_required")})
     return {
         "verdict": verdict_figure(data),
@@ -431,7 +437,7 @@ def design_figures(data: dict) -> dict:
         "overturning": overturning_figure(data),
         "shear": field_figure(data, "superstructure_shear_p84", "|f$_s$|/g, 84th pct [-]", "magma_r",
                               title="superstructure shear coefficient, 84th percentile"),
-        "rotation": field_figure(data, "median_theta_max_over_theta_c", f"median θ$_{{max}}$/{capacity} [-]",
-                                 "cividis_r", title="median peak rotation over the capacity"),
+        "rotation": field_figure(data, "median_theta_max_over_theta_c", f"median {symbol} [-]",
+                                 "cividis_r", title="median peak response over the capacity"),
         "thesis_plane": thesis_plane_figure(data),
     }

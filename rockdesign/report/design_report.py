@@ -36,44 +36,47 @@ CAPTIONS = {
                    "acceptance = \"binomial\" the one-sided 95 % bound of P(overturn) (Clopper–Pearson) with the "
                    "limit (its contour is the design level's pass/fail boundary), otherwise the pairs that overturn "
                    "with the ASCE 7-22 §16.4.1.1 allowance.",
-    "rotation": "Median θ_max/θc of the suite at the design level (Eq 3.56: θc the rotation capacity).",
-    "thesis_plane": "The variants in the plane of the thesis's two curved-base design parameters: the uplift "
-                    "base-shear coefficient tan α (Eq 3.34) and the rotation capacity θc (Eq 3.56); one mark per "
-                    "analysed variant, and variants that fall on one point (equal tan α and θc) drawn as a small "
-                    "block of marks around it.",
+    "rotation": "Median {symbol} of the suite at the design level: {meaning}.",
 }
 
 
 COLUMNS = (
     ("ACMR (required)", "acmr", ""), ("P(collapse)", "p_collapse_design", ""), ("flip λ", "flip_margin", ""),
-    ("P(overturn) bound (limit)", "p_overturn_bound", ""), ("incremental unacceptable", "n_incremental_unacceptable", ""),
+    ("P(overturn) bound (limit)", "p_overturn_bound", ""),
     ("shear coeff. p84", "superstructure_shear_p84", ""), ("drift p84", "superstructure_drift_p84", "m"),
-    ("median θ_max/θc", "median_theta_max_over_theta_c", ""), ("tan α", "uplift_shear_coefficient", ""),
-    ("θc", "theta_c", "rad"), ("θ_ot", "theta_overturn", "rad"), ("material", "column_material", "kg"),
+    ("median {symbol}", "median_theta_max_over_theta_c", ""),
 )
-"""Columns of the variants table after the verdict and the count: (header, cell key, unit), each shown when
-a cell has the number (a cylinder has no shear or θc, but a P(overturn) bound and θ_ot)."""
+"""The shared columns of the variants table after the verdict and the count: (header, cell key, unit); the kind's own
+columns with a heading (design.json ``columns``) follow, and each is shown when a cell has the number."""
+
+
+def table_columns(data: dict) -> list[tuple[str, str, str]]:
+    """The variants table's columns for a design.json: the shared :data:`COLUMNS` (the median response ratio named
+    by the kind, design.json ``response``) and the kind's own columns that have a heading."""
+    symbol = (data.get("response") or {}).get("symbol") or "response ratio"
+    own = [(c["heading"], c["key"], "" if c["unit"] in ("", "-") else c["unit"])
+           for c in data.get("columns") or [] if c.get("heading")]
+    columns = [(h.format(symbol=symbol), k, u) for h, k, u in COLUMNS] + own
+    return [col for col in columns if any(c.get(col[1]) is not None for c in data["cells"])]
 
 
 def write_design_report(result, data: dict, out_dir: Path, *, pdf: bool = True, recommended_check=None) -> dict:
     """Write ``design.html``, ``design.pdf`` (``pdf``) and the figures ``design_<name>.svg`` into ``out_dir``;
-    ``recommended_check``: the full :class:`~rockdesign.planar.checks.check.CheckResult` of the recommended variant
-    (its summary goes into the report).  Returns the paths written."""
+    ``recommended_check``: the full check of the recommended variant (:class:`~rockdesign.kinds.base.CheckResult`;
+    the shared sections of its results.json go into the report).  Returns the paths written."""
     out_dir = Path(out_dir)
     figs = {k: f for k, f in design_figures(data).items() if f is not None}
-    captions = dict(CAPTIONS)
-    columns = [col for col in COLUMNS if any(c.get(col[1]) is not None for c in data["cells"])]
+    response = data.get("response") or {"symbol": "response ratio", "meaning": "the peak response over the capacity"}
+    captions = dict(CAPTIONS, rotation=CAPTIONS["rotation"].format(**response))
+    if data.get("plane"):
+        captions["thesis_plane"] = data["plane"]["caption"]
+    columns = table_columns(data)
     rule = (data.get("settings") or {}).get("verdict_rule")
     if rule:
         captions["verdict"] = f"Pass/fail region: the verdict of the check ({rule}) for every variant, with the " \
                               "governing reason; filled: robust PASS, hatched: PASS that fails in some perturbation " \
                               "draw, dotted outline: not analysed (its analysed neighbours all agree); black frame: " \
                               "the recommended design."
-    if any(c.get("theta_overturn") is not None for c in data["cells"]):
-        columns = [("median θ_max/θ_ot", k, u) if k == "median_theta_max_over_theta_c" else (h, k, u)
-                   for h, k, u in columns]
-        captions["rotation"] = ("Median θ_max/θ_ot of the record pairs at the design level (θ_ot = overturn_tilt·α, "
-                                "thesis Sec 5.5.1: the tilt at which the cylinder counts as overturned).")
 
     svgs = {k: svg(f, f"design-{k}", crop=False) for k, f in figs.items()}      # text stays text (searchable)
     written = {}
@@ -87,14 +90,14 @@ def write_design_report(result, data: dict, out_dir: Path, *, pdf: bool = True, 
     rows = [{**c, "short_reason": cell_reason(c), "words": verdict_words(c)} for c in data["cells"]]
     check = None
     if recommended_check is not None:
-        r = recommended_check
+        doc = recommended_check.as_json()          # its results.json: the shared sections of every kind's check
         from ..display import check_order, utilisation_text
-        shown = [c for c in r.checks if c.get("governs_verdict") or c.get("role") == "robustness"]
-        check = {"verdict": r.verdict, "reason": r.verdict_reason, "robust": getattr(r, "verdict_robust", None),
+        shown = [c for c in doc.get("checks") or [] if c.get("governs_verdict") or c.get("role") == "robustness"]
+        check = {"verdict": doc["verdict"], "reason": doc["verdict_reason"], "robust": doc.get("verdict_robust"),
                  "checks": [dict(c, ratio=utilisation_text(c.get("utilisation")))
-                            for c in check_order(shown, getattr(r, "governing_check", None))],
-                 "acceptance": r.acceptance or {},
-                 "superstructure": (r.statistics.get("superstructure") or {})}
+                            for c in check_order(shown, getattr(recommended_check, "governing_check", None))],
+                 "acceptance": doc.get("acceptance") or {},
+                 "superstructure": ((doc.get("summary") or {}).get("superstructure") or {})}
     env = environment()
     html = env.get_template(TEMPLATE).render(
         css=Markup(stylesheet()), data=data, rows=rows, figures=svgs, captions=captions, check=check, columns=columns,

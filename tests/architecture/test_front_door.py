@@ -95,13 +95,7 @@ SHARED_WORDS = frozenset({"column"})
 """Words of a kind that are also words of the shared code's own: a table's column (``Table.add_column``,
 ``np.column_stack``, a CSV column).  Identifiers may hold them; string constants may not be them."""
 
-STILL_TO_MOVE: dict[str, str] = {
-    "rockdesign/design_space/cells.py": "column_material: the planar name of a design cell's material (issue 48, "
-                                        "neutral outcome types)",
-    "rockdesign/design_space/store.py": "column_material (issue 48, neutral outcome types)",
-    "rockdesign/report/design_report.py": "column_material (issue 48, neutral outcome types)",
-    "rockdesign/report/design_results.py": "column_material (issue 48, neutral outcome types)",
-}
+STILL_TO_MOVE: dict[str, str] = {}
 """Shared modules that still name a kind's word, each with what it names: the integrator removes each entry as its
 module is made neutral (like TO_BE_SPLIT)."""
 

@@ -126,10 +126,8 @@ def test_a_tls_address_without_certificates_is_an_input_error():
             DaskExecutor(f"tls://127.0.0.1:{s.getsockname()[1]}").start()
 
 
-def test_a_cylinder_refuses_dask_and_records_dir(tmp_path, monkeypatch):
+def test_a_cylinder_refuses_records_dir(tmp_path, monkeypatch):
     refuse_analysing(monkeypatch)
-    res = design(CYLINDER, "--vary", "cylinder.diameter=0.5m:0.6m:2", "--dask", "local:1", "-o", tmp_path / "d")
-    one_line_error(res, "key '--dask'", "not used by the check of a cylinder")
     res = design(CYLINDER, "--vary", "cylinder.diameter=0.5m:0.6m:2", "--records-dir", tmp_path, "-o", tmp_path / "d")
     one_line_error(res, "key '--records-dir'", "not used by the check of a cylinder")
 

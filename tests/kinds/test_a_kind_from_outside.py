@@ -85,3 +85,48 @@ def test_front_door_check_and_report(sliding_kind, tmp_path):
     assert "Sliding block" in text and data["verdict"] in text
     assert sorted(p.name for p in out.iterdir()) == ["report.html", "report.pdf", "results.csv", "results.json"]
     assert math.isfinite(max(r["displacement_max"] for r in data["records"]))
+
+
+def test_front_door_design_chart(sliding_kind, tmp_path):
+    """The kind charts its design with ``rockdesign design`` through the shared grid, tolerance neighbourhood and
+    report, adding only its hooks and its own cell column (``critical_acceleration``) and response name: each
+    cell's verdict and count equal a recount by Newmark's closed-form integration here, the recommendation is the
+    least-friction robust PASS (no demand or material to rank by: the first in grid order) and its two tolerance
+    neighbours (friction ± 2 %, a dimensionless key) are checked."""
+    path = tmp_path / "dam.toml"
+    path.write_text(PROJECT + '[excitation]\nsuite = "p695-farfield"\n')
+    out = tmp_path / "chart"
+    res = CliRunner().invoke(app, ["design", str(path), "--vary", "sliding_block.friction=0.15:0.45:4", "-o", str(out)])
+    data = json.loads((out / "design.json").read_text())
+    g = 9.81
+    suite = load_suite("p695-farfield", gravity=g).records
+
+    def unacceptable(mu: float) -> int:
+        worst: dict[str, float] = {}
+        for rid, motion, meta in suite:
+            accel = motion.samples * (0.4 * g / np.max(np.abs(motion.samples)))
+            gm = ground_motion_id(rid, meta)
+            worst[gm] = max(worst.get(gm, 0.0), sliding_displacement(accel, motion.dt, mu * g)[0])
+        return sum(d > 0.05 for d in worst.values())
+
+    counts = [unacceptable(mu) for mu in (0.15, 0.25, 0.35, 0.45)]
+    assert [c["n_unacceptable"] for c in data["cells"]] == counts
+    assert [c["verdict"] for c in data["cells"]] == ["PASS" if k <= 1 else "FAIL" for k in counts]
+    assert "PASS" in {c["verdict"] for c in data["cells"]} and "FAIL" in {c["verdict"] for c in data["cells"]}
+    assert res.exit_code == 0, res.output
+    first = next(c for c in data["cells"] if c["verdict"] == "PASS" and c["robust"])
+    assert data["recommended"]["values"] == first["values"]
+    neighbours = data["recommended"]["neighbourhood"]
+    assert data["recommended"]["tolerance_robust"] is True
+    mu = first["values"]["sliding_block.friction"]
+    assert sorted(n["values"]["sliding_block.friction"] for n in neighbours) == pytest.approx([0.98 * mu, 1.02 * mu])
+    assert all(n["verdict"] == ("PASS" if unacceptable(n["values"]["sliding_block.friction"]) <= 1 else "FAIL")
+               for n in neighbours)
+    # the kind's own column and response, in its words; no planar column in a file of this kind
+    assert data["columns"] == [{"key": "critical_acceleration", "heading": "a_c", "unit": "m/s^2"}]
+    header = (out / "design.csv").read_text().splitlines()[0]
+    assert "critical_acceleration [m/s^2]" in header and "theta_c" not in header.replace("theta_c [-]", "")
+    assert not {"column_material", "uplift_acceleration", "theta_c"} & set(data["cells"][0])
+    text = "".join(page.extract_text() for page in pypdf.PdfReader(str(out / "design.pdf")).pages)
+    a_c = f"{first['critical_acceleration']:.4g} m/s²"             # the kind's column, with its unit
+    assert "median umax/u" in text and a_c in text            # (the report sets "_max" as a subscript)

@@ -15,7 +15,9 @@ import numpy as np
 import pytest
 
 from figure_layout import draw, layout_problems, marker_centres
+from rockdesign.planar.kind import Planar
 from rockdesign.report.design_figures import design_figures
+from rockdesign.report.design_results import presentation
 
 CURVATURES = [0.2 + k * (0.5 - 0.2) / 9 for k in range(10)]
 WIDTHS = [0.36 + k * (0.60 - 0.36) / 9 for k in range(10)]
@@ -56,7 +58,7 @@ def chart_data() -> dict:
                           {"key": "podium.width", "unit": "m", "values": WIDTHS, "values_si": WIDTHS}],
             "cells": cells, "recommended": {"index": best["index"], "values": best["values"], "labels": best["labels"],
                                             "robust": True, "reason": "robust PASS"},
-            "analyses_run": 1000, "analyses_saved": 100, "settings": {}}
+            "analyses_run": 1000, "analyses_saved": 100, "settings": {}, **presentation(Planar())}
 
 
 def test_the_data_reproduce_what_the_chart_drew_wrong():

@@ -51,6 +51,12 @@ class RunSummary:
         """True when the analysis did not run to a conclusion (:func:`analysis_failed`)."""
         return analysis_failed(self.status)
 
+    @property
+    def response_ratio(self) -> float:
+        """θ_max/θc (Eq 3.56), the response ratio the shared acceptance code reads
+        (:class:`rockdesign.acceptance.outcome.Run`)."""
+        return self.theta_max_over_theta_c
+
 
 VALID_STATUSES = tuple(STATUS_NAMES[code] for code in COMPLETED_STATUSES)
 """Engine statuses of an analysis that ran to a conclusion (see docs/engine.md).  Any other status

@@ -22,7 +22,9 @@ import numpy as np
 from rockdesign.acceptance.criteria import AnalysesCompleted, decide, evaluate_criteria
 from rockdesign.acceptance.criterion_base import CheckContext
 from rockdesign.acceptance.overturning_criteria import UnacceptableResponses
+from rockdesign.acceptance.rule import ground_motion_table
 from rockdesign.errors import ProjectError, RockdesignError
+from rockdesign.execution.counting import AnalysisCount
 from rockdesign.kinds.base import StructureKind
 from rockdesign.motions.grouping import ground_motion_id
 from rockdesign.motions.library import load_record
@@ -111,7 +113,7 @@ class Run:
         return self.displacement > self.allowed
 
     @property
-    def theta_max_over_theta_c(self) -> float:
+    def response_ratio(self) -> float:      # the peak response over the capacity (rockdesign.acceptance.outcome.Run)
         return self.displacement / self.allowed
 
 
@@ -129,6 +131,7 @@ class SlidingCheck:
     checks: list
     verdict: str
     verdict_reason: str
+    allowed_unacceptable: int = 1
 
     def as_json(self) -> dict:
         return {"project": {"name": self.project.name}, "verdict": self.verdict,
@@ -137,6 +140,11 @@ class SlidingCheck:
                              "displacement_max": o.run.displacement, "unacceptable": o.run.overturned}
                             for o in self.records],
                 "checks": [c.as_json() for c in self.checks], "failed_records": []}
+
+
+@dataclass(frozen=True)
+class Excitation:
+    suite: str              # the record suite, scaled to the block's design_pga
 
 
 @dataclass(frozen=True)
@@ -181,7 +189,7 @@ class SlidingBlock(StructureKind):
     def parse(self, raw, *, file, text):
         analysis = parse_analysis(raw.get("analysis", {}), file)
         info = project_info(raw, file, analysis.g, example="dam block")
-        unknown = set(raw) - {"project", "analysis", "sliding_block"}
+        unknown = set(raw) - {"project", "analysis", "sliding_block", "excitation"}
         if unknown:
             raise ProjectError("unknown table", file=file, key=sorted(unknown)[0], expected="[sliding_block]",
                                found=sorted(unknown)[0])
@@ -191,8 +199,10 @@ class SlidingBlock(StructureKind):
                       _missing(file, "friction"),
                       allowed=t.quantity("allowed_displacement", "length", required=True),
                       g=analysis.g, design_pga=t.quantity("design_pga", "acceleration", required=True))
+        suite = TableReader(raw.get("excitation", {}), "excitation", ("suite",), file, analysis.g)
+        excitation = Excitation(suite.choice("suite", ("p695-farfield", "p695-nearfield"), "p695-farfield"))
         return Project(path=file, name=info["name"], system=block, analysis=analysis, info=info, raw=raw,
-                       source_text=text)
+                       source_text=text, excitation_raw=raw.get("excitation"), excitation=excitation)
 
     def quantities(self, project):
         b = project.system
@@ -215,16 +225,55 @@ class SlidingBlock(StructureKind):
         return Simulation(project, text, motion.dt * np.arange(len(u)), u, peak)
 
     def check(self, project, *, progress, records_dir, margins, executor):
+        return self.grid_check(project, records=self.grid_records(project, records_dir), records_dir=records_dir,
+                               executor=executor, progress=progress)
+
+    # --- the design grid (rockdesign design): what a kind adds to be charted, nothing of another kind's ----------
+    design_columns = (("critical_acceleration", "a_c", "m/s^2"),)
+    design_response = ("u_max/u_allowed", "the peak sliding displacement over the allowed displacement")
+    design_material = ("material", "a block carries no superstructure")
+
+    def grid_records_key(self, project):
+        return project.excitation.suite
+
+    def grid_records(self, project, records_dir):
+        return load_suite(project.excitation.suite, gravity=project.system.g).records
+
+    def grid_check(self, project, *, records, records_dir, executor, progress, amplitude=1.0):
         b = project.system
         outcomes = []
-        for rid, motion, meta in load_suite("p695-farfield", gravity=b.g).records:
-            accel = motion.samples * (b.design_pga / float(np.max(np.abs(motion.samples))))
+        for rid, motion, meta in records:
+            accel = motion.samples * (amplitude * b.design_pga / float(np.max(np.abs(motion.samples))))
             peak, _ = sliding_displacement(accel, motion.dt, b.critical_acceleration)
             outcomes.append(Outcome(rid, ground_motion_id(rid, meta), Run(peak, b.allowed)))
+        AnalysisCount.add(len(outcomes))
         ctx = CheckContext(outcomes, project.analysis, margins_run=False)
         items, skipped = evaluate_criteria(ctx, [AnalysesCompleted, UnacceptableResponses])
         verdict = decide(items, skipped, rule=ctx.rule)
-        return SlidingCheck(project, outcomes, items, verdict.verdict, verdict.reason)
+        return SlidingCheck(project, outcomes, items, verdict.verdict, verdict.reason, ctx.rule.allowed)
+
+    def grid_cell(self, result, analyses):
+        rows = ground_motion_table(result.records)
+        ratios = sorted(o.run.response_ratio for o in result.records)
+        return {"verdict": result.verdict, "reason": result.verdict_reason, "governing": None,
+                "decided_at_design_level": True, "acmr": None, "acmr_required": None, "p_collapse_design": None,
+                "target_p_collapse": None, "n_unacceptable": sum(r["unacceptable"] for r in rows),
+                "allowed_unacceptable": result.allowed_unacceptable, "n_ground_motions": len(rows),
+                "n_failed_analyses": 0, "superstructure_shear_p84": None, "superstructure_drift_p84": None,
+                "median_theta_max_over_theta_c": float(np.median(ratios)),
+                "critical_acceleration": result.project.system.critical_acceleration,
+                "material": None, "demand": None, "model": "newmark-rigid-plastic",
+                "analyses": analyses, "analyses_saved": 0}
+
+    def grid_draws(self, result, *, records, executor):
+        """The amplitude × (1 ± 0.1 %) (SPEC §15's amplitude draw), stopping at the first that fails."""
+        for n, amplitude in enumerate((0.999, 1.001), start=1):
+            again = self.grid_check(result.project, records=records, records_dir=None, executor=executor,
+                                    progress=None, amplitude=amplitude)
+            if again.verdict != "PASS":
+                return {"n": n, "failed": 1, "size": 2, "first_failure": f"amplitude × {amplitude}",
+                        "what": "the amplitude × (1 ± 0.1 %)"}
+        return {"n": 2, "failed": 0, "size": 2, "first_failure": None, "what": "the amplitude × (1 ± 0.1 %)"}
 
     def report(self, result):
         from rockdesign import mplfig as plt

@@ -1,0 +1,107 @@
+"""The cylinder's 3D analyses in batches (thesis Ch. 5): each stage of the check — the design-level suite, every
+round of the incremental scans, the perturbation ensemble — hands a list of independent analyses to one
+:class:`PairRunner`, which runs them in this process or on an executor (the shared executor protocol of
+:mod:`rockdesign.execution.executor`: ``start``, ``map``, ``close``, ``describe``; ``rockdesign check --dask``).
+
+An analysis depends only on its own pair, tolerances and the cylinder, so a batch gives the same runs wherever
+and in whatever order its analyses run (tests/cylinder/test_cylinder_executor.py compares them).
+"""
+from __future__ import annotations
+
+import dataclasses
+import time
+from collections.abc import Callable, Sequence
+
+from ..execution.counting import AnalysisCount
+from .engine import STATUS, simulate_cylinder
+from .kernel import ST_COMPLETED, ST_OVERTURNED
+
+COMPLETED = (STATUS[ST_COMPLETED], STATUS[ST_OVERTURNED])
+"""Statuses of a cylinder analysis that ran to a conclusion."""
+SLOW_RUN_SECONDS = 1.0
+"""A 3D analysis longer than this (≈ 100 × a 30-s pair's) is noted on the console with its reason."""
+
+
+@dataclasses.dataclass(frozen=True)
+class PairRun:
+    """The 3D response to one pair in the terms the criteria read (:class:`~rockdesign.acceptance.criteria.CheckContext`).
+
+    ``status`` is "completed" for an analysis that ran to a conclusion (overturned or not:
+    ``overturned`` says which) and the engine's status otherwise; ``engine_status`` is the engine's own
+    word (results.json ``status``).  ``response_ratio`` is θ_max/θ_ot (θ_ot: the 3D overturning tilt; the
+    acceptance code's :class:`rockdesign.acceptance.outcome.Run`)."""
+
+    theta_max_over_alpha: float
+    response_ratio: float
+    overturned: bool
+    overturn_mode: str
+    quasi_impacts: int
+    uplift_time: float | None
+    engine_status: str
+    min_contact_force_over_weight: float | None = None
+
+    @property
+    def status(self) -> str:
+        return "completed" if self.engine_status in COMPLETED else self.engine_status
+
+    @property
+    def failed(self) -> bool:
+        """True when the 3D analysis did not run to a conclusion (step size collapsed, step limit)."""
+        return self.engine_status not in COMPLETED
+
+
+def run_pair(cyl, a, pair, rtol: float | None = None, atol: float | None = None) -> tuple[PairRun, float, str]:
+    """One 3D analysis of the scaled ``pair`` (Eqs 5.1–5.41 through :func:`~rockdesign.cylinder.engine.simulate_cylinder`)
+    at the project's tolerances or ``rtol``/``atol``: the run, its wall time [s] and why it cost what it did.
+    Module-level and free of callbacks, so an executor's worker can run it."""
+    t0 = time.perf_counter()
+    r = simulate_cylinder(cyl, pair, free_vibration=a.free_vibration, rtol=rtol or a.rtol, atol=atol or a.atol,
+                          rest_velocity=a.rest_velocity)
+    seconds = time.perf_counter() - t0
+    run = PairRun(r.theta_max / cyl.alpha, r.theta_max / cyl.theta_overturn, r.overturned, r.overturn_mode,
+                  r.quasi_impacts, r.uplift_time, r.status, r.min_contact_force_over_weight if cyl.damped else None)
+    return run, seconds, r.cost_reason() if seconds > SLOW_RUN_SECONDS else ""
+
+
+Job = tuple
+"""One analysis of a batch: ``(pair, rtol, atol)`` (a tolerance None: the project's)."""
+
+
+class PairRunner:
+    """Runs batches of independent 3D analyses of one cylinder: ``runner(jobs, done) -> [PairRun]`` in job order.
+
+    Args:
+        cyl, a: the cylinder and the project's ``[analysis]``.
+        executor: None (this process, one analysis after the other) or an executor object
+            (:func:`rockdesign.execution.executor.is_executor`): the batch's analyses are mapped over it.
+        note: ``note(pair name, text)`` for an analysis slower than :data:`SLOW_RUN_SECONDS`.
+
+    Every analysis is counted in this process (:class:`~rockdesign.execution.counting.AnalysisCount`), where it
+    ran; ``analyses`` counts this runner's."""
+
+    def __init__(self, cyl, a, *, executor=None, note: Callable[[str, str], None] | None = None):
+        self.cyl, self.a, self.executor, self.note = cyl, a, executor, note
+        self.analyses = 0
+
+    def __call__(self, jobs: Sequence[Job], done: Callable[[int], None] | None = None) -> list[PairRun]:
+        """The runs of ``jobs`` in their order; ``done(k)`` after each k-th analysis ends (in completion order)."""
+        jobs = [tuple(j) + (None,) * (3 - len(j)) for j in jobs]
+        out: list = [None] * len(jobs)
+        if self.executor is None or not jobs:
+            finished = ((k, run_pair(self.cyl, self.a, *job)) for k, job in enumerate(jobs))
+        else:
+            self.executor.start()
+            finished = self.executor.map(run_pair, (self.cyl, self.a), dict(enumerate(jobs)))
+        for count, (k, (run, seconds, reason)) in enumerate(finished, start=1):
+            out[k] = run
+            AnalysisCount.add(1)
+            self.analyses += 1
+            if self.note is not None and reason:
+                self.note(jobs[k][0].name, f"{seconds:.1f} s, {reason}")
+            if done is not None:
+                done(count)
+        return out
+
+    def one(self, pair, rtol: float | None = None, atol: float | None = None) -> PairRun:
+        """One analysis, in this process."""
+        return self([(pair, rtol, atol)])[0]
