@@ -94,6 +94,7 @@ cell)."""
 def grid_row(name: str, tmp: Path) -> dict:
     """One row: the grid against the separate checks of its valid variants (seconds, ratio, verdicts)."""
     from rockdesign.design_space.variants import parse_vary, variant_toml, variants
+    from rockdesign.planar.kind import Planar
     source, vary, goal, every = GRIDS[name]
     folder = tmp / name
     folder.mkdir()
@@ -101,7 +102,7 @@ def grid_row(name: str, tmp: Path) -> dict:
     text = PROJECT if source is None else source.read_text(encoding="utf-8")
     base.write_text(text, encoding="utf-8")
     raw = tomllib.loads(text)
-    variables = [parse_vary(v, raw) for v in vary]
+    variables = [parse_vary(v, raw, alternatives=Planar.key_alternatives) for v in vary]   # as rockdesign design
     cells = variants(raw, variables, file=str(base))
     checks = {}
     for v in cells:
@@ -225,6 +226,7 @@ def main() -> None:
     opts = ap.parse_args()
     from rockdesign.bench.timing import machine_info
     from rockdesign.design_space.variants import parse_vary, variant_document, variant_toml
+    from rockdesign.planar.kind import Planar
     names = list(GRIDS) if opts.grid == "all" else [opts.grid]
     rows = {}
     with tempfile.TemporaryDirectory(prefix="bench_design_") as tmp:
@@ -232,7 +234,7 @@ def main() -> None:
         base = tmp / "podium.toml"
         base.write_text(PROJECT, encoding="utf-8")
         raw = tomllib.loads(PROJECT)
-        variables = [parse_vary(WIDTH, raw), parse_vary(HEIGHT, raw)]
+        variables = [parse_vary(v, raw, alternatives=Planar.key_alternatives) for v in (WIDTH, HEIGHT)]
         # warm the kernel cache once (not timed: both sides load the same compiled kernels)
         run(["check", str(_variant(tmp, raw, variables, (0, 0), variant_document, variant_toml)), "--no-pdf",
              "-o", str(tmp / "warm")], tmp)

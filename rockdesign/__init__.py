@@ -32,9 +32,9 @@ _EXPORTS = {
     "RockdesignError": "rockdesign.errors", "ProjectError": "rockdesign.errors", "MotionError": "rockdesign.errors",
     "RecordError": "rockdesign.errors", "ModelError": "rockdesign.errors", "OutputError": "rockdesign.outdir",
     # ground-motion records (``rockdesign records``)
-    "records_list": "rockdesign.records", "records_show": "rockdesign.records",
-    "records_spectrum": "rockdesign.records", "records_synth": "rockdesign.records",
-    "records_scale_model": "rockdesign.records", "load_record": "rockdesign.motions.library",
+    "records_list": "rockdesign.records_library", "records_show": "rockdesign.records_library",
+    "records_spectrum": "rockdesign.records_library", "records_synth": "rockdesign.records_library",
+    "records_scale_model": "rockdesign.records_library", "load_record": "rockdesign.motions.library",
     "DEFAULT_BAND": "rockdesign.motions.defaults", "DEFAULT_DAMPING": "rockdesign.motions.defaults",
     "DEFAULT_N_PERIODS": "rockdesign.motions.defaults",
     # experiments (``rockdesign calibrate | validate | ensemble``)

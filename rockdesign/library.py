@@ -32,7 +32,7 @@ from pathlib import Path
 
 from .execution import compilation
 from .errors import ProjectError, RockdesignError
-from .execution.executor import check_executor, make_executor
+from .execution.executor import check_executor, running_on
 from .kinds import kind_of, parse_document
 from .kinds.base import CheckResult, SimulationResult, SpectrumOptions, SpectrumResult
 from .outdir import OutputFolder
@@ -230,17 +230,9 @@ def run_check(project: Project, *, progress: bool = False, records_dir=None, mar
     scheduler address), started and closed here."""
     kind = kind_of(project)
     check_executor(executor, reach=False)
-    owned = None
-    if isinstance(executor, str):
-        owned = executor = make_executor(executor)
-        executor.start()
-    try:
-        with progress_bars(disable=not progress) as tick:
-            return kind.check(project, progress=tick, records_dir=str(records_dir) if records_dir else None,
-                              margins=margins, executor=executor)
-    finally:
-        if owned is not None:
-            owned.close()
+    with running_on(executor) as on, progress_bars(disable=not progress) as tick:
+        return kind.check(project, progress=tick, records_dir=str(records_dir) if records_dir else None,
+                          margins=margins, executor=on)
 
 
 def check(project: Project, *, progress: bool = False, records_dir: str | Path | None = None,

@@ -63,8 +63,17 @@ def run_pair(cyl, a, pair, rtol: float | None = None, atol: float | None = None)
     return run, seconds, r.cost_reason() if seconds > SLOW_RUN_SECONDS else ""
 
 
+def run_pairs(cyl, a, jobs) -> list[tuple[PairRun, float, str]]:
+    """:func:`run_pair` of each job ``(pair, rtol, atol)`` of a chunk, in order (one task of an executor)."""
+    return [run_pair(cyl, a, *job) for job in jobs]
+
+
 Job = tuple
 """One analysis of a batch: ``(pair, rtol, atol)`` (a tolerance None: the project's)."""
+CHUNKS_PER_SLOT = 4
+"""A batch goes to an executor in about this many chunks per slot (a worker's concurrent task): one 3D analysis
+takes milliseconds, a dask task's round trip about as long, so chunks keep the round trips few while the cores
+still finish together."""
 
 
 class PairRunner:
@@ -88,18 +97,25 @@ class PairRunner:
         jobs = [tuple(j) + (None,) * (3 - len(j)) for j in jobs]
         out: list = [None] * len(jobs)
         if self.executor is None or not jobs:
-            finished = ((k, run_pair(self.cyl, self.a, *job)) for k, job in enumerate(jobs))
+            finished = ((k, [run_pair(self.cyl, self.a, *job)]) for k, job in enumerate(jobs))
+            first = list(range(len(jobs)))
         else:
+            size = -(-len(jobs) // (CHUNKS_PER_SLOT * max(1, int(getattr(self.executor, "slots", 1)))))
+            first = list(range(0, len(jobs), size))
             self.executor.start()
-            finished = self.executor.map(run_pair, (self.cyl, self.a), dict(enumerate(jobs)))
-        for count, (k, (run, seconds, reason)) in enumerate(finished, start=1):
-            out[k] = run
-            AnalysisCount.add(1)
-            self.analyses += 1
-            if self.note is not None and reason:
-                self.note(jobs[k][0].name, f"{seconds:.1f} s, {reason}")
-            if done is not None:
-                done(count)
+            finished = self.executor.map(run_pairs, (self.cyl, self.a),
+                                         {c: (jobs[start:start + size],) for c, start in enumerate(first)})
+        count = 0
+        for c, results in finished:
+            for k, (run, seconds, reason) in enumerate(results, start=first[c]):
+                out[k] = run
+                AnalysisCount.add(1)
+                self.analyses += 1
+                count += 1
+                if self.note is not None and reason:
+                    self.note(jobs[k][0].name, f"{seconds:.1f} s, {reason}")
+                if done is not None:
+                    done(count)
         return out
 
     def one(self, pair, rtol: float | None = None, atol: float | None = None) -> PairRun:

@@ -13,7 +13,6 @@ import re
 from dataclasses import dataclass
 
 from ..kinds import kind_of
-from .variants import ALTERNATIVES
 
 SPAN = (0.8, 1.4, 4)
 """The suggested grid: from 0.8× to 1.4× the project's value, 4 values (wider contacts uplift later)."""
@@ -21,8 +20,7 @@ SPAN = (0.8, 1.4, 4)
 
 def _slenderness_key(kind) -> str:
     """The key that sets tan α in the kind's tables: the partner of ``slenderness`` (``width``, ``diameter``)."""
-    table = kind.key_alternatives or {k: (v,) for k, v in ALTERNATIVES.items()}
-    return next((k for k, v in table.items() if "slenderness" in tuple(v)), "width")
+    return next((k for k, v in kind.key_alternatives.items() if "slenderness" in tuple(v)), "width")
 
 
 def _grid(value) -> str | None:

@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import ProjectError, RockdesignError
-from ..execution.executor import check_executor, make_executor
+from ..execution.executor import check_executor, running_on
 from ..kinds import kind_of
 from ..outdir import DesignFolder
 from ..paths import require_path
@@ -150,7 +150,8 @@ def plan_design(project, vary, *, records_dir=None, executor=None, every_cell: b
     kind.check_options(project, records_dir=records_dir, executor=executor)   # a kind's refusal first
     check_executor(executor, text=False)        # rd.design starts an address; a plan holds an executor
     raw = project.raw
-    variables = [parse_vary(v, raw, alternatives=kind.key_alternatives) for v in specs]
+    derived = frozenset(kind.quantities(project))     # design quantities: not keys of the project file
+    variables = [parse_vary(v, raw, alternatives=kind.key_alternatives, derived=derived) for v in specs]
     refuse_overlaps(variables)
     if tolerance is not None and not isinstance(tolerance, (dict, list, tuple)):
         raise RockdesignError("tolerances must be a mapping", key="tolerance",
@@ -327,11 +328,10 @@ def design(project, vary, *, out_dir=None, records_dir=None, executor=None, pdf:
     kind_of(project).check_options(project, records_dir=records_dir, executor=executor)   # a kind's refusal first
     check_executor(executor)                    # a dask value is checked (and its scheduler reached) here
     if isinstance(executor, str):               # started here and closed when the chart is done
-        with make_executor(executor) as owned:
-            owned.start()
+        with running_on(executor) as owned:
             return design(project, vary, out_dir=out_dir, records_dir=records_dir, executor=owned, pdf=pdf,
                           html=html, full_check=full_check, progress=progress, stage_progress=stage_progress,
-                          warn=warn, say=say, every_cell=every_cell, prefer=prefer)
+                          warn=warn, say=say, every_cell=every_cell, prefer=prefer, tolerance=tolerance)
     plan = plan_design(project, vary, records_dir=records_dir, executor=executor, every_cell=every_cell,
                        prefer=prefer, tolerance=tolerance)
     if full_check is None:

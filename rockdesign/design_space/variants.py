@@ -13,15 +13,10 @@ import copy
 import itertools
 import math
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 from ..errors import ProjectError, RockdesignError
-
-ALTERNATIVES = {"radius": "curvature", "curvature": "radius", "height": "half_height", "half_height": "height",
-                "width": "slenderness", "slenderness": "width", "period": "frequency", "frequency": "period"}
-"""Keys of the project file that say the same thing two ways (CONTRACT §1): varying one replaces the other
-(the replacement is listed in design.json's ``notes``).  A kind may name its own
-(:attr:`~rockdesign.kinds.base.StructureKind.key_alternatives`, e.g. a cylinder's diameter/slenderness)."""
 
 MAX_VALUES = 41
 """Values per variable (a chart of 41 × 41 = 1681 checks is already a cluster's afternoon)."""
@@ -98,17 +93,14 @@ def _quantity(text: str, option: str, spec: str):
     return q
 
 
-DERIVED = frozenset(("alpha", "R", "p", "lambda", "c_r", "uplift_acceleration", "uplift_acceleration_linear",
-                     "alpha_ext", "beta", "rho", "rho_c", "theta_c", "k_phase1", "k_phase2", "R_hat", "p_hat",
-                     "gamma", "eta", "omega_s", "omega_su", "S_r", "zeta_su", "omega_s_over_p", "u_capacity",
-                     "angle_of_turn", "theta_overturn", "B", "H", "tan_alpha"))
-"""Design quantities (CONTRACT §3 names) computed from the project: not keys of the project file."""
-
-
-def parse_vary(spec: str, raw: dict, *, option: str = "vary", alternatives: dict | None = None) -> Variable:
+def parse_vary(spec: str, raw: dict, *, option: str = "vary", alternatives: Mapping[str, tuple[str, ...]] = {},
+               derived: frozenset[str] = frozenset()) -> Variable:
     """Read one ``TABLE.KEY=FROM:TO:N`` (``--vary``) against the project's TOML document ``raw``;
-    ``alternatives``: key → the keys it replaces (default :data:`ALTERNATIVES`, one each); ``option``: how the
-    caller names the parameter in errors (``vary`` for the library, ``--vary`` on the command line).
+    ``alternatives``: key → the keys of the project file it replaces (the kind's
+    :attr:`~rockdesign.kinds.base.StructureKind.key_alternatives`: keys that say the same thing two ways, CONTRACT
+    §1; the replacement is listed in design.json's ``notes``); ``derived``: the names of the kind's design
+    quantities (CONTRACT §3), refused as keys; ``option``: how the caller names the parameter in errors (``vary``
+    for the library, ``--vary`` on the command line).
 
     FROM and TO keep their units: a dimensionless value in another unit (``0.5%``, ``5deg``) is written into
     the variant's project file as its plain SI number (0.005, 0.0873 rad) and labelled in the user's unit.
@@ -135,12 +127,11 @@ def parse_vary(spec: str, raw: dict, *, option: str = "vary", alternatives: dict
         raise RockdesignError("the project has no such table", key=option,
                               expected="a table of the project file: " + ", ".join(
                                   f"[{t}]" for t, v in raw.items() if isinstance(v, dict)), found=f"[{table}] in {key}")
-    if name in DERIVED and name not in raw[table]:
+    if name in derived and name not in raw[table]:
         raise RockdesignError("a design quantity, not a key of the project file", key=option,
                               expected=f"a key of [{table}] that the quantity depends on (e.g. width, extended_width, "
                                        "curvature, height)", found=f"{key} in {spec!r}")
-    replaces = tuple(alternatives.get(name, ())) if alternatives is not None else \
-        ((ALTERNATIVES[name],) if name in ALTERNATIVES else ())
+    replaces = tuple(alternatives.get(name, ()))
     current = raw[table].get(name, next((raw[table][o] for o in replaces if o in raw[table]), None))
     if isinstance(current, (bool, dict, list)) or (isinstance(current, str) and not re.match(r"^\s*[-+.\d]", current)):
         raise RockdesignError("not a numeric key", key=option, expected="a key whose value is a number or a quantity",

@@ -34,6 +34,7 @@ import os
 import shutil
 import threading
 import time
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Callable, Iterator, Sequence
 
@@ -316,6 +317,25 @@ def make_executor(dask: str | None = None, *, processes: int = 0, warm_up: Calla
     if dask is None:
         return LocalExecutor(processes, warm_up)
     return DaskExecutor(dask, warm_up=warm_up, numba_threads=numba_threads)
+
+
+@contextmanager
+def running_on(executor, *, warm_up: Callable[[], object] | None = None, here: bool = False, start: bool = True):
+    """The executor a library call runs on — the one place a library call turns a ``--dask`` value into an
+    executor: an executor object as given (started by its user, not closed here); a dask value ("local:N", a
+    scheduler address) made, started here (unless ``start`` is False: the first ``map`` starts it) and closed
+    when the call ends; None stays None (the call's own analyses in this process), or with ``here`` a
+    :class:`LocalExecutor` of this process, closed at the end."""
+    if executor is not None and not isinstance(executor, str):
+        yield executor
+        return
+    if executor is None and not here:
+        yield None
+        return
+    with make_executor(executor, warm_up=warm_up) as owned:    # (an unreachable scheduler stops here)
+        if start:
+            owned.start()
+        yield owned
 
 
 # ------------------------------------------------------------------------------------------ the loop

@@ -166,7 +166,7 @@ def validation(tests, analyses, *, measured=None, seed: int = 1, out_dir: str | 
 def ensemble(project, suite: str | Path, *, scale: float = 1.0, restitution: float | None = None, records_dir=None,
              progress: Callable[[str, int, int], None] | None = None, say=None) -> EnsembleResult:
     """Run ``project`` over a ground-motion ensemble (a suite name or manifest, e.g. the ensemble.toml of
-    :func:`rockdesign.records.records_synth`): one analysis per motion × ``scale`` with the project's model.
+    :func:`rockdesign.records_library.records_synth`): one analysis per motion × ``scale`` with the project's model.
 
     Args:
         project: a planar :class:`~rockdesign.project_tables.Project`.

@@ -146,9 +146,9 @@ class StructureKind(abc.ABC):
     """The SI unit of each column of results.csv that has one (its header reads "pga [m/s^2]")."""
     csv_nested: Mapping[str, tuple[str, str]] = {}
     """Columns of results.csv read from a dict in a record's row: column → (key of the dict, key in it)."""
-    key_alternatives: dict[str, tuple[str, ...]] | None = None
-    """Keys of the kind's project tables that say the same thing two ways: a ``--vary`` of one replaces the
-    others (None: :data:`rockdesign.design_space.variants.ALTERNATIVES`)."""
+    key_alternatives: Mapping[str, tuple[str, ...]] = {}
+    """Keys of the kind's project tables that say the same thing two ways (CONTRACT §1): a ``--vary`` of one
+    replaces the others (listed in design.json's ``notes``); none by default."""
     uses: tuple[str, ...] = ()
     """Modules of other kinds' packages this kind's package imports (a declared dependency between kinds, read by
     tests/architecture/test_front_door.py); none by default."""

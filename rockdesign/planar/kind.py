@@ -27,6 +27,10 @@ class Planar(StructureKind):
     grid_module = "rockdesign.planar.grid"
     experiments_module = "rockdesign.planar.experiments"
 
+    key_alternatives = {"radius": ("curvature",), "curvature": ("radius",), "height": ("half_height",),
+                        "half_height": ("height",), "width": ("slenderness",), "slenderness": ("width",),
+                        "period": ("frequency",), "frequency": ("period",)}
+    """Keys that say the same thing two ways (CONTRACT §1): a ``--vary`` of one replaces the other."""
     design_demand = "superstructure shear coefficient (84th percentile"
     design_material = ("column material", "no elastic superstructure demand")
     design_columns = (("uplift_acceleration", "", "m/s^2"), ("uplift_shear_coefficient", "tan α", "-"),

@@ -22,7 +22,7 @@ SHARED_LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
     ("analyses", ("rockdesign.acceptance",)),
     ("report", ("rockdesign.report",)),
     ("experiments", ("rockdesign.experiments",)),
-    ("library", ("rockdesign.library", "rockdesign.records", "rockdesign.kinds", "rockdesign.design_space",
+    ("library", ("rockdesign.library", "rockdesign.records_library", "rockdesign.kinds", "rockdesign.design_space",
                  "rockdesign.experiments.run")),
     ("bench", ("rockdesign.bench",)),
     ("cli", ("rockdesign.cli", "rockdesign.templates")),

@@ -24,6 +24,8 @@ class Backwards:
     """An executor (start, map, close, describe) that runs each batch in this process, last task first, and
     keeps the size of every batch it was given."""
 
+    slots = 10 ** 6            # as many as there are analyses: one task per analysis (a pool chunks them)
+
     def __init__(self):
         self.batches: list[int] = []
 

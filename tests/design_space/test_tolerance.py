@@ -20,7 +20,8 @@ CURVED = "examples/podium_curved.toml"
 
 
 def _vars(raw, *specs):
-    return [parse_vary(s, raw) for s in specs]
+    from rockdesign.planar.kind import Planar
+    return [parse_vary(s, raw, alternatives=Planar.key_alternatives) for s in specs]
 
 
 def test_defaults_by_the_keys_dimension():
@@ -120,3 +121,31 @@ def test_the_library_takes_a_mapping_or_options_and_writes_them_into_the_setting
     with pytest.raises(RockdesignError) as e:
         rd.plan_design(project, ["podium.width=0.4m:0.6m:3"], tolerance=0.01)
     assert e.value.key == "tolerance"
+
+
+def test_a_dask_value_keeps_the_tolerances(monkeypatch):
+    """``rd.design(p, vary, executor="tcp://…", tolerance=…)`` starts the executor and calls itself with it: the
+    tolerances went missing on that call (the chart was built to the defaults).  The executor is replaced here by
+    one that runs nothing, and the plan is caught before any analysis."""
+    import contextlib
+
+    import rockdesign.design_space.run as run
+    seen = {}
+
+    @contextlib.contextmanager
+    def no_cluster(executor, **_):
+        yield object()
+
+    class Planned(Exception):
+        pass
+
+    def plan(project, vary, **kwargs):
+        seen.update(kwargs)
+        raise Planned
+    monkeypatch.setattr(run, "check_executor", lambda *a, **k: None)
+    monkeypatch.setattr(run, "running_on", no_cluster)
+    monkeypatch.setattr(run, "plan_design", plan)
+    with pytest.raises(Planned):
+        rd.design(CURVED, ["podium.width=0.5m:0.6m:2"], executor="tcp://127.0.0.1:8786",
+                  tolerance={"podium.width": "3 mm"})
+    assert seen["tolerance"] == {"podium.width": "3 mm"}

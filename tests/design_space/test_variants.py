@@ -6,11 +6,18 @@ from pathlib import Path
 
 import pytest
 
-from rockdesign.design_space.variants import parse_vary, variant_document, variant_toml, variants
+from rockdesign.design_space.variants import parse_vary as parse_vary_of
+from rockdesign.design_space.variants import variant_document, variant_toml, variants
 from rockdesign.errors import RockdesignError
 from rockdesign.kinds import parse_document as parse_project
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+
+
+def parse_vary(spec, raw, **kw):
+    """``--vary`` of a planar project, with the planar kind's alternative keys (radius/curvature, …)."""
+    from rockdesign.planar.kind import Planar
+    return parse_vary_of(spec, raw, alternatives=Planar.key_alternatives, **kw)
 
 
 @pytest.fixture(scope="module")

@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import Callable
 
 from ...execution import compilation
-from ...execution.executor import make_executor, remove_tree
+from ...execution.executor import remove_tree, running_on
 from ...motions.motion import PULSE_KINDS
 from ...outdir import created_folder
 from ..dynamics.model import resolve_structure
@@ -177,9 +177,7 @@ def pulse_spectrum(project, *, pulse: str | None = None, x: str | Axis | None = 
     check_ordinates(equivalent_at, y_axis, relative is not None)
     distributed = not _where(executor).startswith("local")
     check_grid(x_axis, y_axis, len(runs), distributed=distributed)     # memory and time, before any work
-    owned = executor is None or isinstance(executor, str)
-    executor = make_executor(executor, warm_up=warm_up) if owned else executor   # (an unreachable scheduler stops here)
-    try:
+    with running_on(executor, warm_up=warm_up, here=True, start=False) as executor:
         created_folder(out_dir, "out_dir")            # (removed again if the run fails before writing)
         if not distributed:                           # (a remote cluster's workers compile there)
             compilation.prepare("spectrum", (PULSE_SPECTRUM,), say)
@@ -195,9 +193,6 @@ def pulse_spectrum(project, *, pulse: str | None = None, x: str | Axis | None = 
             done = sum(len(list(p.glob("chunk-*.npz"))) for p in chunks_root.glob("*") if p.is_dir())
             raise KeyboardInterrupt(f"{done} completed chunks kept in {chunks_root}; rerun the same command to "
                                     "resume.") from None
-    finally:
-        if owned:
-            executor.close()
     spec = results[0]
     ref = results[1] if len(results) > 1 else None
     a = project.analysis
