@@ -22,7 +22,7 @@ class Cylinder(StructureKind):
     uses = ("rockdesign.planar.dynamics.simulate", "rockdesign.planar.system", "rockdesign.planar.dynamics.warm_up")
     """The planar rocking body of the same p and α along each component (thesis Ch. 5): the check compares with it
     through the planar engine's public simulate, whose kernels its first run compiles with the planar warm-up."""
-    spectrum_options = ("record", "x", "y", "relative", "out_dir", "figures")
+    spectrum_options = ("record", "x", "y", "relative", "out_dir", "figures", "executor")
     """The parameters of :func:`~rockdesign.cylinder.spectrum_run.record_pair_spectrum` that ``rd.spectrum`` passes on."""
     design_material = ("material: the cylinder's mass", "a free-standing cylinder carries no superstructure")
     design_columns = (("n_incremental_unacceptable", "incremental unacceptable", ""), ("p_overturn", "", "-"),
@@ -125,7 +125,7 @@ class Cylinder(StructureKind):
         :func:`~rockdesign.cylinder.spectrum_run.record_pair_spectrum`)."""
         from . import spectrum_run as cylinder_spectra
         options = request.accepted(self.spectrum_options, "the spectrum of a cylinder (a record pair on R × pga "
-                                   "axes)", "record, x R:…, y pga/up:…, relative, out_dir and figures")
+                                   "axes)", "record, x R:…, y pga/up:…, relative, out_dir, figures and executor")
         reference = options.get("relative")
         if reference is not None and reference.system.kind not in self.systems:
             raise RockdesignError("a relative cylinder spectrum needs a second cylinder", key="relative",

@@ -15,6 +15,7 @@ from typing import Callable
 
 from ..errors import RockdesignError
 from ..execution import compilation
+from ..execution.executor import check_executor, running_on
 from .pairs import parse_pair
 from ..outdir import created_folder
 from .spectrum import CylinderSpectrum, CylinderSpectrumError, cylinder_spectrum, parse_cylinder_axis
@@ -69,7 +70,8 @@ class CylinderSpectrumRun:
 
 def record_pair_spectrum(project, *, record: str | None = None, x: str | None = None, y: str | None = None,
                          relative=None, out_dir: str | Path | None = None, figures: bool = True,
-                         progress: Callable[[str, int, int], None] | None = None, say=None) -> CylinderSpectrumRun:
+                         progress: Callable[[str, int, int], None] | None = None, say=None,
+                         executor=None) -> CylinderSpectrumRun:
     """θ_max/α of a cylinder project's slenderness and contact over sizes R and resultant PGAs of one record pair
     (thesis Figs 5.16–5.17), written into ``out_dir``.  The parameters are those of ``rd.spectrum``.
 
@@ -83,6 +85,8 @@ def record_pair_spectrum(project, *, record: str | None = None, x: str | None = 
         figures: write spectrum.png (and relative.png).
         progress: ``progress(stage, done, total)`` as blocks of grid points finish.
         say: prints the first-run compilation announcement.
+        executor: None (this process, every core), a ``--dask`` value ("local:N", a scheduler address; started and
+            closed here) or an executor object: the grid's blocks of amplitude rows run there.
     """
     if not record:
         raise CylinderSpectrumError("a cylinder spectrum needs a record pair", key="record",
@@ -101,17 +105,19 @@ def record_pair_spectrum(project, *, record: str | None = None, x: str | None = 
     _, ys = parse_cylinder_axis(DEFAULT_Y if y is None else y, "y")
     out_dir = Path(out_dir) if out_dir is not None else \
         Path(f"{Path(project.path).stem}-spectrum-{pair.name.replace('/', '-')}")
+    check_executor(executor)                   # a dask value checked (and its scheduler reached) before any work
     created_folder(out_dir, "out_dir")         # before any work (removed again if the run fails)
     compilation.prepare("spectrum", (SPECTRUM,), say)
 
-    def run(prj, stage: str) -> CylinderSpectrum:
+    def run(prj, stage: str, on) -> CylinderSpectrum:
         a = prj.analysis
         return cylinder_spectrum(prj.system, pair, xs, ys, rtol=a.rtol, atol=a.atol, free_vibration=a.free_vibration,
                                  rest_velocity=a.rest_velocity,
-                                 progress=(lambda done, n: progress(stage, done, n)) if progress else None)
+                                 progress=(lambda done, n: progress(stage, done, n)) if progress else None, executor=on)
 
-    spec = run(project, f"cylinder spectrum of {pair.name}")
-    ref = run(relative, f"reference ({relative.name})") if relative is not None else None
+    with running_on(executor) as on:
+        spec = run(project, f"cylinder spectrum of {pair.name}", on)
+        ref = run(relative, f"reference ({relative.name})", on) if relative is not None else None
     summary = write_cylinder_spectrum(out_dir, spec, ref, project_name=project.name, record_text=text,
                                       relative=relative.path if relative is not None else None,
                                       overturn_tilt=cyl.overturn_tilt, figures=figures)

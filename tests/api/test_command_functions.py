@@ -96,7 +96,7 @@ def test_the_spectrum_function_is_the_command(block, tmp_path):
     ("block", dict(pulse="sine", executor="local:0"), "executor", "local cluster"),
     ("block", dict(pulse="sine", x="omega_p/p:0.5:12:100000", y="ap/up:0:12:100000"), "x/y", "memory"),
     ("cylinder", dict(record="p695-ff/11", pulse="sine"), "pulse", "not used by the spectrum of a cylinder"),
-    ("cylinder", dict(record="p695-ff/11", executor="local:2"), "executor", "not used by the spectrum of a cylinder"),
+    ("cylinder", dict(record="p695-ff/11", executor="local:0"), "executor", "local cluster"),
     ("cylinder", dict(record="p695-ff/11", polyakov=False), "polyakov", "not used by the spectrum of a cylinder"),
     ("cylinder", dict(), "record", "needs a record pair"),
     ("cylinder", dict(record="p695-ff/11,scale=nan"), "record", "scale"),

@@ -50,6 +50,24 @@ def test_progress_runs_the_same_points_in_blocks(monkeypatch):
         assert np.array_equal(getattr(whole, name), getattr(blocks, name)), name
 
 
+def test_an_executor_runs_the_same_points_in_blocks_of_rows():
+    """On an executor (two spawned worker processes, each with its own numba threads) the grid's blocks of
+    amplitude rows run there; every point is the same analysis as in this process, and the progress counts
+    every point once."""
+    from rockdesign.execution.executor import LocalExecutor
+    cyl = cylinder(3.0, 0.6)
+    pair = parse_pair("record:p695-ff/12").pair
+    R, levels = np.array([1.0, 4.0]), np.array([1.0, 2.0, 3.0, 4.0, 5.0])
+    here = cylinder_spectrum(cyl, pair, R, levels, free_vibration=2.0)
+    calls = []
+    with LocalExecutor(processes=2) as pool:
+        there = cylinder_spectrum(cyl, pair, R, levels, free_vibration=2.0, executor=pool,
+                                  progress=lambda d, n: calls.append((d, n)))
+    assert calls[-1] == (10, 10) and len(calls) == 5           # ⌈5 / (4 × 2)⌉ = 1 row per block
+    for name in ("theta_max_over_alpha", "overturned", "quasi_impacts"):
+        assert np.array_equal(getattr(here, name), getattr(there, name)), name
+
+
 def test_axes_and_errors():
     assert parse_cylinder_axis("R:0.5:30:60", "x")[1].size == 60
     assert parse_cylinder_axis("pga/up:1:6:51", "y")[1][-1] == 6.0
