@@ -155,7 +155,7 @@ def test_repeatable_options_may_repeat(tmp_path, monkeypatch):
 
 
 @pytest.mark.parametrize("extra,key", [
-    (["--pulse", "ricker-anti"], "--pulse"), (["--dask", "local:2"], "--dask"), (["--rtol", "1e-8"], "--rtol"),
+    (["--pulse", "ricker-anti"], "--pulse"), (["--rtol", "1e-8"], "--rtol"),
     (["--no-polyakov"], "--polyakov/--no-polyakov"), (["--equivalent-at", "2"], "--equivalent-at"),
     (["--t-free", "5"], "--t-free"), (["--model", "linear"], "--model"),
 ])

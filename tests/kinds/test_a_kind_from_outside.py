@@ -96,7 +96,7 @@ def test_front_door_design_chart(sliding_kind, tmp_path):
     path = tmp_path / "dam.toml"
     path.write_text(PROJECT + '[excitation]\nsuite = "p695-farfield"\n')
     out = tmp_path / "chart"
-    res = CliRunner().invoke(app, ["design", str(path), "--vary", "sliding_block.friction=0.15:0.45:4", "-o", str(out)])
+    res = CliRunner().invoke(app, ["design", str(path), "--vary", "sliding_block.friction=0.15:0.35:3", "-o", str(out)])
     data = json.loads((out / "design.json").read_text())
     g = 9.81
     suite = load_suite("p695-farfield", gravity=g).records
@@ -109,7 +109,7 @@ def test_front_door_design_chart(sliding_kind, tmp_path):
             worst[gm] = max(worst.get(gm, 0.0), sliding_displacement(accel, motion.dt, mu * g)[0])
         return sum(d > 0.05 for d in worst.values())
 
-    counts = [unacceptable(mu) for mu in (0.15, 0.25, 0.35, 0.45)]
+    counts = [unacceptable(mu) for mu in (0.15, 0.25, 0.35)]
     assert [c["n_unacceptable"] for c in data["cells"]] == counts
     assert [c["verdict"] for c in data["cells"]] == ["PASS" if k <= 1 else "FAIL" for k in counts]
     assert "PASS" in {c["verdict"] for c in data["cells"]} and "FAIL" in {c["verdict"] for c in data["cells"]}
