@@ -32,6 +32,8 @@ class Cylinder(StructureKind):
     """A cylinder cell's own numbers (:func:`rockdesign.cylinder.grid.grid_cell`): the pairs overturning up to the
     design level, the fraction overturning at it, the median θ_max/α, the uplift acceleration g·tan α, α, the
     overturning tilt θ_ot (Sec 5.5.1) and the mass; ``theta_c`` is empty (Eq 3.56 is the planar column's)."""
+    design_draws = ("the ensemble_size runs of the whole suite with each pair's amplitude × (1 ± 0.1 %) and the "
+                    "tolerances ÷ 10; no c_r: the cylinder's impacts follow from its geometry, thesis Sec 5.5.1")
     design_response = ("θ_max/θ_ot", "the peak tilt over the tilt θ_ot = overturn_tilt·α at which the cylinder counts "
                                      "as overturned (thesis Sec 5.5.1)")
     key_alternatives = {"height": ("half_height",), "half_height": ("height",), "diameter": ("slenderness",),

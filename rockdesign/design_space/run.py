@@ -212,13 +212,12 @@ def run_design(plan: DesignPlan, *, store=None, progress=None, stage_progress=No
                 "flip_margin": FLIP,
                 "tolerances": {k: t.as_json() for k, t in plan.tolerances.items()},
                 "tolerance_analyses": grid.analyses_run - before,
-                "robustness": ROBUSTNESS, "prefer": plan.prefer}
+                "robustness": ROBUSTNESS.format(draws=kind.design_draws), "prefer": plan.prefer}
     return DesignResult(plan.project, grid, rec, settings, warnings=list(grid.warnings) + list(plan.notes), plan=plan)
 
 
-ROBUSTNESS = ("a variant that passes at nominal values is run again under its check's perturbation draws (c_r − 2 % "
-              "and + 2 %, then the ensemble_size runs of the whole suite with the amplitude × (1 ± 0.1 %) per record, "
-              "c_r × (1 ± 2 %) and rtol ÷ 10; a cylinder: the ensemble runs), stopping at the first draw in which the "
+ROBUSTNESS = ("a variant that passes at nominal values is run again under its check's perturbation draws ({draws}), "
+              "stopping at the first draw in which the "
               "design-level acceptance rule fails: robust when every draw passes; an ACMR above its requirement by "
               "less than the scans' resolution (margin_precision + 0.1 %) is not robust")
 """How a cell's robustness is decided (design.json ``settings.robustness``)."""

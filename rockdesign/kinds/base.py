@@ -171,6 +171,9 @@ class StructureKind(abc.ABC):
     """The cell's median response ratio (design.json ``median_theta_max_over_theta_c``, the median of the runs'
     :attr:`~rockdesign.acceptance.outcome.Run.response_ratio`) in the report's words: (its symbol "θ_max/θc", what it
     is, citing the thesis)."""
+    design_draws: str = "the perturbation draws of the kind's check"
+    """What the design grid's robustness draws of a passing variant vary (:meth:`grid_draws`), in the words of
+    design.json ``settings.robustness``."""
     design_plane: Mapping[str, str] | None = None
     """Two of the kind's cell numbers the design report draws against each other, one mark per variant: ``x``,
     ``y`` (cell keys), ``x_label``, ``y_label``, ``caption``; None: no such figure."""

@@ -37,6 +37,8 @@ class Planar(StructureKind):
                       ("theta_c", "θc", "rad"), ("column_material", "material", "kg"))
     """A planar cell's own numbers (:func:`rockdesign.planar.grid.grid_cell`): the uplift acceleration and its base
     shear coefficient tan α (Eq 3.34), the rotation capacity θc (Eq 3.56) and the columns' mass."""
+    design_draws = ("c_r − 2 % and + 2 %, then the ensemble_size runs of the whole suite with the amplitude × "
+                    "(1 ± 0.1 %) per record, c_r × (1 ± 2 %) and rtol ÷ 10")
     design_response = ("θ_max/θc", "the peak rotation over the rotation capacity θc (Eq 3.56)")
     design_plane = {"x": "uplift_shear_coefficient", "y": "theta_c",
                     "x_label": "uplift base-shear coefficient tan α [-] (Eq 3.34)",

@@ -127,6 +127,7 @@ def test_front_door_design_chart(sliding_kind, tmp_path):
     header = (out / "design.csv").read_text().splitlines()[0]
     assert "critical_acceleration [m/s^2]" in header and "theta_c" not in header.replace("theta_c [-]", "")
     assert not {"column_material", "uplift_acceleration", "theta_c"} & set(data["cells"][0])
+    assert "(the amplitude × (1 ± 0.1 %))" in data["settings"]["robustness"] and "c_r" not in data["settings"]["robustness"]
     text = "".join(page.extract_text() for page in pypdf.PdfReader(str(out / "design.pdf")).pages)
     a_c = f"{first['critical_acceleration']:.4g} m/s²"             # the kind's column, with its unit
     assert "median umax/u" in text and a_c in text            # (the report sets "_max" as a subscript)

@@ -232,6 +232,7 @@ class SlidingBlock(StructureKind):
     design_columns = (("critical_acceleration", "a_c", "m/s^2"),)
     design_response = ("u_max/u_allowed", "the peak sliding displacement over the allowed displacement")
     design_material = ("material", "a block carries no superstructure")
+    design_draws = "the amplitude × (1 ± 0.1 %)"
 
     def grid_records_key(self, project):
         return project.excitation.suite
