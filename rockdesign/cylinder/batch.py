@@ -13,6 +13,7 @@ import time
 from collections.abc import Callable, Sequence
 
 from ..execution.counting import AnalysisCount
+from ..execution.executor import chunk_size
 from .engine import STATUS, simulate_cylinder
 from .kernel import ST_COMPLETED, ST_OVERTURNED
 
@@ -70,10 +71,6 @@ def run_pairs(cyl, a, jobs) -> list[tuple[PairRun, float, str]]:
 
 Job = tuple
 """One analysis of a batch: ``(pair, rtol, atol)`` (a tolerance None: the project's)."""
-CHUNKS_PER_SLOT = 4
-"""A batch goes to an executor in about this many chunks per slot (a worker's concurrent task): one 3D analysis
-takes milliseconds, a dask task's round trip about as long, so chunks keep the round trips few while the cores
-still finish together."""
 
 
 class PairRunner:
@@ -100,7 +97,7 @@ class PairRunner:
             finished = ((k, [run_pair(self.cyl, self.a, *job)]) for k, job in enumerate(jobs))
             first = list(range(len(jobs)))
         else:
-            size = -(-len(jobs) // (CHUNKS_PER_SLOT * max(1, int(getattr(self.executor, "slots", 1)))))
+            size = chunk_size(len(jobs), self.executor)
             first = list(range(0, len(jobs), size))
             self.executor.start()
             finished = self.executor.map(run_pairs, (self.cyl, self.a),
@@ -117,7 +114,3 @@ class PairRunner:
                 if done is not None:
                     done(count)
         return out
-
-    def one(self, pair, rtol: float | None = None, atol: float | None = None) -> PairRun:
-        """One analysis, in this process."""
-        return self([(pair, rtol, atol)])[0]

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit, prange
 
+from ..execution.executor import chunk_size
 from ..execution.scheduling import take, worker_count
 from ..errors import RockdesignError
 from .eom import parameters
@@ -104,22 +105,16 @@ PROGRESS_STEPS = 20
 kernel call each, so the bar moves; the points and their results are the same)."""
 
 
-def grid_rows(pars, scales, params0, sx, sy, t_end, t_exc_end, rtol, atol, seeds, theta_ot, quasi_tilt, rest,
-              restitution, ups) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """θ_max, overturned and quasi-impacts of a block of amplitude rows (``scales``) over every size: one parallel
-    kernel call on this process's numba threads — one task of an executor (module-level, callback-free)."""
+def grid_rows(pars, params0, sx, sy, t_end, t_exc_end, rtol, atol, seeds, theta_ot, quasi_tilt, rest, restitution,
+              ups, scales) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """θ_max, overturned and quasi-impacts of a block of amplitude rows (``scales``, last: an executor passes the
+    shared arguments first) over every size: one parallel kernel call on this process's numba threads — in this
+    process or as one task of an executor (module-level, callback-free)."""
     shape = (scales.size, pars.shape[0])
     theta, ot, qi = np.zeros(shape), np.zeros(shape, dtype=np.bool_), np.zeros(shape, dtype=np.int64)
     _grid(pars, scales, params0, sx, sy, t_end, t_exc_end, rtol, atol, seeds, theta_ot, quasi_tilt, rest,
           restitution, ups, theta, ot, qi, worker_count(theta.size))
     return theta, ot, qi
-
-
-def _rows_task(pars, _, params0, sx, sy, t_end, t_exc_end, rtol, atol, seeds, theta_ot, quasi_tilt, rest,
-               restitution, ups, scales):
-    """:func:`grid_rows` with the executor's argument order (the shared arguments first, the block last)."""
-    return grid_rows(pars, scales, params0, sx, sy, t_end, t_exc_end, rtol, atol, seeds, theta_ot, quasi_tilt, rest,
-                     restitution, ups)
 
 
 def cylinder_spectrum(cyl, pair, R_values, pga_over_up, *, rtol: float = 1e-10, atol: float = 1e-12,
@@ -151,27 +146,23 @@ def cylinder_spectrum(cyl, pair, R_values, pga_over_up, *, rtol: float = 1e-10, 
     ot = np.zeros((ny, nx), dtype=np.bool_)
     qi = np.zeros((ny, nx), dtype=np.int64)
     t0 = time.perf_counter()
-    common = (pars, None, np.array([1.0, pair.dt]), pair.x, pair.y, pair.duration + free_vibration, pair.duration,
+    common = (pars, np.array([1.0, pair.dt]), pair.x, pair.y, pair.duration + free_vibration, pair.duration,
               rtol, atol, seeds, cyl.theta_overturn, QUASI_IMPACT_TILT * alpha, rest,
               restitution_root(alpha) if cyl.damped else 1.0, ups)
     if executor is None:
         rows = ny if progress is None else max(1, math.ceil(ny / PROGRESS_STEPS))
-        for a in range(0, ny, rows):
-            b = min(ny, a + rows)
-            _grid(*common[:1], scales[a:b], *common[2:], theta[a:b], ot[a:b], qi[a:b], worker_count((b - a) * nx))
-            if progress is not None:
-                progress(b * nx, ny * nx)
+        blocks = ((k, grid_rows(*common, scales[a:a + rows])) for k, a in enumerate(range(0, ny, rows)))
     else:
-        rows = max(1, math.ceil(ny / (4 * max(1, int(getattr(executor, "slots", 1))))))
-        starts = list(range(0, ny, rows))
+        rows = chunk_size(ny, executor)
         executor.start()
-        done = 0
-        for k, (th, o, q) in executor.map(_rows_task, common, {k: (scales[a:a + rows],) for k, a in enumerate(starts)}):
-            a = starts[k]
-            theta[a:a + th.shape[0]], ot[a:a + th.shape[0]], qi[a:a + th.shape[0]] = th, o, q
-            done += th.size
-            if progress is not None:
-                progress(done, ny * nx)
+        blocks = executor.map(grid_rows, common, {k: (scales[a:a + rows],) for k, a in enumerate(range(0, ny, rows))})
+    done = 0
+    for k, (th, o, q) in blocks:
+        a = k * rows
+        theta[a:a + th.shape[0]], ot[a:a + th.shape[0]], qi[a:a + th.shape[0]] = th, o, q
+        done += th.size
+        if progress is not None:
+            progress(done, ny * nx)
     seconds = time.perf_counter() - t0
     ratio = np.where(ot, cyl.overturn_tilt, theta / alpha)
     return CylinderSpectrum(R_values, np.asarray(pga_over_up, dtype=float), ratio, ot, qi, seconds,

@@ -310,6 +310,17 @@ def check_executor(executor, *, text: bool = True, reach: bool = True) -> None:
                         found=f"{executor!r} ({type(executor).__name__})")
 
 
+CHUNKS_PER_SLOT = 4
+"""A batch goes to an executor in about this many chunks per slot (a worker's concurrent task): few round trips
+(a dask task's is about as long as one short analysis), while the slots still finish together."""
+
+
+def chunk_size(n: int, executor) -> int:
+    """Items per chunk when ``n`` items go to ``executor`` (:data:`CHUNKS_PER_SLOT` chunks per slot; an executor
+    without ``slots`` counts as one)."""
+    return max(1, -(-n // (CHUNKS_PER_SLOT * max(1, int(getattr(executor, "slots", 1) or 1)))))
+
+
 def make_executor(dask: str | None = None, *, processes: int = 0, warm_up: Callable[[], object] | None = None,
                   numba_threads: int | None = None):
     """The executor for a CLI ``--dask`` value: None → :class:`LocalExecutor`, else :class:`DaskExecutor` (an

@@ -74,9 +74,9 @@ class SharedBatches:
     def _run(self, table, motions, scales, t_ends, opts, systems):
         if self.executor is None:
             return run_batch(table, motions, scales, t_ends, opts, systems=systems)
-        from ...execution.executor import run_chunks
+        from ...execution.executor import chunk_size, run_chunks
         n = len(motions)
-        size = max(1, -(-n // (4 * max(1, int(getattr(self.executor, "slots", 1) or 1)))))
+        size = chunk_size(n, self.executor)
         tasks = [(motions[a:a + size], scales[a:a + size], t_ends[a:a + size], systems[a:a + size])
                  for a in range(0, n, size)]
         run = run_chunks(shared_rows, tasks, common=(table, np.asarray(opts)), executor=self.executor)
