@@ -30,7 +30,6 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from rockdesign.cylinder.check import run_cylinder_check  # noqa: E402
-from rockdesign.execution.counting import AnalysisCount  # noqa: E402
 from rockdesign.execution.executor import LocalExecutor, make_executor  # noqa: E402
 from rockdesign.library import load_project  # noqa: E402
 
@@ -45,11 +44,12 @@ def essence(result) -> dict:
 def timed(project, executor, repeats: int) -> tuple[list[float], dict, int]:
     times, out, analyses = [], None, 0
     for _ in range(repeats):
-        before = AnalysisCount.total
+        counter = executor if executor is not None else LocalExecutor()    # None: this process
+        before = counter.analyses
         t0 = time.perf_counter()
-        result = run_cylinder_check(project, executor=executor)
+        result = run_cylinder_check(project, executor=counter)
         times.append(time.perf_counter() - t0)
-        analyses = AnalysisCount.total - before
+        analyses = counter.analyses - before
         out = essence(result)
     return times, out, analyses
 

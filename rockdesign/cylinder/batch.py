@@ -12,8 +12,7 @@ import dataclasses
 import time
 from collections.abc import Callable, Sequence
 
-from ..execution.counting import AnalysisCount
-from ..execution.executor import chunk_size
+from ..execution.executor import LocalExecutor, chunk_size
 from .engine import STATUS, simulate_cylinder
 from .kernel import ST_COMPLETED, ST_OVERTURNED
 
@@ -82,32 +81,40 @@ class PairRunner:
             (:func:`rockdesign.execution.executor.is_executor`): the batch's analyses are mapped over it.
         note: ``note(pair name, text)`` for an analysis slower than :data:`SLOW_RUN_SECONDS`.
 
-    Every analysis is counted in this process (:class:`~rockdesign.execution.counting.AnalysisCount`), where it
-    ran; ``analyses`` counts this runner's."""
+    Every analysis is counted on the executor it ran through (``executor.count``; ``analyses``)."""
 
     def __init__(self, cyl, a, *, executor=None, note: Callable[[str, str], None] | None = None):
-        self.cyl, self.a, self.executor, self.note = cyl, a, executor, note
-        self.analyses = 0
+        self.cyl, self.a, self.note = cyl, a, note
+        self.executor = executor if executor is not None else LocalExecutor()
+
+    @property
+    def analyses(self) -> int:
+        """The analyses counted on this runner's executor."""
+        return self.executor.analyses
+
+    def count(self, n: int) -> None:
+        """Count ``n`` analyses run here beside the batches (e.g. the planar runs along a pair's components)."""
+        self.executor.count(n)
 
     def __call__(self, jobs: Sequence[Job], done: Callable[[int], None] | None = None) -> list[PairRun]:
         """The runs of ``jobs`` in their order; ``done(k)`` after each k-th analysis ends (in completion order)."""
         jobs = [tuple(j) + (None,) * (3 - len(j)) for j in jobs]
         out: list = [None] * len(jobs)
-        if self.executor is None or not jobs:
-            finished = ((k, [run_pair(self.cyl, self.a, *job)]) for k, job in enumerate(jobs))
-            first = list(range(len(jobs)))
-        else:
-            size = chunk_size(len(jobs), self.executor)
-            first = list(range(0, len(jobs), size))
-            self.executor.start()
-            finished = self.executor.map(run_pairs, (self.cyl, self.a),
-                                         {c: (jobs[start:start + size],) for c, start in enumerate(first)})
+        if not jobs:
+            return out
+        # one analysis runs on one core: one per task on a single slot (this process; the progress moves with
+        # each), a few chunks per slot elsewhere (execution.executor.chunk_size)
+        slots = max(1, int(getattr(self.executor, "slots", 1) or 1))
+        size = 1 if slots == 1 else chunk_size(len(jobs), self.executor)
+        first = list(range(0, len(jobs), size))
+        self.executor.start()
+        finished = self.executor.map(run_pairs, (self.cyl, self.a),
+                                     {c: (jobs[start:start + size],) for c, start in enumerate(first)})
         count = 0
         for c, results in finished:
+            self.executor.count(len(results))
             for k, (run, seconds, reason) in enumerate(results, start=first[c]):
                 out[k] = run
-                AnalysisCount.add(1)
-                self.analyses += 1
                 count += 1
                 if self.note is not None and reason:
                     self.note(jobs[k][0].name, f"{seconds:.1f} s, {reason}")

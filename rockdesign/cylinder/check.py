@@ -51,7 +51,6 @@ from .margins import pair_fragility, pair_margins, pair_need
 from ..acceptance.collapse_margin import collapse_margin
 from ..acceptance.scans import SCAN_RATIO, Margin
 from .ensemble import suite_ensembles
-from ..execution.counting import AnalysisCount
 from ..acceptance.statistics import overturning_probability
 
 GOVERNING_PAIRS = 2
@@ -157,7 +156,6 @@ def _planar_component(block, samples, dt, a) -> dict:
     motion = record_motion("component", samples, dt)
     r = simulate(block, motion, model="exact", rtol=a.rtol, atol=a.atol, t_end=motion.duration + a.free_vibration,
                  overturn="static", rest_velocity=a.rest_velocity)
-    AnalysisCount.add(1)
     return {"theta_max_over_alpha": r.theta_max_over_alpha, "overturned": bool(r.overturned), "impacts": r.impacts}
 
 
@@ -365,6 +363,7 @@ def run_cylinder_check(project, progress=None, margins: bool = True, *, records:
         if not verdict_only:
             for comp, accel in zip(("x", "y"), sp.accel[i]):
                 planar[comp] = _planar_component(block, accel, pair.dt, a)
+                runner.count(1)
             if progress is not None:
                 progress(stage, (len(pairs) + i + 1) // 2, len(pairs))
         ratios = [sd / (2.0 * cyl.base_radius) for sd in sp.sd_max[i]]

@@ -80,13 +80,13 @@ class VariantChecker:
 
     def check(self, task: Task, progress, executor) -> dict:
         """The cell of one variant's check (stored for a resumed run when the task has a store)."""
-        from ..execution.batch_pool import PoolMember
-        from ..execution.counting import AnalysisCount
-        before = AnalysisCount.total
+        from ..execution.executor import LocalExecutor
+        executor = executor if executor is not None else LocalExecutor()    # this process; it counts the analyses
+        before = executor.analyses
         variant, kind = task.variant, task.kind
 
-        def analyses() -> int:     # variants checked together count on their pool member
-            return executor.analyses if isinstance(executor, PoolMember) else AnalysisCount.total - before
+        def analyses() -> int:     # counted on the executor the check ran through (a pool member: this variant's)
+            return executor.analyses - before
         try:
             result = kind.grid_check(variant.project, records=task.records, records_dir=self.records_dir,
                                      executor=executor, progress=progress)

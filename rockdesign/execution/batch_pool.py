@@ -3,7 +3,7 @@ driver while every one of them waits (the design grid, SPEC §15).
 
 The design grid checks each variant in a thread of its own (:mod:`rockdesign.design_space.grid`) and passes
 each one a :class:`PoolMember` as the executor of its check.  Every batch a variant's check asks for comes to
-:meth:`PoolMember.run` and waits until every running member waits too; then the grid's own thread
+:meth:`PoolMember.map` (the executor protocol every kind accepts) and waits until every running member waits too; then the grid's own thread
 (:meth:`BatchPool.serve`) hands all waiting batches to the kind's ``execute(requests)`` (the planar kind:
 one call of its batch driver over the jobs of every variant, :mod:`rockdesign.planar.dynamics.shared_batches`)
 and gives each member its own rows back.  A check's own Python work (model selection, criteria) runs between
@@ -23,7 +23,10 @@ from __future__ import annotations
 
 import threading
 from contextlib import contextmanager
-from typing import Callable
+from dataclasses import dataclass
+from typing import Callable, Iterator
+
+from .counting import Counted
 
 
 class PoolCancelled(RuntimeError):
@@ -37,25 +40,57 @@ class _Waiting:
         self.request, self.result, self.error, self.done = request, None, None, False
 
 
-class PoolMember:
-    """One member's door to the pool: the executor a variant's check runs its batches through.  ``analyses``
-    counts the analyses the member's check asked for (the design grid's per-variant count)."""
+@dataclass(frozen=True)
+class SharedCall:
+    """What a member asks the pool for: ``func(*common, *args)`` for every ``args`` of ``tasks`` (``{index: args}``),
+    one :meth:`PoolMember.map` call.  The pool's ``execute`` may merge the calls of a kind's batch function into
+    one call of its driver, and runs any other call as given (:func:`run_call`)."""
+
+    func: Callable
+    common: tuple
+    tasks: dict
+
+
+def run_call(call: SharedCall) -> dict:
+    """``{index: func(*common, *args)}`` of a :class:`SharedCall`, in this thread, task after task."""
+    return {i: call.func(*call.common, *args) for i, args in call.tasks.items()}
+
+
+class PoolMember(Counted):
+    """One member's door to the pool: the executor a variant's check runs its batches through (the executor
+    protocol, :data:`~rockdesign.execution.executor.EXECUTOR_METHODS`).  ``map`` hands the batch to the pool as
+    one :class:`SharedCall` and waits for its round; ``analyses`` counts the analyses the member's check ran
+    (the design grid's per-variant count)."""
+
+    slots = 1
+    """A member's batch runs in this process, in the pool owner's thread (the kind's driver uses the cores)."""
 
     def __init__(self, pool: "BatchPool"):
         self.pool = pool
-        self.analyses = 0
 
-    def run(self, request):
-        """The result of ``request`` (a batch of the kind's), computed by the pool's owner together with the
-        other members' waiting requests."""
-        return self.pool._run(request)
+    def start(self) -> None:
+        """Nothing to start: the pool's owner serves the rounds."""
+
+    def close(self) -> None:
+        """Nothing to close: the member ends with its ``with`` block (:meth:`BatchPool.member`)."""
+
+    def describe(self) -> dict:
+        """What the executor is (for results and logs)."""
+        return {"executor": "shared batches"}
+
+    def map(self, func, common: tuple, tasks: dict) -> Iterator[tuple[int, object]]:
+        """Yield ``(index, func(*common, *tasks[index]))`` for every task, computed in one round of the pool together
+        with the other members' waiting batches."""
+        results = self.pool._run(SharedCall(func, tuple(common), dict(tasks)))
+        for i in tasks:
+            yield i, results[i]
 
 
 class BatchPool:
     """A barrier that merges the requests of its members (see module docstring), served by one owner thread.
 
-    ``execute(requests) -> results`` runs a round of requests (one result per request, in order; an exception
-    goes to every member of the round).  ``rounds`` and ``requests`` count the rounds served and the requests
+    ``execute(requests) -> results`` runs a round of requests (:class:`SharedCall`; one result per request, in
+    order: ``{index: result}``; an exception goes to every member of the round).  ``rounds`` and ``requests`` count the rounds served and the requests
     asked for; ``execute`` may keep its own counts (driver calls, jobs).
 
     The owner makes the pool for ``members`` pieces of work, runs them in threads (each inside :meth:`member`;
@@ -147,4 +182,4 @@ class BatchPool:
         self.rounds += 1
 
 
-__all__ = ["BatchPool", "PoolCancelled", "PoolMember"]
+__all__ = ["BatchPool", "PoolCancelled", "PoolMember", "SharedCall", "run_call"]

@@ -1,20 +1,27 @@
-"""How many analyses ran: one counter shared by every kind's check (the design grid reports what each variant
-ran and what shared work saved; variants that share batches count theirs on their
-:class:`~rockdesign.execution.batch_pool.PoolMember`)."""
+"""How many analyses ran, counted on the executor they ran through (the executor protocol's ``count``).
+
+Every executor (:class:`~rockdesign.execution.executor.LocalExecutor`, :class:`~rockdesign.execution.executor.DaskExecutor`,
+the design grid's :class:`~rockdesign.execution.batch_pool.PoolMember`) is :class:`Counted`: a kind's check calls
+``executor.count(n)`` for the analyses it hands to it, so whoever passed the executor reads what its work cost
+(the design grid: each variant's ``analyses``) — no count shared by the whole process.
+"""
 from __future__ import annotations
 
 import threading
 
 
-class AnalysisCount:
-    """Analyses run in this process (``total``): record × scale jobs of the planar check's runs, and the
-    cylinder check's (one per record pair run in 3D or per component in the plane)."""
+class Counted:
+    """``analyses``: the analyses counted on this object (:meth:`count`; thread-safe)."""
 
-    total = 0
-    _lock = threading.Lock()
+    analyses: int = 0
 
-    @classmethod
-    def add(cls, n: int) -> None:
-        """Count ``n`` analyses."""
-        with cls._lock:
-            cls.total += n
+    def count(self, n: int) -> None:
+        """Count ``n`` analyses run through this executor."""
+        lock = self.__dict__.get("_count_lock")
+        if lock is None:
+            lock = self.__dict__.setdefault("_count_lock", threading.Lock())
+        with lock:
+            self.analyses = self.analyses + int(n)
+
+
+__all__ = ["Counted"]

@@ -40,6 +40,7 @@ from typing import Callable, Iterator, Sequence
 
 import numpy as np
 
+from .counting import Counted
 from .address import (HANDSHAKE_TIMEOUT, PROBE_TIMEOUT, SCHEMES, ExecutorError, check_address,  # noqa: F401
                       is_local, probe_scheduler, reach_scheduler, require_dask, tls_hint)
 from .store import ChunkResult, ChunkStore, fingerprint  # noqa: F401  (re-exported: the executor's API)
@@ -81,7 +82,7 @@ def _pool_initializer(numba_threads, warm_up):
         warm_up()
 
 
-class LocalExecutor:
+class LocalExecutor(Counted):
     """Run chunks on this machine.
 
     Args:
@@ -160,7 +161,7 @@ def _noop(_):
     return None
 
 
-class DaskExecutor:
+class DaskExecutor(Counted):
     """Run chunks on a dask.distributed cluster.
 
     Args:
@@ -278,8 +279,12 @@ def _noop_func():
     return None
 
 
-EXECUTOR_METHODS = ("start", "map", "close", "describe")
-"""What an executor object has (:class:`LocalExecutor`, :class:`DaskExecutor`, or one of the user's)."""
+EXECUTOR_METHODS = ("start", "map", "close", "describe", "count")
+"""The executor protocol every kind's check accepts (:class:`LocalExecutor`, :class:`DaskExecutor`, the design
+grid's :class:`~rockdesign.execution.batch_pool.PoolMember`): ``start()``; ``map(func, common, tasks)`` runs a batch —
+``func(*common, *tasks[i])`` for every task, yielding ``(i, result)`` as they complete; ``count(n)`` counts the
+analyses a caller ran through it (``analyses``, :class:`~rockdesign.execution.counting.Counted`); ``slots`` (how
+many tasks run at once; 1 when absent), ``describe()`` and ``close()``."""
 HOW_TO_MAKE = ("None (this machine), a dask value such as 'local:4' or 'tcp://host:8786', or an executor: "
                "rockdesign.make_executor('tcp://host:8786')")
 

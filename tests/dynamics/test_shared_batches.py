@@ -12,7 +12,8 @@ import pytest
 from support import G, reference_podium, table34_column
 from rockdesign.planar.dynamics.batch import batch_options, run_batch
 from rockdesign.execution.batch_pool import BatchPool, PoolCancelled, PoolMember
-from rockdesign.planar.dynamics.shared_batches import BatchRequest, SharedBatches
+from rockdesign.execution.executor import is_executor
+from rockdesign.planar.dynamics.shared_batches import BatchRequest, SharedBatches, batch_rows
 from rockdesign.planar.dynamics.model import ModelChoice, system_parameters
 from rockdesign.motions.motion import pulse_motion
 
@@ -31,7 +32,7 @@ def _members(pool, work, threads=None):
     def body(k):
         try:
             with pool.member() as member:
-                assert isinstance(member, PoolMember) and member.pool is pool
+                assert isinstance(member, PoolMember) and member.pool is pool and is_executor(member)
                 results[k] = work[k](member)
         except BaseException as exc:      # noqa: BLE001 — re-raised in the test's thread
             errors.append(exc)
@@ -60,6 +61,13 @@ def _members(pool, work, threads=None):
     return results
 
 
+def _batch(member, sp, motions, opts):
+    """One batch through the executor protocol (as a planar check hands it out): (summaries, diagnostics)."""
+    n = len(motions)
+    (_, rows), = member.map(batch_rows, (sp, opts), {0: (motions, [1.0] * n, [5.0] * n, [5.0] * n)})
+    return rows
+
+
 def test_members_batches_run_together_and_each_gets_its_own_result():
     sps = _systems()
     motions = [pulse_motion("ricker-anti", a * G, 0.95) for a in (0.25, 0.3, 0.38, 0.5)]
@@ -76,8 +84,7 @@ def test_members_batches_run_together_and_each_gets_its_own_result():
             out = []
             for k, (system, picks, opts) in enumerate(plan):
                 time.sleep(0.01 * k)
-                out.append(member.run(BatchRequest(sps[system], [motions[i] for i in picks], [1.0] * len(picks),
-                                                   [5.0] * len(picks), opts, [5.0] * len(picks))))
+                out.append(_batch(member, sps[system], [motions[i] for i in picks], opts))
             return out
         return work
 
@@ -101,7 +108,7 @@ def test_a_lone_member_runs_at_once():
     motion = pulse_motion("ricker-anti", 0.38 * G, 0.95)
     shared = SharedBatches()
     pool = BatchPool(1, shared)
-    (s, _), = _members(pool, [lambda m: m.run(BatchRequest(sp, [motion], [1.0], [5.0], batch_options(), [5.0]))])
+    (s, _), = _members(pool, [lambda m: _batch(m, sp, [motion], batch_options())])
     assert shared.calls == 1 and pool.rounds == 1
     np.testing.assert_array_equal(s, run_batch(sp, [motion], [1.0], [5.0], batch_options())[0])
 
@@ -116,7 +123,7 @@ def test_cancel_wakes_a_waiting_member():
 
     def waiting(member):
         busy.wait(timeout=60)           # the other member is in: this batch waits for it
-        return member.run(BatchRequest(sp, [motion], [1.0], [5.0], batch_options(), [5.0]))
+        return _batch(member, sp, [motion], batch_options())
 
     def other(member):        # a member that never asks for a batch keeps the first one waiting
         busy.set()
@@ -143,8 +150,16 @@ def test_shared_calls_on_an_executor_equal_the_calls_in_this_process():
     requests = [BatchRequest(sps[k], motions[k:], [1.0] * (4 - k), [5.0] * (4 - k), opts, [5.0] * (4 - k))
                 for k in range(3)]
     chunked = SharedBatches(LocalExecutor())
-    for req, (s, d) in zip(requests, chunked(requests)):
+    for req, (s, d) in zip(requests, chunked.requests(requests)):
         s_alone, d_alone = run_batch(req.sp, req.motions, req.scales, req.t_ends, opts, threads=False)
         np.testing.assert_array_equal(s, s_alone)
         np.testing.assert_array_equal(d, d_alone)
     assert chunked.calls == 1 and chunked.jobs == 4 + 3 + 2
+
+
+def test_a_call_the_kind_cannot_merge_runs_as_given():
+    """A member is an executor for any batch function: a call SharedBatches does not merge runs as given."""
+    shared = SharedBatches()
+    pool = BatchPool(1, shared)
+    got, = _members(pool, [lambda m: dict(m.map(divmod, (17,), {0: (5,), 1: (3,)}))])
+    assert got == {0: (3, 2), 1: (5, 2)} and shared.calls == 0 and pool.rounds == 1

@@ -4,20 +4,17 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numba
 import numpy as np
 
 from ..design.geometry import displacement_capacity, slenderness_angle
-from ..dynamics.batch import batch_options, run_batch
-from ..dynamics.shared_batches import BatchRequest
+from ..dynamics.batch import batch_options
+from ..dynamics.shared_batches import balanced_order, batch_rows  # noqa: F401  (balanced_order: re-exported)
 from ..dynamics.layout import (COMPLETED_STATUSES, D_STATUS, STATUS_NAMES, S_CAP_ACC_MAX, S_CAP_DV_MAX, S_DRIFT_MAX, S_FS_MAX, S_IMPACTS,
                                 S_THETA_MAX, S_T_END, S_T_UPLIFT, S_UB_MAX, S_UPLIFT_TIME)
 from ..dynamics.model import ModelChoice, system_parameters
 from ..dynamics.eom import P_CR, P_THETA_C, P_TWO_DOF
 from ..dynamics.overturning import classify
-from ...execution.batch_pool import PoolMember
-from ...execution.counting import AnalysisCount  # noqa: F401 (re-exported)
-from ...execution.executor import usable_cores
+from ...execution.executor import LocalExecutor, chunk_size, usable_cores
 from ..system import RockingSystem
 
 
@@ -110,53 +107,30 @@ def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rto
     alpha = slenderness_angle(system.column.half_width, system.column.half_height)
     capacity = displacement_capacity(system.column)
     n = len(motions)
-    AnalysisCount.add(n)
-    member = executor if isinstance(executor, PoolMember) else None   # the design grid's shared batches
-    if member is not None:
-        member.analyses += n
-        executor = None
+    runner = executor if executor is not None else LocalExecutor()
+    runner.count(n)
     t_ends = [m.duration + free_vibration for m in motions]
-    out: list[RunSummary] = []
-    step = chunk or max(4 * usable_cores(), 8)
-    if executor is not None:
-        from ..dynamics.parallel import run_motions
-        done = [0]
-
-        def on_chunk(k):
-            done[0] += k
-            if progress is not None:
-                progress(done[0])
-
-        summaries, diags = run_motions(sp, list(motions), list(scales), t_ends, opts, executor=executor,
-                                       chunk_jobs=step, progress=on_chunk)
-        return [interpret(summaries[j], diags[j, D_STATUS], theta_c, alpha, capacity, criterion, two_dof)
-                for j in range(n)]
-    threads = numba.get_num_threads()     # the batch driver's threads
     predicted = list(t_ends if costs is None else costs)
-    for start in range(0, n, step):
-        sl = slice(start, min(n, start + step))
-        ms, fs, ts = list(motions[sl]), list(scales[sl]), t_ends[sl]
-        order = balanced_order(list(predicted[sl]), threads)
-        jobs = ([ms[k] for k in order], [fs[k] for k in order], [ts[k] for k in order])
-        if member is not None:    # the design grid: run with the other variants' waiting batches
-            summaries, diags = member.run(BatchRequest(sp, *jobs, opts, [predicted[sl][k] for k in order]))
-        else:
-            summaries, diags = run_batch(sp, *jobs, opts)
-        rows = [None] * len(order)
-        for j, k in enumerate(order):
-            rows[k] = interpret(summaries[j], diags[j, D_STATUS], theta_c, alpha, capacity, criterion, two_dof)
-        out.extend(rows)
+    step = chunk or jobs_per_chunk(n, runner)
+    bounds = [(a, min(n, a + step)) for a in range(0, n, step)]
+    motions, scales = list(motions), list(scales)
+    tasks = {c: (motions[a:b], scales[a:b], t_ends[a:b], predicted[a:b]) for c, (a, b) in enumerate(bounds)}
+    out: list = [None] * n
+    done = 0
+    for c, (summaries, diags) in runner.map(batch_rows, (sp, opts), tasks):
+        a, b = bounds[c]
+        for j in range(b - a):
+            out[a + j] = interpret(summaries[j], diags[j, D_STATUS], theta_c, alpha, capacity, criterion, two_dof)
+        done += b - a
         if progress is not None:
-            progress(len(out))
+            progress(done)
     return out
 
 
-def balanced_order(costs, threads: int) -> list[int]:
-    """The order to hand a batch's jobs to the batch driver's threads: longest predicted ``costs`` first
-    (ties in job order).  The threads take the next job as they finish one (:mod:`rockdesign.execution.scheduling`),
-    so the batch ends at most one short job after its work is shared out — longest-processing-time-first
-    list scheduling, within 4/3 of the best split.  One thread keeps the jobs' own order."""
-    n = len(costs)
-    if threads < 2 or n < 2:
-        return list(range(n))
-    return sorted(range(n), key=lambda k: (-costs[k], k))
+def jobs_per_chunk(n: int, executor) -> int:
+    """Jobs per task when ``n`` jobs go to ``executor``: on one slot (this process, a design grid's pool member)
+    chunks of 4 jobs per core, at least 8 — the batch driver shares each chunk over numba's threads and the
+    progress moves; on more slots :func:`~rockdesign.execution.executor.chunk_size` (a few chunks per slot)."""
+    if max(1, int(getattr(executor, "slots", 1) or 1)) == 1:
+        return max(4 * usable_cores(), 8)
+    return chunk_size(n, executor)

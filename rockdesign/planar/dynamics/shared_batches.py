@@ -1,15 +1,42 @@
-"""The planar kind's shared batches: a round of batch requests of many design variants run as one call of the
-batch driver (:func:`~.batch.run_batch` with ``systems``), longest predicted job first; each request gets its
-own rows back (:class:`rockdesign.execution.batch_pool.BatchPool` serves the rounds).  Requests with other
-integrator options (``opts``) run as separate calls of the same round.  On an executor (a dask cluster) the
-merged jobs of a round go to the cluster in chunks, all at once: the variants run concurrently there."""
+"""The planar kind's shared batches: a round of batches of many design variants run as one call of the batch
+driver (:func:`~.batch.run_batch` with ``systems``), longest predicted job first; each batch gets its own rows
+back (:class:`rockdesign.execution.batch_pool.BatchPool` serves the rounds).  A variant's check maps
+:func:`batch_rows` over its executor (the executor protocol); on a pool member those calls come here and are
+merged, any other call runs as given.  Batches with other integrator options (``opts``) run as separate calls of
+the same round.  On an executor (a dask cluster) the merged jobs of a round go to the cluster in chunks, all at
+once: the variants run concurrently there."""
 from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 
 from .batch import run_batch
+from ...execution.batch_pool import SharedCall, run_call
+
+
+def balanced_order(costs, threads: int) -> list[int]:
+    """The order to hand a batch's jobs to the batch driver's threads: longest predicted ``costs`` first
+    (ties in job order).  The threads take the next job as they finish one (:mod:`rockdesign.execution.scheduling`),
+    so the batch ends at most one short job after its work is shared out — longest-processing-time-first
+    list scheduling, within 4/3 of the best split.  One thread keeps the jobs' own order."""
+    n = len(costs)
+    if threads < 2 or n < 2:
+        return list(range(n))
+    return sorted(range(n), key=lambda k: (-costs[k], k))
+
+
+def batch_rows(sp: np.ndarray, opts: np.ndarray, motions, scales, t_ends, costs) -> tuple[np.ndarray, np.ndarray]:
+    """One system's batch of jobs (``motions[i]`` × ``scales[i]`` until ``t_ends[i]`` [s]): :func:`~.batch.run_batch`
+    with the longest predicted ``costs`` first (:func:`balanced_order`); (summaries, diagnostics) in job order.
+    The function a planar check maps over its executor; :class:`SharedBatches` merges the calls of many checks."""
+    order = balanced_order(list(costs), numba.get_num_threads())
+    summaries, diags = run_batch(sp, [motions[k] for k in order], [scales[k] for k in order],
+                                 [t_ends[k] for k in order], opts)
+    s, d = np.empty_like(summaries), np.empty_like(diags)
+    s[order], d[order] = summaries, diags
+    return s, d
 
 
 @dataclass
@@ -24,6 +51,14 @@ class BatchRequest:
     opts: np.ndarray
     costs: list
 
+    @classmethod
+    def of(cls, common: tuple, args: tuple) -> "BatchRequest":
+        """The request of one task of a :func:`batch_rows` call: ``common`` = (sp, opts), ``args`` = (motions,
+        scales, t_ends, costs)."""
+        sp, opts = common
+        motions, scales, t_ends, costs = args
+        return cls(sp, list(motions), list(scales), list(t_ends), opts, list(costs))
+
 
 class SharedBatches:
     """``execute(requests) -> [(summaries, diagnostics), …]`` for a :class:`~rockdesign.execution.batch_pool.BatchPool`;
@@ -36,7 +71,26 @@ class SharedBatches:
         self.jobs = 0
         self.executor = executor
 
-    def __call__(self, requests: list[BatchRequest]) -> list[tuple[np.ndarray, np.ndarray]]:
+    def __call__(self, calls: list[SharedCall]) -> list[dict]:
+        """The results of a round of members' calls (``{task index: result}`` each): the tasks of every
+        :func:`batch_rows` call merged (:meth:`requests`), any other call run as given."""
+        results: list[dict] = [{} for _ in calls]
+        owners, requests = [], []
+        for c, call in enumerate(calls):
+            if call.func is batch_rows:
+                for i, args in call.tasks.items():
+                    owners.append((c, i))
+                    requests.append(BatchRequest.of(call.common, args))
+            else:
+                results[c] = run_call(call)
+        for (c, i), rows in zip(owners, self.requests(requests)):
+            results[c][i] = rows
+        return results
+
+    def requests(self, requests: list[BatchRequest]) -> list[tuple[np.ndarray, np.ndarray]]:
+        """(summaries, diagnostics) of each request, in order, from as few driver calls as their options allow."""
+        if not requests:
+            return []
         groups: dict[bytes, list[int]] = {}
         for k, req in enumerate(requests):
             groups.setdefault(np.asarray(req.opts, dtype=np.float64).tobytes(), []).append(k)

@@ -24,7 +24,6 @@ from rockdesign.acceptance.criterion_base import CheckContext
 from rockdesign.acceptance.overturning_criteria import UnacceptableResponses
 from rockdesign.acceptance.rule import ground_motion_table
 from rockdesign.errors import ProjectError, RockdesignError
-from rockdesign.execution.counting import AnalysisCount
 from rockdesign.kinds.base import StructureKind
 from rockdesign.motions.grouping import ground_motion_id
 from rockdesign.motions.library import load_record
@@ -247,7 +246,8 @@ class SlidingBlock(StructureKind):
             accel = motion.samples * (amplitude * b.design_pga / float(np.max(np.abs(motion.samples))))
             peak, _ = sliding_displacement(accel, motion.dt, b.critical_acceleration)
             outcomes.append(Outcome(rid, ground_motion_id(rid, meta), Run(peak, b.allowed)))
-        AnalysisCount.add(len(outcomes))
+        if executor is not None:
+            executor.count(len(outcomes))      # the executor protocol: the analyses it ran
         ctx = CheckContext(outcomes, project.analysis, margins_run=False)
         items, skipped = evaluate_criteria(ctx, [AnalysesCompleted, UnacceptableResponses])
         verdict = decide(items, skipped, rule=ctx.rule)
