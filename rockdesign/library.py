@@ -34,7 +34,7 @@ from .execution import compilation
 from .errors import ProjectError, RockdesignError
 from .execution.executor import check_executor, running_on
 from .kinds import kind_of, parse_document
-from .kinds.base import CheckResult, SimulationResult, SpectrumOptions, SpectrumResult
+from .kinds.base import CheckResult, SimulationRequest, SimulationResult, SpectrumOptions, SpectrumResult
 from .outdir import OutputFolder
 from .paths import require_path
 from .progress import progress_bars
@@ -153,7 +153,7 @@ def write_capacity_curve(project: Project, path) -> None:
 
 # --- one time-history analysis -------------------------------------------------------------------
 def simulation_request(project: Project, motion, *, model: str = "auto", t_end: float | None = None,
-                       rtol: float | None = None, records_dir: str | Path | None = None):
+                       rtol: float | None = None, records_dir: str | Path | None = None) -> SimulationRequest:
     """Parse a CONTRACT §2 motion string (or take a motion object) and validate the whole request, analysing
     (and compiling) nothing: bad input is reported at once, also on a first run."""
     _require_project(project, "simulate")
@@ -169,7 +169,7 @@ def simulation_request(project: Project, motion, *, model: str = "auto", t_end: 
         raise
 
 
-def run_simulation(request, *, say=None):
+def run_simulation(request: SimulationRequest, *, say=None) -> SimulationResult:
     """Analyse a validated request (:func:`simulation_request`).  With ``say`` (a print function) the
     kernels are compiled first on a first run, and that is announced."""
     kind = kind_of(request.project)
@@ -225,7 +225,7 @@ def prepare_check(project: Project, *, records_dir=None, say=None) -> None:
 
 
 def run_check(project: Project, *, progress: bool = False, records_dir=None, margins: bool = True,
-              executor=None):
+              executor=None) -> CheckResult:
     """The design check (see :func:`check`); ``executor`` may also be a ``--dask`` value ("local:N" or a
     scheduler address), started and closed here."""
     kind = kind_of(project)

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import contextlib
 import time
+from collections.abc import Callable, Iterator
 
 from rich.console import Console
 from rich.markup import escape
@@ -60,7 +61,7 @@ class _PlainStages:
 
 
 @contextlib.contextmanager
-def progress_bars(console: Console | None = None, *, disable: bool = False):
+def progress_bars(console: Console | None = None, *, disable: bool = False) -> Iterator[Callable[[str, int, int], None]]:
     """Yield ``progress(stage, done, total)``: one bar per stage, every bar shown complete at the end; plain
     lines (see module docstring) when ``console`` (default: stderr) is not a terminal."""
     console = console or make_console(stderr=True)
@@ -92,7 +93,7 @@ def progress_bars(console: Console | None = None, *, disable: bool = False):
 
 
 @contextlib.contextmanager
-def working(text: str, console: Console | None = None):
+def working(text: str, console: Console | None = None) -> Iterator[None]:
     """A spinner with ``text`` in a terminal, elsewhere a plain line ``text …``; at the end a line saying how
     long it took (work without a count, e.g. writing the report)."""
     console = console or make_console(stderr=True)

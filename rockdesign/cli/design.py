@@ -25,6 +25,8 @@ OPTIONS = {"vary": "--vary", "out_dir": "-o/--out", "records_dir": "--records-di
 
 SLOW = 30.0
 """Seconds without progress after which the command says what it is doing and why it takes long."""
+WATCH_EVERY = 1.0
+"""Seconds between two looks of the watchdog at the progress (the silence is said at most this late)."""
 
 
 def register(app: typer.Typer, handle_errors) -> None:
@@ -171,7 +173,7 @@ class _Stages:
         self.bar.update(self.task, description=escape(stage), completed=min(done, total), total=total)
 
     def watch(self, stop: threading.Event) -> None:
-        while not stop.wait(1.0):
+        while not stop.wait(WATCH_EVERY):
             with self.lock:
                 quiet = time.monotonic() - self.last
                 due = quiet >= SLOW and not self.warned

@@ -30,6 +30,7 @@ from pathlib import Path
 from ..errors import ProjectError, RockdesignError
 from ..execution.executor import check_executor, running_on
 from ..kinds import kind_of
+from ..kinds.base import CheckResult
 from ..outdir import DesignFolder
 from ..paths import require_path
 from ..project_tables import Project
@@ -248,7 +249,7 @@ SLOW_ANALYSIS = ("one analysis can take minutes when a record brings the structu
 """Why a stage of a design run can be silent for minutes (the command line says it after a while)."""
 
 
-def recommended_check(result: DesignResult, *, progress=None):
+def recommended_check(result: DesignResult, *, progress=None) -> CheckResult | None:
     """The full check (every stage, as ``rockdesign check``) of the recommended variant: its summary goes into
     the design report, and its verdict must be PASS like its cell's.  None when no variant passes."""
     if result.recommended is None:

@@ -327,7 +327,7 @@ def chunk_size(n: int, executor) -> int:
 
 
 def make_executor(dask: str | None = None, *, processes: int = 0, warm_up: Callable[[], object] | None = None,
-                  numba_threads: int | None = None):
+                  numba_threads: int | None = None) -> LocalExecutor | DaskExecutor:
     """The executor for a CLI ``--dask`` value: None → :class:`LocalExecutor`, else :class:`DaskExecutor` (an
     empty or blank value is refused there: it names no cluster, :func:`check_address`)."""
     if dask is None:

@@ -71,6 +71,13 @@ class SpectrumOptions:
         return dict(self.given)
 
 
+class SimulationRequest(Protocol):
+    """A validated request of one analysis (``rd.simulation_request``; :meth:`StructureKind.simulation_request`):
+    the project it analyses; the rest is the kind's (its parsed motion, model and end time)."""
+
+    project: object
+
+
 class SimulationResult(Protocol):
     """What every kind's one analysis returns (``rd.simulate``; :meth:`StructureKind.run_simulation`)."""
 

@@ -44,7 +44,7 @@ _REFERENCES = (
 )
 
 
-def cite(text):
+def cite(text: str | None) -> str | None:
     """``text`` with every reference to a file of the repository replaced by the appendix section that
     states the same method; other text unchanged (None → None)."""
     if not text:

@@ -52,3 +52,15 @@ def test_the_check_sees_private_imports(tmp_path):
                                   "from numba.extending import intrinsic\nimport weasyprint\n")
     found = private_imports(package)
     assert [f.split()[0] for f in found] == ["pkg/a.py:1", "pkg/b.py:2", "pkg/c.py:1", "pkg/c.py:2"]
+
+
+def test_every_function_of_the_public_api_says_what_it_returns():
+    """Every function ``rockdesign`` exports (``rockdesign.__all__``: rd.check, rd.simulate, rd.design, …) has a
+    return annotation, so a notebook user and a type checker see what comes back."""
+    import inspect
+
+    import rockdesign
+    missing = [name for name in rockdesign.__all__
+               if inspect.isfunction(getattr(rockdesign, name))
+               and inspect.signature(getattr(rockdesign, name)).return_annotation is inspect.Signature.empty]
+    assert not missing, "no return type: " + ", ".join(missing)

@@ -50,6 +50,8 @@ def test_each_command_announces_its_own_kernels(command, kernels, args, prepared
     assert result.exit_code == 0, result.output
     assert prepared == [(command, kernels)]
     assert f"first run: compiling the numerical kernels of `{command}`" in " ".join(result.stderr.split())
+    if command == "bench":   # runs for minutes: stderr is not a terminal here, so plain lines as a stage starts and ends
+        assert "work-precision problems" in result.stderr and "done in" in result.stderr
 
 
 @pytest.mark.parametrize("args", [

@@ -225,11 +225,12 @@ def test_a_long_silent_stage_says_why(tmp_path, fake, monkeypatch):
 
     def slow(self, project, *, progress, **kw):
         progress("design-level suite", 0, 2)
-        time.sleep(2.5)
+        time.sleep(1.0)
         progress("design-level suite", 2, 2)
         return real(self, project, progress=progress, **kw)
     monkeypatch.setattr(Planar, "grid_check", slow)
-    monkeypatch.setattr(cli_design, "SLOW", 1.0)
+    monkeypatch.setattr(cli_design, "SLOW", 0.4)
+    monkeypatch.setattr(cli_design, "WATCH_EVERY", 0.1)
     res, data = design(project(tmp_path / "A"), tmp_path / "out", "podium.width=0.4m:0.6m:2")
     assert res.exit_code == 0, res.output
     text = " ".join(res.stderr.split())
