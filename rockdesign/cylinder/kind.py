@@ -7,6 +7,7 @@ from pathlib import Path
 from .project import claims, parse_cylinder_project
 from ..errors import RockdesignError
 from ..kinds.base import StructureKind
+from ..kinds.options import CliOption
 
 # Everything else is imported where it is used: reading and validating a project (``claims``, ``parse``) loads
 # no engine, numba kernel, figure or report module, so a mistake in a project file is reported before the
@@ -24,6 +25,14 @@ class Cylinder(StructureKind):
     through the planar engine's public simulate, whose kernels its first run compiles with the planar warm-up."""
     spectrum_options = ("record", "x", "y", "relative", "out_dir", "figures", "executor")
     """The parameters of :func:`~rockdesign.cylinder.spectrum_run.record_pair_spectrum` that ``rd.spectrum`` passes on."""
+    spectrum_cli = (
+        CliOption("record", applies_to="cylinders", help="the record pair, e.g. p695-ff/11 (axes R:lo:hi:n and "
+                                                          "pga/up:lo:hi:n; thesis Figs 5.16-5.17)."),
+        CliOption("x", applies_to="cylinders", help="R in m (default: R:0.5:30:60)."),
+        CliOption("y", applies_to="cylinders", help="pga/up (default: pga/up:1:6:51)."),
+    )
+    """The spectrum's options on the command line (``rockdesign spectrum``): the record pair and the two axes (their
+    help joined with the other kinds')."""
     design_material = ("material: the cylinder's mass", "a free-standing cylinder carries no superstructure")
     design_columns = (("n_incremental_unacceptable", "incremental unacceptable", ""), ("p_overturn", "", "-"),
                       ("median_theta_max_over_alpha", "", "-"), ("uplift_acceleration", "", "m/s^2"),

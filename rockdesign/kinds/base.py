@@ -30,6 +30,7 @@ from pathlib import Path
 
 from ..errors import RockdesignError
 from ..outdir import RUN_FILES, OutputFolder
+from .options import CliOption
 
 if TYPE_CHECKING:       # the report's modules load jinja2 and matplotlib: not needed to read a project
     from ..report.document import ReportParts
@@ -162,6 +163,11 @@ class StructureKind(abc.ABC):
     spectrum_options: tuple[str, ...] = ()
     """The options of ``rd.spectrum`` the kind's :meth:`spectrum` takes (``pulse``, ``record``, ``x``, ``out_dir``, …);
     it refuses any other, naming it (:meth:`SpectrumOptions.accepted`)."""
+    spectrum_cli: tuple[CliOption, ...] = ()
+    """The options of :attr:`spectrum_options` that ``rockdesign spectrum`` offers on the command line, each a
+    :class:`~rockdesign.kinds.options.CliOption` (name, value type, help); ``relative``, ``out_dir``, ``executor`` and
+    ``figures`` are the command's own.  The command merges the options of every registered kind (one option for a name
+    several kinds declare, :func:`~rockdesign.kinds.options.merged_options`); none by default."""
     templates: tuple[str, ...] = ()
     """The commented project templates the kind offers, by name (``rockdesign init NAME``; :meth:`template_text`)."""
     design_material: tuple[str, str] = ("material", "no demand to rank by")

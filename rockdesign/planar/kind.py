@@ -7,6 +7,7 @@ from pathlib import Path
 from ..errors import RockdesignError
 from .project import parse_planar_project
 from ..kinds.base import StructureKind
+from ..kinds.options import CliOption
 
 # Everything else is imported where it is used: reading and validating a project (``parse``) loads no engine,
 # numba kernel, figure or report module, so a mistake in a project file is reported before the engine loads
@@ -23,6 +24,40 @@ class Planar(StructureKind):
                         "t_free", "rtol", "tm_ratio", "chunk_rows", "resume", "keep_chunks", "energy_stop",
                         "stop_at_capacity", "polyakov", "equivalent_at", "figures")
     """The parameters of :func:`~rockdesign.planar.spectra.run.pulse_spectrum` that ``rd.spectrum`` passes on."""
+    spectrum_cli = (
+        CliOption("pulse", short="p", applies_to="planar structures",
+                  help="ricker-anti | ricker-sym | sine | cycloidal-a | cycloidal-b | cycloidal-c"),
+        CliOption("x", applies_to="planar structures",
+                  help="x axis AXIS:lo:hi:n, AXIS = omega_p/p | omega_p/p_hat | Tp (seconds) (default: omega_p/p from "
+                       "0.5 to 12, 801 points)"),
+        CliOption("y", applies_to="planar structures",
+                  help="y axis AXIS:lo:hi:n, AXIS = ap/up (a_p over g tan α) | ap/g (default: ap/up from 0 to 12, 401 "
+                       "points)"),
+        CliOption("model", help="Equations: exact | linear | auto (default: auto, the equations of the project's "
+                                "analysis table)."),
+        CliOption("structure", help="auto | block | frame | rigid-superstructure | podium-2dof (default: the model of "
+                                    "the project's analysis table)."),
+        CliOption("overturn", help="static (θ_max ≥ θc) | dynamic (|θ| = π/2) (default: the project's analysis "
+                                   "overturn)."),
+        CliOption("t_free", float, "Free vibration in s after the pulse (default: the project's analysis "
+                                   "free_vibration, 10 s)."),
+        CliOption("rtol", float, "Relative tolerance (default: project)."),
+        CliOption("tm_ratio", float, "Ricker centre t_m/T_p (default: 1.5, thesis Table 3.4)."),
+        CliOption("chunk_rows", int, "Grid rows per chunk (default: about 48 chunks, or the interrupted run's)."),
+        CliOption("resume", bool, "Reuse the chunks of an interrupted run with identical inputs (default: resume).",
+                  negatable=True),
+        CliOption("keep_chunks", bool, "Keep the chunk files after success."),
+        CliOption("energy_stop", bool, "Stop each analysis once the energy bound proves θ_max final (docs: "
+                                       "early_termination.md; default: on).", negatable=True),
+        CliOption("stop_at_capacity", bool, "Static criterion: stop each analysis when θ reaches θc (verdict final; "
+                                            "θ_max shown as θc)."),
+        CliOption("polyakov", bool, "Overlay Polyakov's overturning line (SD_max of the pulse = u_B(θc); default: "
+                                    "on).", negatable=True),
+        CliOption("equivalent_at", float, "Ordinate(s) y for the equivalent size of Eq 3.65 (repeatable).",
+                  metavar="Y", multiple=True),
+    )
+    """The spectrum's options on the command line (``rockdesign spectrum``; the axes ``x`` and ``y`` are shared with
+    other kinds, each kind's help joined)."""
 
     grid_module = "rockdesign.planar.grid"
     experiments_module = "rockdesign.planar.experiments"
