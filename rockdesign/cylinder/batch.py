@@ -12,7 +12,7 @@ import dataclasses
 import time
 from collections.abc import Callable, Sequence
 
-from ..execution.executor import LocalExecutor, chunk_size
+from ..execution.executor import LocalExecutor, chunk_size, one_core
 from .engine import STATUS, simulate_cylinder
 from .kernel import ST_COMPLETED, ST_OVERTURNED
 
@@ -63,6 +63,7 @@ def run_pair(cyl, a, pair, rtol: float | None = None, atol: float | None = None)
     return run, seconds, r.cost_reason() if seconds > SLOW_RUN_SECONDS else ""
 
 
+@one_core       # its 3D integration releases the GIL: in this process the analyses run in threads, one per core
 def run_pairs(cyl, a, jobs) -> list[tuple[PairRun, float, str]]:
     """:func:`run_pair` of each job ``(pair, rtol, atol)`` of a chunk, in order (one task of an executor)."""
     return [run_pair(cyl, a, *job) for job in jobs]
@@ -77,7 +78,7 @@ class PairRunner:
 
     Args:
         cyl, a: the cylinder and the project's ``[analysis]``.
-        executor: None (this process, one analysis after the other) or an executor object
+        executor: None (this process: one analysis per core at a time, in threads) or an executor object
             (:func:`rockdesign.execution.executor.is_executor`): the batch's analyses are mapped over it.
         note: ``note(pair name, text)`` for an analysis slower than :data:`SLOW_RUN_SECONDS`.
 
@@ -102,8 +103,9 @@ class PairRunner:
         out: list = [None] * len(jobs)
         if not jobs:
             return out
-        # one analysis runs on one core: one per task on a single slot (this process; the progress moves with
-        # each), a few chunks per slot elsewhere (execution.executor.chunk_size)
+        # one analysis runs on one core: one per task on a single slot (this process: its threads take the next
+        # analysis as they finish one, and the progress moves with each), a few chunks per slot elsewhere
+        # (execution.executor.chunk_size)
         slots = max(1, int(getattr(self.executor, "slots", 1) or 1))
         size = 1 if slots == 1 else chunk_size(len(jobs), self.executor)
         first = list(range(0, len(jobs), size))

@@ -118,7 +118,7 @@ def _event(events, ne, code, t, theta, value, ev):
     return _push(events, ne, ev)
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)     # threads of this process run analyses side by side (execution.executor.one_core)
 def integrate(y0, t0, t_end, t_exc_end, par, kind, params, sx, sy, dirx, diry, rtol, atol, theta_seed,
               theta_ot, quasi_tilt, rest_energy, planar_restitution, up, max_steps, out_dt, planar_reduction):
     """Integrate one cylinder from (t0, y0) to t_end (module docstring).

@@ -52,6 +52,15 @@ def usable_cores() -> int:
 
 
 # ------------------------------------------------------------------------------------------ executors
+def one_core(func: Callable) -> Callable:
+    """Mark a batch function that runs on one core and releases the GIL while it computes (a numba kernel
+    compiled with ``nogil=True`` does most of its work): in this process :class:`LocalExecutor` spreads its tasks
+    over threads, one per core.  Unmarked functions are taken to use the cores themselves (a numba ``prange``
+    batch, whose parallel regions must not be entered by two threads at once) and run one task after the other."""
+    func.one_core = True
+    return func
+
+
 def _call(func, common, args):
     return func(*common, *args)
 
@@ -129,11 +138,16 @@ class LocalExecutor(Counted):
         self._started = True
 
     def map(self, func, common: tuple, tasks: dict[int, tuple]) -> Iterator[tuple[int, ChunkResult]]:
-        """Yield (index, result) for every task, as they complete."""
+        """Yield (index, result) for every task, as they complete.  In this process a :func:`one_core` function's
+        tasks run in threads, one per core; any other function's one after the other."""
         self.start()
         if self.processes == 0:
-            for i, args in tasks.items():
-                yield i, func(*common, *args)
+            threads = min(len(tasks), usable_cores()) if getattr(func, "one_core", False) else 1
+            if threads < 2:
+                for i, args in tasks.items():
+                    yield i, func(*common, *args)
+                return
+            yield from _threaded(func, common, tasks, threads)
             return
         from concurrent.futures import as_completed
         futures = {self._pool.submit(_call, func, common, args): i for i, args in tasks.items()}
@@ -159,6 +173,19 @@ class LocalExecutor(Counted):
 
 def _noop(_):
     return None
+
+
+def _threaded(func, common, tasks, threads: int):
+    """(index, result) of every task as it completes, in ``threads`` threads of this process (a Ctrl-C here
+    cancels the tasks not started; the running ones end with their analysis)."""
+    from concurrent.futures import ThreadPoolExecutor, as_completed
+    pool = ThreadPoolExecutor(threads, thread_name_prefix="rockdesign-one-core")
+    futures = {pool.submit(func, *common, *args): i for i, args in tasks.items()}
+    try:
+        for fut in as_completed(futures):
+            yield futures[fut], fut.result()
+    finally:
+        pool.shutdown(wait=False, cancel_futures=True)
 
 
 class DaskExecutor(Counted):

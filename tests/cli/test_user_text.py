@@ -152,14 +152,18 @@ def test_one_form_of_units_for_a_reader():
     assert '"m/s^2"' in res.stdout
 
 
-def test_documentation_references_carry_the_reports_name():
+def test_documentation_references_carry_the_reports_name(monkeypatch):
     """The console cited docs/model.md §7 where the report says Appendix M4: it now gives both."""
     from typer.testing import CliRunner
 
+    import importlib
+
     from rockdesign.cli import app
+    from rockdesign.console import make_console
     from rockdesign.paths import REPO_ROOT
-    res = CliRunner().invoke(app, ["quantities", str(REPO_ROOT / "examples" / "podium_curved.toml")],
-                             env={"COLUMNS": "250"})
+    # a wide table, whatever COLUMNS was when the command line was imported (the module's console read it then)
+    monkeypatch.setattr(importlib.import_module("rockdesign.cli.app"), "console", make_console(width=250))
+    res = CliRunner().invoke(app, ["quantities", str(REPO_ROOT / "examples" / "podium_curved.toml")])
     text = " ".join(res.stdout.split())
     assert res.exit_code == 0
     assert "docs/model.md §7 (report: Appendix M4)" in text

@@ -144,3 +144,29 @@ def test_record_suite_batches_equal_run_batch(tmp_path):
     np.testing.assert_array_equal(s, s_ref)
     np.testing.assert_array_equal(d, d_ref)
     assert (s_ref[:, 0] > 0).all()
+
+
+def test_a_one_core_function_runs_in_threads_of_this_process(monkeypatch):
+    """A function marked one_core (its work releases the GIL: the cylinder's 3D analyses) runs in one thread per
+    core in this process, every task once, each result under its own index; an unmarked function (a numba
+    ``prange`` batch, which must not be entered by two threads) one task after the other in the caller's thread."""
+    import threading
+    import time
+
+    from rockdesign.execution import executor as ex_module
+    from rockdesign.execution.executor import one_core
+    monkeypatch.setattr(ex_module, "usable_cores", lambda: 2)
+    seen = []
+
+    def work(offset, k):
+        seen.append(threading.current_thread().name)
+        time.sleep(0.05)             # long enough for the second thread to take a task
+        return offset + k
+
+    tasks = {i: (i,) for i in range(6)}
+    plain = dict(LocalExecutor().map(work, (100,), tasks))
+    assert plain == {i: 100 + i for i in range(6)} and set(seen) == {threading.current_thread().name}
+    seen.clear()
+    threaded = dict(LocalExecutor().map(one_core(work), (100,), tasks))
+    assert threaded == plain and len(seen) == 6
+    assert len(set(seen)) == 2 and threading.current_thread().name not in seen
