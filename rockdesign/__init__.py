@@ -53,6 +53,8 @@ _EXPORTS = {
     # running long work: progress on stderr or in a notebook, executors (a dask cluster)
     "progress_bars": "rockdesign.progress", "working": "rockdesign.progress",
     "make_executor": "rockdesign.execution.executor",
+    # the options each kind's rocking spectrum offers on the command line (``rockdesign spectrum``)
+    "spectrum_cli_options": "rockdesign.kinds",
     # output folders (a folder a failed command created is removed again)
     "refuse_wrong_type": "rockdesign.outdir", "discard_unfinished": "rockdesign.outdir",
     "forget_created": "rockdesign.outdir",

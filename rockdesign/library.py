@@ -33,9 +33,8 @@ from pathlib import Path
 from .execution import compilation
 from .errors import ProjectError, RockdesignError
 from .execution.executor import check_executor, running_on
-from .kinds import kind_of, parse_document, registered
+from .kinds import kind_of, parse_document
 from .kinds.base import CheckResult, SimulationRequest, SimulationResult, SpectrumOptions, SpectrumResult
-from .kinds.options import CliOption, registry_options
 from .outdir import OutputFolder
 from .paths import require_path
 from .progress import progress_bars
@@ -332,14 +331,6 @@ def spectrum(project: Project, *, progress=False, say=None, **options) -> Spectr
         with progress_bars() as tick:
             return kind.spectrum(project, SpectrumOptions(given, progress=tick, say=say))
     return kind.spectrum(project, SpectrumOptions(given, progress=progress or None, say=say))
-
-
-def spectrum_cli_options() -> tuple[CliOption, ...]:
-    """The options of ``rockdesign spectrum`` the registered kinds declare
-    (:attr:`~rockdesign.kinds.base.StructureKind.spectrum_cli`), merged by name
-    (:func:`~rockdesign.kinds.options.merged_options`): the built-in kinds' first, the default kind's first, then those
-    of the kinds added to the registry.  Imports the kinds; the same tuple while the registry does not change."""
-    return registry_options(tuple(reversed(registered())))
 
 
 def compile_kernels(project: Project, command: str = "check", say=None) -> float:

@@ -5,11 +5,11 @@ Mounted by :mod:`rockdesign.cli` through :func:`register`.  The command's functi
 kind's spectrum shares through ``rd.spectrum`` (``--relative``, ``--dask``, ``-o/--out``, ``--figures``) and those of
 the printing (``--json``, ``-q/--quiet``).  The other options are the kinds' own: each kind declares them in neutral
 words (:attr:`~rockdesign.kinds.base.StructureKind.spectrum_cli`, a tuple of
-:class:`~rockdesign.kinds.options.CliOption`: name, value type, help), the library merges those of the registered
-kinds (``rockdesign.library.spectrum_cli_options``: one option for a name several kinds declare, their helps
+:class:`~rockdesign.kinds.options.CliOption`: name, value type, help), the package merges those of the registered
+kinds (``rd.spectrum_cli_options``, :func:`rockdesign.kinds.spectrum_cli_options`: one option for a name several kinds declare, their helps
 joined) and :class:`KindOptionsCommand` adds them to the command when it is parsed or its help shown — never when
-the command line starts (the kinds load pint and scipy: ``rockdesign --version`` and the other commands stay
-light).  A kind with options of its own edits nothing here.
+the command line starts (``rockdesign --version`` and the other commands load no kind; reading the kinds'
+declarations loads no pint, scipy or engine either).  A kind with options of its own edits nothing here.
 
 This module spells the kinds' flags (the library names parameters; only the command line speaks of flags): an
 option named ``grid_step`` is ``--grid-step``, an on/off option also has ``--no-grid-step``, a short form is one
@@ -111,8 +111,8 @@ class KindOptionsCommand(TyperCommand):
     def kind_options(self) -> tuple:
         """The options the registered kinds declare (merged by name; imports the kinds), the same tuple while the
         registry does not change."""
-        from .. import library
-        return library.spectrum_cli_options()
+        import rockdesign as rd
+        return rd.spectrum_cli_options()
 
     def _kind_params(self, options) -> list:
         """The click parameters of the kinds' ``options``.  An option that takes the name or a flag of another —

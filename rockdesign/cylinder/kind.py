@@ -4,14 +4,14 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .project import claims, parse_cylinder_project
 from ..errors import RockdesignError
 from ..kinds.base import StructureKind
 from ..kinds.options import CliOption
 
-# Everything else is imported where it is used: reading and validating a project (``claims``, ``parse``) loads
-# no engine, numba kernel, figure or report module, so a mistake in a project file is reported before the
-# engine loads (tests/cli/test_startup.py).
+# Everything else is imported where it is used: the registry loads the kind without pint (the command line lists
+# the kinds' spectrum options from it), and reading and validating a project (``claims``, ``parse``) loads no
+# engine, numba kernel, figure or report module, so a mistake in a project file is reported before the engine
+# loads (tests/cli/test_startup.py).
 
 
 class Cylinder(StructureKind):
@@ -74,9 +74,11 @@ class Cylinder(StructureKind):
         return {"simulate": (INTEGRATOR,), "check": (INTEGRATOR, ENGINE, ELASTIC_SPECTRUM)}.get(command, ())
 
     def claims(self, raw):
+        from .project import claims
         return claims(raw)
 
     def parse(self, raw, *, file, text):
+        from .project import parse_cylinder_project
         return parse_cylinder_project(raw, file=file, text=text)
 
     def quantities(self, project):

@@ -22,6 +22,7 @@ from importlib.metadata import entry_points
 
 from ..errors import RockdesignError
 from .base import StructureKind
+from .options import CliOption, registry_options
 
 BUILT_IN: tuple[str, ...] = ("rockdesign.cylinder.kind:Cylinder", "rockdesign.planar.kind:Planar")
 """The built-in kinds (``module:class``), in the order a document is offered to them; the planar kind claims
@@ -95,3 +96,12 @@ def parse_document(raw: dict, *, file: str = "<project>", text: str = ""):
     if dataclasses.is_dataclass(project) and getattr(project, "kind", "") is None:
         project = dataclasses.replace(project, kind=kind)      # the project carries its kind (``kind_of``)
     return project
+
+
+def spectrum_cli_options() -> tuple[CliOption, ...]:
+    """The options of ``rockdesign spectrum`` the registered kinds declare
+    (:attr:`~rockdesign.kinds.base.StructureKind.spectrum_cli`), merged by name (:func:`~rockdesign.kinds.options.merged_options`): the
+    built-in kinds' first, the default kind's first, then those of the kinds added to the registry.  Imports the
+    kinds (not pint or the engines: a kind's module imports those where it uses them); the same tuple while the
+    registry does not change."""
+    return registry_options(tuple(reversed(registered())))

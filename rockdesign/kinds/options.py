@@ -6,7 +6,7 @@ option of ``rd.spectrum`` its spectrum takes that the command line offers: its n
 parameters, only the command line speaks of flags: docs/architecture.md): the name ``grid_step`` is typed
 ``--grid-step``, an on/off option (``negatable``) also has its ``--no-`` form, and ``short`` adds a one-letter flag.
 
-:func:`merged_options` merges the declarations of kinds (``rockdesign.library.spectrum_cli_options``: of every
+:func:`merged_options` merges the declarations of kinds (``rockdesign.kinds.spectrum_cli_options``: of every
 registered kind): an option several kinds declare (the axes ``x`` and ``y``) is one option, its help joined from each
 kind's.  Adding a kind with options of its own edits no module of the command line.
 """
@@ -119,6 +119,6 @@ def _shape(option: CliOption) -> str:
 @functools.lru_cache(maxsize=1)
 def registry_options(kinds: tuple) -> tuple[CliOption, ...]:
     """:func:`merged_options` of ``kinds`` (the registry's, as a tuple), kept while the same kinds are asked again: the
-    command line builds its options once for each state of the registry (``rockdesign.library.spectrum_cli_options``
+    command line builds its options once for each state of the registry (:func:`rockdesign.kinds.spectrum_cli_options`
     asks the registry)."""
     return merged_options(kinds)

@@ -5,12 +5,12 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..errors import RockdesignError
-from .project import parse_planar_project
 from ..kinds.base import StructureKind
 from ..kinds.options import CliOption
 
-# Everything else is imported where it is used: reading and validating a project (``parse``) loads no engine,
-# numba kernel, figure or report module, so a mistake in a project file is reported before the engine loads
+# Everything else is imported where it is used: the registry loads the kind without pint (the command line lists
+# the kinds' spectrum options from it), and reading and validating a project (``parse``) loads no engine, numba
+# kernel, figure or report module, so a mistake in a project file is reported before the engine loads
 # (tests/cli/test_startup.py).
 
 
@@ -115,6 +115,7 @@ class Planar(StructureKind):
         return True            # the default kind: its parser names what is missing ([column] or [podium])
 
     def parse(self, raw, *, file, text):
+        from .project import parse_planar_project
         return parse_planar_project(raw, file=file, text=text)
 
     def quantities(self, project):
