@@ -123,3 +123,39 @@ class PairRunner:
                 if done is not None:
                     done(count)
         return out
+
+
+@one_core       # a task of the design grid's shared rounds: one member's 3D analyses (they release the GIL)
+def run_tasks(tasks) -> list:
+    """``func(*common, *args)`` of each ``(func, common, args)`` of ``tasks``, in order (one task of an executor)."""
+    return [func(*common, *args) for func, common, args in tasks]
+
+
+class SharedPairs:
+    """``execute(calls) -> [{index: result}, …]`` for the design grid's pool (:mod:`rockdesign.execution.batch_pool`):
+    the cylinder variants of a grid checked together, every task of every member's call of a round in one map over
+    ``executor`` (None: this process, one analysis per core in threads), so a round with few analyses of one
+    variant (a scan's) shares the cores with the others'.  A task's result does not depend on the others, so each
+    variant gets what its own check computes.  ``calls`` and ``jobs`` count the rounds run and their tasks (one 3D
+    analysis each: a member's runner hands out one analysis per task)."""
+
+    def __init__(self, executor=None):
+        self.executor = executor if executor is not None else LocalExecutor()
+        self.calls = 0
+        self.jobs = 0
+
+    def __call__(self, calls) -> list[dict]:
+        owners = [(c, i) for c, call in enumerate(calls) for i in call.tasks]
+        flat = [(calls[c].func, calls[c].common, calls[c].tasks[i]) for c, i in owners]
+        results: list[dict] = [{} for _ in calls]
+        if flat:
+            slots = max(1, int(getattr(self.executor, "slots", 1) or 1))
+            size = 1 if slots == 1 else chunk_size(len(flat), self.executor)
+            first = list(range(0, len(flat), size))
+            for k, rows in self.executor.map(run_tasks, (), {k: (flat[a:a + size],) for k, a in enumerate(first)}):
+                for (c, i), row in zip(owners[first[k]:first[k] + size], rows):
+                    results[c][i] = row
+        self.calls += 1
+        self.jobs += len(flat)
+        return results
+

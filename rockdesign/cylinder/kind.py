@@ -65,6 +65,12 @@ class Cylinder(StructureKind):
 
     grid_module = "rockdesign.cylinder.grid"
 
+    def grid_batches(self, executor=None):
+        """The design grid checks the cylinder's variants together: each round's 3D analyses of every variant in one
+        map over ``executor`` (None: this process's threads; :class:`~rockdesign.cylinder.batch.SharedPairs`)."""
+        from .batch import SharedPairs
+        return SharedPairs(executor)
+
     def kernels(self, command):
         """The cylinder's integrator (``simulate``); with the planar engine of the planar components and the
         elastic spectrum of their SD_max (``check``)."""
