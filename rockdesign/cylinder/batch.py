@@ -158,4 +158,3 @@ class SharedPairs:
         self.calls += 1
         self.jobs += len(flat)
         return results
-
