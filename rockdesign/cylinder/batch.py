@@ -12,7 +12,7 @@ import dataclasses
 import time
 from collections.abc import Callable, Sequence
 
-from ..execution.executor import LocalExecutor, chunk_size, one_core
+from ..execution.executor import chunk_size, here, one_core, slots_of
 from .engine import STATUS, simulate_cylinder
 from .kernel import ST_COMPLETED, ST_OVERTURNED
 
@@ -69,6 +69,13 @@ def run_pairs(cyl, a, jobs) -> list[tuple[PairRun, float, str]]:
     return [run_pair(cyl, a, *job) for job in jobs]
 
 
+def analyses_per_task(n: int, executor) -> int:
+    """3D analyses per task when ``n`` go to ``executor``: one analysis runs on one core, so one per task on a
+    single slot (this process: its threads take the next analysis as they finish one, and the progress moves with
+    each), a few chunks per slot elsewhere (:func:`~rockdesign.execution.executor.chunk_size`)."""
+    return 1 if slots_of(executor) == 1 else chunk_size(n, executor)
+
+
 Job = tuple
 """One analysis of a batch: ``(pair, rtol, atol)`` (a tolerance None: the project's)."""
 
@@ -82,16 +89,11 @@ class PairRunner:
             (:func:`rockdesign.execution.executor.is_executor`): the batch's analyses are mapped over it.
         note: ``note(pair name, text)`` for an analysis slower than :data:`SLOW_RUN_SECONDS`.
 
-    Every analysis is counted on the executor it ran through (``executor.count``; ``analyses``)."""
+    Every analysis is counted on the executor it ran through (``executor.count``; read ``executor.analyses``)."""
 
     def __init__(self, cyl, a, *, executor=None, note: Callable[[str, str], None] | None = None):
         self.cyl, self.a, self.note = cyl, a, note
-        self.executor = executor if executor is not None else LocalExecutor()
-
-    @property
-    def analyses(self) -> int:
-        """The analyses counted on this runner's executor."""
-        return self.executor.analyses
+        self.executor = here(executor)
 
     def count(self, n: int) -> None:
         """Count ``n`` analyses run here beside the batches (e.g. the planar runs along a pair's components)."""
@@ -103,11 +105,7 @@ class PairRunner:
         out: list = [None] * len(jobs)
         if not jobs:
             return out
-        # one analysis runs on one core: one per task on a single slot (this process: its threads take the next
-        # analysis as they finish one, and the progress moves with each), a few chunks per slot elsewhere
-        # (execution.executor.chunk_size)
-        slots = max(1, int(getattr(self.executor, "slots", 1) or 1))
-        size = 1 if slots == 1 else chunk_size(len(jobs), self.executor)
+        size = analyses_per_task(len(jobs), self.executor)
         first = list(range(0, len(jobs), size))
         self.executor.start()
         finished = self.executor.map(run_pairs, (self.cyl, self.a),
@@ -140,7 +138,7 @@ class SharedPairs:
     analysis each: a member's runner hands out one analysis per task)."""
 
     def __init__(self, executor=None):
-        self.executor = executor if executor is not None else LocalExecutor()
+        self.executor = here(executor)
         self.calls = 0
         self.jobs = 0
 
@@ -149,8 +147,7 @@ class SharedPairs:
         flat = [(calls[c].func, calls[c].common, calls[c].tasks[i]) for c, i in owners]
         results: list[dict] = [{} for _ in calls]
         if flat:
-            slots = max(1, int(getattr(self.executor, "slots", 1) or 1))
-            size = 1 if slots == 1 else chunk_size(len(flat), self.executor)
+            size = analyses_per_task(len(flat), self.executor)
             first = list(range(0, len(flat), size))
             for k, rows in self.executor.map(run_tasks, (), {k: (flat[a:a + size],) for k, a in enumerate(first)}):
                 for (c, i), row in zip(owners[first[k]:first[k] + size], rows):

@@ -80,8 +80,8 @@ class VariantChecker:
 
     def check(self, task: Task, progress, executor) -> dict:
         """The cell of one variant's check (stored for a resumed run when the task has a store)."""
-        from ..execution.executor import LocalExecutor
-        executor = executor if executor is not None else LocalExecutor()    # this process; it counts the analyses
+        from ..execution.executor import here
+        executor = here(executor)    # None: this process; the executor counts the analyses
         before = executor.analyses
         variant, kind = task.variant, task.kind
 

@@ -347,10 +347,20 @@ CHUNKS_PER_SLOT = 4
 (a dask task's is about as long as one short analysis), while the slots still finish together."""
 
 
+def slots_of(executor) -> int:
+    """How many tasks ``executor`` runs at once (its ``slots``; one when it has none)."""
+    return max(1, int(getattr(executor, "slots", 1) or 1))
+
+
 def chunk_size(n: int, executor) -> int:
     """Items per chunk when ``n`` items go to ``executor`` (:data:`CHUNKS_PER_SLOT` chunks per slot; an executor
     without ``slots`` counts as one)."""
-    return max(1, -(-n // (CHUNKS_PER_SLOT * max(1, int(getattr(executor, "slots", 1) or 1)))))
+    return max(1, -(-n // (CHUNKS_PER_SLOT * slots_of(executor))))
+
+
+def here(executor):
+    """``executor``, or for None a :class:`LocalExecutor` of this process (it counts the analyses run through it)."""
+    return executor if executor is not None else LocalExecutor()
 
 
 def make_executor(dask: str | None = None, *, processes: int = 0, warm_up: Callable[[], object] | None = None,
@@ -413,7 +423,7 @@ def run_chunks(func: Callable[..., ChunkResult], tasks: Sequence[tuple], *, comm
     Returns:
         :class:`ChunkRun`.
     """
-    executor = executor if executor is not None else LocalExecutor()
+    executor = here(executor)
     n = len(tasks)
     results: list = [None] * n
     run = ChunkRun(results)

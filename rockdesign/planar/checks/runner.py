@@ -14,7 +14,7 @@ from ..dynamics.layout import (COMPLETED_STATUSES, D_STATUS, STATUS_NAMES, S_CAP
 from ..dynamics.model import ModelChoice, system_parameters
 from ..dynamics.eom import P_CR, P_THETA_C, P_TWO_DOF
 from ..dynamics.overturning import classify
-from ...execution.executor import LocalExecutor, chunk_size, usable_cores
+from ...execution.executor import chunk_size, here, slots_of, usable_cores
 from ..system import RockingSystem
 
 
@@ -107,7 +107,7 @@ def run_jobs(system: RockingSystem, choice: ModelChoice, motions, scales, *, rto
     alpha = slenderness_angle(system.column.half_width, system.column.half_height)
     capacity = displacement_capacity(system.column)
     n = len(motions)
-    runner = executor if executor is not None else LocalExecutor()
+    runner = here(executor)
     runner.count(n)
     t_ends = [m.duration + free_vibration for m in motions]
     predicted = list(t_ends if costs is None else costs)
@@ -131,6 +131,6 @@ def jobs_per_chunk(n: int, executor) -> int:
     """Jobs per task when ``n`` jobs go to ``executor``: on one slot (this process, a design grid's pool member)
     chunks of 4 jobs per core, at least 8 — the batch driver shares each chunk over numba's threads and the
     progress moves; on more slots :func:`~rockdesign.execution.executor.chunk_size` (a few chunks per slot)."""
-    if max(1, int(getattr(executor, "slots", 1) or 1)) == 1:
+    if slots_of(executor) == 1:
         return max(4 * usable_cores(), 8)
     return chunk_size(n, executor)

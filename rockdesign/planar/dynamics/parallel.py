@@ -14,7 +14,7 @@ import numpy as np
 
 from .batch import pack_motions, run_packed
 from ...kernel_cache import sources_digest
-from ...execution.executor import ChunkStore, LocalExecutor, fingerprint, run_chunks
+from ...execution.executor import ChunkStore, fingerprint, here, run_chunks
 
 
 def motion_rows(sp: np.ndarray, samples: np.ndarray, opts: np.ndarray, kinds: np.ndarray, xps: np.ndarray,
@@ -58,7 +58,7 @@ def run_motions(sp: np.ndarray, motions: Sequence, scales, t_ends, opts: np.ndar
             progress(bounds[i][1] - bounds[i][0])
 
     run = run_chunks(motion_rows, tasks, common=(np.ascontiguousarray(sp, dtype=np.float64), samples, opts),
-                     executor=executor if executor is not None else LocalExecutor(), store=store, resume=resume,
+                     executor=here(executor), store=store, resume=resume,
                      progress=on_chunk)
     if store is not None and not keep_chunks:
         store.clear()
